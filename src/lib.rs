@@ -1,0 +1,14 @@
+//! `lsys`: a compiler and interpreter for parametric L-systems.
+//!
+//! ```text
+//! source (.lsys, #include'd files, std library embedded in the binary)
+//!   -> parse      pest grammar (grammar/lsys.pest) -> AST with spans
+//!   -> resolve    #define/#include, alphabet, names, arity, constant folding
+//!   -> bytecode   productions -> documented instructions (+ spans), disassembler
+//!   -> derive     parallel rewriting over a flat module store
+//! ```
+
+pub mod bytecode;
+pub mod derive;
+pub mod resolve;
+pub mod source;

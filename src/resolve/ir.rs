@@ -1,0 +1,347 @@
+//! The resolved program: output of `resolve`, input of `bytecode` and
+//! `derive`. Every name is bound (modules to [`SymId`]s, expression names to
+//! parameter slots or inlined `#define` values), every arity checked, and
+//! constants folded. Nothing here refers back to the AST.
+
+use std::collections::HashMap;
+
+use crate::source::{SourceMap, Span};
+
+/// Index of a module symbol in [`Symbols`].
+pub type SymId = u32;
+
+/// Symbol 0 is always `[` and symbol 1 always `]`, so the engine can test
+/// for brackets without a lookup.
+pub const OPEN_BRACKET: SymId = 0;
+pub const CLOSE_BRACKET: SymId = 1;
+
+/// What a module symbol is, which decides how the turtle treats it and
+/// how strictly the checker treats its arity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SymbolKind {
+    /// A name the grammar defines (a predecessor, or a declared module).
+    User,
+    /// A turtle command from the command table (`F`, `+`, `@O`, ...).
+    Turtle,
+    /// A component placement `~X` (a surface, OBJ model or sub-grammar).
+    Component,
+    /// A query module `?P`, `?H`, ... (filled by interpretation, later).
+    Query,
+    /// A name that appears only in successors or the axiom, with no
+    /// production, declaration or turtle meaning (cpfg's inert letters).
+    Inert,
+}
+
+#[derive(Clone, Debug)]
+pub struct Symbol {
+    pub name: String,
+    pub kind: SymbolKind,
+    /// Where the name was first seen, for "declared here" labels.
+    pub span: Option<Span>,
+}
+
+/// The grammar's alphabet.
+#[derive(Clone, Debug, Default)]
+pub struct Symbols {
+    pub list: Vec<Symbol>,
+    pub by_name: HashMap<String, SymId>,
+}
+
+impl Symbols {
+    pub fn name(&self, id: SymId) -> &str {
+        &self.list[id as usize].name
+    }
+
+    pub fn get(&self, name: &str) -> Option<SymId> {
+        self.by_name.get(name).copied()
+    }
+
+    pub fn len(&self) -> usize {
+        self.list.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+}
+
+/// A resolved, constant-folded expression on f64.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum ExprKind {
+    Num(f64),
+    /// A bound parameter: index into the production's bindings (see
+    /// [`Production::nparams`]).
+    Param(u16),
+    Unary(UnOp, Box<Expr>),
+    /// `And` and `Or` short-circuit; comparisons and logic yield 1.0 or 0.0.
+    Binary(BinOp, Box<Expr>, Box<Expr>),
+    /// `c ? a : b` (cpfg's C heritage).
+    Cond(Box<Expr>, Box<Expr>, Box<Expr>),
+    Call(Func, Vec<Expr>),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnOp {
+    Neg,
+    Not,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Rem,
+    Pow,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Eq,
+    Ne,
+    And,
+    Or,
+}
+
+/// Built-in functions. Trigonometry works in degrees, as in cpfg.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Func {
+    Sin,
+    Cos,
+    Tan,
+    Asin,
+    Acos,
+    Atan,
+    Atan2,
+    Sqrt,
+    Exp,
+    Log,
+    Floor,
+    Ceil,
+    Trunc,
+    Abs,
+    Sign,
+    Min,
+    Max,
+    /// `ran(x)`: uniform in [0, x) from the derivation's seeded generator.
+    Ran,
+}
+
+impl Func {
+    pub const ALL: [Func; 18] = [
+        Func::Sin,
+        Func::Cos,
+        Func::Tan,
+        Func::Asin,
+        Func::Acos,
+        Func::Atan,
+        Func::Atan2,
+        Func::Sqrt,
+        Func::Exp,
+        Func::Log,
+        Func::Floor,
+        Func::Ceil,
+        Func::Trunc,
+        Func::Abs,
+        Func::Sign,
+        Func::Min,
+        Func::Max,
+        Func::Ran,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Func::Sin => "sin",
+            Func::Cos => "cos",
+            Func::Tan => "tan",
+            Func::Asin => "asin",
+            Func::Acos => "acos",
+            Func::Atan => "atan",
+            Func::Atan2 => "atan2",
+            Func::Sqrt => "sqrt",
+            Func::Exp => "exp",
+            Func::Log => "log",
+            Func::Floor => "floor",
+            Func::Ceil => "ceil",
+            Func::Trunc => "trunc",
+            Func::Abs => "abs",
+            Func::Sign => "sign",
+            Func::Min => "min",
+            Func::Max => "max",
+            Func::Ran => "ran",
+        }
+    }
+
+    pub fn arity(self) -> usize {
+        match self {
+            Func::Atan2 | Func::Min | Func::Max => 2,
+            _ => 1,
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Func> {
+        Func::ALL.into_iter().find(|f| f.name() == name)
+    }
+
+    /// Whether the result depends on state (so it must never be folded).
+    pub fn is_pure(self) -> bool {
+        self != Func::Ran
+    }
+}
+
+/// One module of a predecessor or context pattern.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatModule {
+    pub sym: SymId,
+    /// Number of formal parameters; a pattern matches only modules with
+    /// exactly this many parameters (cpfg's rule).
+    pub arity: u8,
+    /// Binding slot of the first formal parameter; the others follow.
+    pub first_param: u16,
+    pub span: Span,
+}
+
+/// One element of a context pattern. Brackets occur only in right contexts.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PatItem {
+    Module(PatModule),
+    Open(Span),
+    Close(Span),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Cond {
+    /// No condition, or `*`.
+    Always,
+    /// `else`: applies when no earlier production for this predecessor
+    /// matched. With first-match semantics that is "always" at run time;
+    /// the checker makes sure an earlier conditional production exists.
+    Else(Span),
+    Expr(Expr),
+}
+
+/// One module a successor (or the axiom) writes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SuccModule {
+    pub sym: SymId,
+    pub args: Vec<Expr>,
+    pub span: Span,
+}
+
+/// Which table a production belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Table {
+    /// Ordinary productions, applied in parallel once per derivation step.
+    Main,
+    /// Applied recursively after every step (and to the axiom).
+    Decomposition,
+    /// Applied recursively to produce the string the turtle interprets;
+    /// never fed back into the derivation.
+    Homomorphism,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Production {
+    pub table: Table,
+    /// The whole production, for runtime error labels.
+    pub span: Span,
+    /// The strict predecessor's source text span, e.g. `A(x)`.
+    pub head_span: Span,
+    /// Left context, left to right as written (matched right to left).
+    pub lctx: Vec<PatModule>,
+    /// Strict predecessor: one or more consecutive modules.
+    pub pred: Vec<PatModule>,
+    /// Right context, left to right, possibly with brackets.
+    pub rctx: Vec<PatItem>,
+    /// Total binding slots: formal parameters of lctx, then pred, then
+    /// rctx, in that order.
+    pub nparams: u16,
+    /// Names of the binding slots, for the disassembler and errors.
+    pub param_names: Vec<String>,
+    pub cond: Cond,
+    /// Empty means the predecessor is erased.
+    pub succ: Vec<SuccModule>,
+    /// Relative weight in a stochastic choice.
+    pub prob: Option<Expr>,
+}
+
+impl Production {
+    pub fn has_context(&self) -> bool {
+        !self.lctx.is_empty() || !self.rctx.is_empty()
+    }
+}
+
+/// A `#define` after overrides, for `:defines` in the REPL and for docs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DefineInfo {
+    pub name: String,
+    /// The folded value when it is a constant.
+    pub value: Option<f64>,
+    pub span: Span,
+    /// Whether `-D` replaced the file's value.
+    pub overridden: bool,
+}
+
+/// Which modules context matching looks at.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum ContextFilter {
+    #[default]
+    All,
+    /// `ignore:` these symbols are skipped.
+    Ignore(Vec<SymId>),
+    /// `consider:` only these symbols are looked at.
+    Consider(Vec<SymId>),
+}
+
+/// The whole resolved grammar.
+#[derive(Clone, Debug)]
+pub struct Program {
+    pub sources: SourceMap,
+    pub symbols: Symbols,
+    pub axiom: Vec<SuccModule>,
+    /// Steps to derive when the user does not say (`derivation length:`).
+    pub derivation_length: u32,
+    /// `seed:`; the user's `--seed` wins.
+    pub seed: Option<u64>,
+    pub context: ContextFilter,
+    pub productions: Vec<Production>,
+    pub decomposition: Vec<Production>,
+    pub homomorphism: Vec<Production>,
+    /// `maximum depth:` of the decomposition and homomorphism sections.
+    pub decomposition_depth: u32,
+    pub homomorphism_depth: u32,
+    pub defines: Vec<DefineInfo>,
+}
+
+impl Program {
+    pub fn table(&self, t: Table) -> &[Production] {
+        match t {
+            Table::Main => &self.productions,
+            Table::Decomposition => &self.decomposition,
+            Table::Homomorphism => &self.homomorphism,
+        }
+    }
+
+    /// Whether context matching is needed by any main production.
+    pub fn has_context(&self) -> bool {
+        self.productions.iter().any(Production::has_context)
+    }
+
+    /// Whether context matching skips this symbol.
+    pub fn skips_in_context(&self, sym: SymId) -> bool {
+        match &self.context {
+            ContextFilter::All => false,
+            ContextFilter::Ignore(v) => v.contains(&sym),
+            ContextFilter::Consider(v) => {
+                sym != OPEN_BRACKET && sym != CLOSE_BRACKET && !v.contains(&sym)
+            }
+        }
+    }
+}

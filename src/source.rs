@@ -1,0 +1,169 @@
+//! Source files and spans: input is file text (from disk, the embedded
+//! standard library or memory), output is a [`SourceMap`] that every later
+//! stage points into with [`Span`]s, and that diagnostics render from.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use miette::{NamedSource, SourceSpan};
+
+/// Index of a file in a [`SourceMap`].
+pub type FileId = u32;
+
+/// A byte range in one source file. Small and `Copy` so that every AST node,
+/// IR node and bytecode instruction can carry one.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct Span {
+    pub file: FileId,
+    pub start: u32,
+    pub end: u32,
+}
+
+impl Span {
+    pub fn new(file: FileId, start: usize, end: usize) -> Span {
+        Span {
+            file,
+            start: start as u32,
+            end: end as u32,
+        }
+    }
+
+    /// The smallest span covering both (same file assumed).
+    pub fn to(self, other: Span) -> Span {
+        Span {
+            file: self.file,
+            start: self.start.min(other.start),
+            end: self.end.max(other.end),
+        }
+    }
+
+    pub fn len(self) -> usize {
+        (self.end - self.start) as usize
+    }
+
+    pub fn is_empty(self) -> bool {
+        self.end == self.start
+    }
+}
+
+impl fmt::Debug for Span {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}@{}..{}", self.file, self.start, self.end)
+    }
+}
+
+impl From<Span> for SourceSpan {
+    fn from(s: Span) -> SourceSpan {
+        SourceSpan::new((s.start as usize).into(), s.len())
+    }
+}
+
+/// Where a file came from; decides how `#include "x"` inside it is resolved.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Origin {
+    /// A file on disk (the path as given, used for display and relative includes).
+    Disk(PathBuf),
+    /// A standard library file embedded in the binary (`std:NAME`, `#include <NAME>`).
+    Std(String),
+    /// Text that came from memory (tests, the REPL, `-e`).
+    Memory,
+}
+
+/// One loaded source file.
+#[derive(Clone, Debug)]
+pub struct SourceFile {
+    /// Name shown in diagnostics (`examples/abop/koch.lsys`, `std:toukung_middle`).
+    pub name: String,
+    pub origin: Origin,
+    pub text: Arc<String>,
+    line_starts: Vec<u32>,
+}
+
+impl SourceFile {
+    pub fn new(name: impl Into<String>, origin: Origin, text: impl Into<String>) -> SourceFile {
+        let text: String = text.into();
+        let mut line_starts = vec![0u32];
+        line_starts.extend(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i as u32 + 1),
+        );
+        SourceFile {
+            name: name.into(),
+            origin,
+            text: Arc::new(text),
+            line_starts,
+        }
+    }
+
+    /// 1-based line and column (in characters) of a byte offset.
+    pub fn line_col(&self, offset: u32) -> (usize, usize) {
+        let line = match self.line_starts.binary_search(&offset) {
+            Ok(i) => i,
+            Err(i) => i - 1,
+        };
+        let start = self.line_starts[line] as usize;
+        let end = (offset as usize).min(self.text.len());
+        let col = self.text.get(start..end).map_or(1, |s| s.chars().count() + 1);
+        (line + 1, col)
+    }
+
+    /// The directory relative includes are resolved against, if any.
+    pub fn dir(&self) -> Option<&Path> {
+        match &self.origin {
+            Origin::Disk(p) => p.parent(),
+            _ => None,
+        }
+    }
+
+    /// The text as miette wants it for a labelled snippet.
+    pub fn named_source(&self) -> NamedSource<Arc<String>> {
+        NamedSource::new(&self.name, self.text.clone())
+    }
+}
+
+/// All files of one compilation, the root first, then includes in load order.
+#[derive(Clone, Debug, Default)]
+pub struct SourceMap {
+    files: Vec<SourceFile>,
+}
+
+impl SourceMap {
+    pub fn new() -> SourceMap {
+        SourceMap::default()
+    }
+
+    pub fn add(&mut self, file: SourceFile) -> FileId {
+        self.files.push(file);
+        (self.files.len() - 1) as FileId
+    }
+
+    pub fn get(&self, id: FileId) -> &SourceFile {
+        &self.files[id as usize]
+    }
+
+    pub fn files(&self) -> &[SourceFile] {
+        &self.files
+    }
+
+    /// The source text a span points into.
+    pub fn slice(&self, span: Span) -> &str {
+        let f = self.get(span.file);
+        f.text
+            .get(span.start as usize..span.end as usize)
+            .unwrap_or("")
+    }
+
+    /// `file:line:col` of the start of a span, for one-line messages.
+    pub fn location(&self, span: Span) -> String {
+        let f = self.get(span.file);
+        let (l, c) = f.line_col(span.start);
+        format!("{}:{}:{}", f.name, l, c)
+    }
+
+    pub fn named_source(&self, span: Span) -> NamedSource<Arc<String>> {
+        self.get(span.file).named_source()
+    }
+}
