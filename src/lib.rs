@@ -10,5 +10,7 @@
 
 pub mod bytecode;
 pub mod derive;
+pub mod diag;
+pub mod parse;
 pub mod resolve;
 pub mod source;

@@ -1,1 +1,4 @@
-//! Derive (placeholder).
+//! placeholder
+pub mod error;
+pub mod rng;
+pub mod store;

@@ -1,0 +1,324 @@
+//! The compiler: resolved [`Program`] (constant-folded expressions, bound
+//! parameter slots) in, [`Compiled`] chunks out. One condition chunk
+//! (unless the condition is absent, `else` or a constant), one optional
+//! probability chunk and one successor chunk per production, and one chunk
+//! for the axiom.
+
+use std::collections::HashMap;
+
+use super::error::BytecodeError;
+use super::op::{Chunk, Compiled, CondCode, Op, ProdCode};
+use crate::resolve::{BinOp, Cond, Expr, ExprKind, Func, Production, Program, SuccModule, UnOp};
+use crate::source::Span;
+
+/// Compile every production of every table, and the axiom.
+pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
+    let mut c = Compiler {
+        program,
+        consts: Vec::new(),
+        single: HashMap::new(),
+        tuples: HashMap::new(),
+    };
+    let axiom = c.successor(&program.axiom)?;
+    let main = c.table(&program.productions)?;
+    let decomposition = c.table(&program.decomposition)?;
+    let homomorphism = c.table(&program.homomorphism)?;
+    let mut out = Compiled {
+        consts: c.consts,
+        axiom,
+        main,
+        decomposition,
+        homomorphism,
+        max_stack: 0,
+    };
+    let mut max = out.axiom.max_stack;
+    for p in out.main.iter().chain(&out.decomposition).chain(&out.homomorphism) {
+        let cond = match &p.cond {
+            CondCode::Always => 0,
+            CondCode::Never(ch) | CondCode::Code(ch) => ch.max_stack,
+        };
+        let prob = p.prob.as_ref().map_or(0, |ch| ch.max_stack);
+        max = max.max(cond).max(prob).max(p.succ.max_stack);
+    }
+    out.max_stack = max;
+    Ok(out)
+}
+
+struct Compiler<'p> {
+    program: &'p Program,
+    consts: Vec<f64>,
+    /// Single constants by bit pattern.
+    single: HashMap<u64, u32>,
+    /// Parameter runs of `EmitConst` by bit patterns.
+    tuples: HashMap<Vec<u64>, u32>,
+}
+
+/// Code being built, with the static stack depth.
+struct Builder {
+    chunk: Chunk,
+    depth: usize,
+}
+
+impl Builder {
+    fn new() -> Builder {
+        Builder {
+            chunk: Chunk::default(),
+            depth: 0,
+        }
+    }
+
+    /// Append `op`, which changes the stack depth by `delta`.
+    fn push(&mut self, op: Op, span: Span, delta: isize) -> usize {
+        self.chunk.code.push(op);
+        self.chunk.spans.push(span);
+        self.depth = (self.depth as isize + delta) as usize;
+        self.chunk.max_stack = self.chunk.max_stack.max(self.depth);
+        self.chunk.code.len() - 1
+    }
+
+    fn here(&self) -> u32 {
+        self.chunk.code.len() as u32
+    }
+
+    /// Point the jump at `at` to the next instruction.
+    fn patch(&mut self, at: usize) {
+        let target = self.here();
+        match &mut self.chunk.code[at] {
+            Op::Jump(t) | Op::JumpIfFalse(t) | Op::JumpIfTrue(t) => *t = target,
+            _ => unreachable!("patching a non-jump"),
+        }
+    }
+}
+
+impl Compiler<'_> {
+    fn table(&mut self, prods: &[Production]) -> Result<Vec<ProdCode>, BytecodeError> {
+        prods.iter().map(|p| self.production(p)).collect()
+    }
+
+    fn production(&mut self, p: &Production) -> Result<ProdCode, BytecodeError> {
+        let cond = match &p.cond {
+            Cond::Always | Cond::Else(_) => CondCode::Always,
+            Cond::Expr(e) => match e.kind {
+                // NaN is true, as in C.
+                ExprKind::Num(v) if v != 0.0 || v.is_nan() => CondCode::Always,
+                ExprKind::Num(_) => CondCode::Never(self.expr_chunk(e)?),
+                _ => CondCode::Code(self.expr_chunk(e)?),
+            },
+        };
+        let prob = p.prob.as_ref().map(|e| self.expr_chunk(e)).transpose()?;
+        let succ = self.successor(&p.succ)?;
+        Ok(ProdCode { cond, prob, succ })
+    }
+
+    fn expr_chunk(&mut self, e: &Expr) -> Result<Chunk, BytecodeError> {
+        let mut b = Builder::new();
+        self.expr(&mut b, e)?;
+        b.push(Op::Ret, e.span, 0);
+        self.finish(b, e.span)
+    }
+
+    fn successor(&mut self, succ: &[SuccModule]) -> Result<Chunk, BytecodeError> {
+        let mut b = Builder::new();
+        for m in succ {
+            if m.args.len() > u8::MAX as usize {
+                return Err(BytecodeError::TooManyParameters {
+                    name: self.program.symbols.name(m.sym).to_string(),
+                    count: m.args.len(),
+                    src: self.program.sources.named_source(m.span),
+                    span: m.span.into(),
+                });
+            }
+            let arity = m.args.len() as u8;
+            let consts: Option<Vec<f64>> = m
+                .args
+                .iter()
+                .map(|a| match a.kind {
+                    ExprKind::Num(v) if v.is_finite() => Some(v),
+                    _ => None,
+                })
+                .collect();
+            match consts {
+                Some(vals) => {
+                    let first = self.tuple(&vals)?;
+                    b.push(
+                        Op::EmitConst {
+                            sym: m.sym,
+                            arity,
+                            first,
+                        },
+                        m.span,
+                        0,
+                    );
+                }
+                None => {
+                    for a in &m.args {
+                        self.expr(&mut b, a)?;
+                    }
+                    let args = b.chunk.arg_spans.len() as u32;
+                    b.chunk.arg_spans.extend(m.args.iter().map(|a| a.span));
+                    b.push(
+                        Op::Emit {
+                            sym: m.sym,
+                            arity,
+                            args,
+                        },
+                        m.span,
+                        -(arity as isize),
+                    );
+                }
+            }
+        }
+        let end = succ.last().map_or_else(Span::default, |m| m.span);
+        b.push(Op::Ret, end, 0);
+        self.finish(b, end)
+    }
+
+    fn finish(&self, b: Builder, span: Span) -> Result<Chunk, BytecodeError> {
+        if b.chunk.code.len() > u32::MAX as usize {
+            return Err(BytecodeError::ChunkTooLong {
+                limit: u32::MAX as u64,
+                src: self.program.sources.named_source(span),
+                span: span.into(),
+            });
+        }
+        Ok(b.chunk)
+    }
+
+    fn constant(&mut self, v: f64) -> Result<u32, BytecodeError> {
+        if let Some(&i) = self.single.get(&v.to_bits()) {
+            return Ok(i);
+        }
+        let i = self.alloc(1)?;
+        self.consts.push(v);
+        self.single.insert(v.to_bits(), i);
+        Ok(i)
+    }
+
+    fn tuple(&mut self, vals: &[f64]) -> Result<u32, BytecodeError> {
+        if vals.is_empty() {
+            return Ok(0);
+        }
+        if vals.len() == 1 {
+            return self.constant(vals[0]);
+        }
+        let key: Vec<u64> = vals.iter().map(|v| v.to_bits()).collect();
+        if let Some(&i) = self.tuples.get(&key) {
+            return Ok(i);
+        }
+        let i = self.alloc(vals.len())?;
+        self.consts.extend_from_slice(vals);
+        self.tuples.insert(key, i);
+        Ok(i)
+    }
+
+    fn alloc(&self, n: usize) -> Result<u32, BytecodeError> {
+        if self.consts.len() + n > u32::MAX as usize {
+            return Err(BytecodeError::TooManyConstants {
+                limit: u32::MAX as u64,
+            });
+        }
+        Ok(self.consts.len() as u32)
+    }
+
+    fn expr(&mut self, b: &mut Builder, e: &Expr) -> Result<(), BytecodeError> {
+        let span = e.span;
+        match &e.kind {
+            ExprKind::Num(v) => {
+                let i = self.constant(*v)?;
+                b.push(Op::Const(i), span, 1);
+            }
+            ExprKind::Param(slot) => {
+                b.push(Op::Param(*slot), span, 1);
+            }
+            ExprKind::Unary(op, a) => {
+                self.expr(b, a)?;
+                let op = match op {
+                    UnOp::Neg => Op::Neg,
+                    UnOp::Not => Op::Not,
+                };
+                b.push(op, span, 0);
+            }
+            ExprKind::Binary(BinOp::And, l, r) => {
+                // l; jif F; r; jif F; const 1; jump E; F: const 0; E:
+                self.expr(b, l)?;
+                let j1 = b.push(Op::JumpIfFalse(0), span, -1);
+                self.expr(b, r)?;
+                let j2 = b.push(Op::JumpIfFalse(0), span, -1);
+                self.logic_tail(b, span, 1.0, 0.0, j1, j2)?;
+            }
+            ExprKind::Binary(BinOp::Or, l, r) => {
+                self.expr(b, l)?;
+                let j1 = b.push(Op::JumpIfTrue(0), span, -1);
+                self.expr(b, r)?;
+                let j2 = b.push(Op::JumpIfTrue(0), span, -1);
+                self.logic_tail(b, span, 0.0, 1.0, j1, j2)?;
+            }
+            ExprKind::Binary(op, l, r) => {
+                self.expr(b, l)?;
+                self.expr(b, r)?;
+                let op = match op {
+                    BinOp::Add => Op::Add,
+                    BinOp::Sub => Op::Sub,
+                    BinOp::Mul => Op::Mul,
+                    BinOp::Div => Op::Div,
+                    BinOp::Rem => Op::Rem,
+                    BinOp::Pow => Op::Pow,
+                    BinOp::Lt => Op::Lt,
+                    BinOp::Le => Op::Le,
+                    BinOp::Gt => Op::Gt,
+                    BinOp::Ge => Op::Ge,
+                    BinOp::Eq => Op::Eq,
+                    BinOp::Ne => Op::Ne,
+                    BinOp::And | BinOp::Or => unreachable!("handled above"),
+                };
+                b.push(op, span, -1);
+            }
+            ExprKind::Cond(c, t, f) => {
+                self.expr(b, c)?;
+                let jf = b.push(Op::JumpIfFalse(0), span, -1);
+                self.expr(b, t)?;
+                let je = b.push(Op::Jump(0), span, 0);
+                b.patch(jf);
+                b.depth -= 1; // the `then` value is not on the `else` path
+                self.expr(b, f)?;
+                b.patch(je);
+            }
+            ExprKind::Call(Func::Ran, args) => {
+                for a in args {
+                    self.expr(b, a)?;
+                }
+                b.push(Op::Ran, span, 1 - args.len() as isize);
+            }
+            ExprKind::Call(f, args) => {
+                for a in args {
+                    self.expr(b, a)?;
+                }
+                b.push(Op::Call(*f), span, 1 - args.len() as isize);
+            }
+        }
+        Ok(())
+    }
+
+    /// End of a short-circuit: fall-through pushes `through`, the two
+    /// jumps land on pushing `jumped`.
+    fn logic_tail(
+        &mut self,
+        b: &mut Builder,
+        span: Span,
+        through: f64,
+        jumped: f64,
+        j1: usize,
+        j2: usize,
+    ) -> Result<(), BytecodeError> {
+        let t = self.constant(through)?;
+        let f = self.constant(jumped)?;
+        b.push(Op::Const(t), span, 1);
+        let je = b.push(Op::Jump(0), span, 0);
+        b.patch(j1);
+        b.patch(j2);
+        b.depth -= 1;
+        b.push(Op::Const(f), span, 1);
+        b.patch(je);
+        Ok(())
+    }
+}

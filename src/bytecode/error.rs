@@ -1,0 +1,46 @@
+//! Errors of the bytecode compiler. Input: a resolved program that exceeds
+//! an operand width; output: a [`BytecodeError`] diagnostic. Runtime faults
+//! of the VM are [`crate::bytecode::Fault`]s, turned into diagnostics by
+//! `derive`, which knows the production and the step.
+
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
+use thiserror::Error;
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum BytecodeError {
+    #[error("module `{name}` has {count} parameters; at most 255 are supported")]
+    #[diagnostic(
+        code(lsys::bytecode::too_many_parameters),
+        help("split the data over several modules")
+    )]
+    TooManyParameters {
+        name: String,
+        count: usize,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this module has {count} parameters")]
+        span: SourceSpan,
+    },
+
+    #[error("the program needs more than {limit} constants")]
+    #[diagnostic(
+        code(lsys::bytecode::too_many_constants),
+        help("the program is too large for the bytecode; split it into sub-grammars")
+    )]
+    TooManyConstants { limit: u64 },
+
+    #[error("this expression or successor compiles to more than {limit} instructions")]
+    #[diagnostic(
+        code(lsys::bytecode::chunk_too_long),
+        help("split the successor over several productions")
+    )]
+    ChunkTooLong {
+        limit: u64,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("too long")]
+        span: SourceSpan,
+    },
+}

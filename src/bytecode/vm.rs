@@ -1,0 +1,190 @@
+//! The virtual machine: runs one [`Chunk`] with a production's bindings,
+//! the shared constant pool, a preallocated stack and the derivation's
+//! generator; modules go to a [`Sink`]. Output: the chunk's value, or a
+//! [`Fault`] with the span of the failing instruction (the caller adds the
+//! production and the step).
+
+use super::op::{Chunk, Op};
+use crate::derive::rng::Rand48;
+use crate::resolve::{Func, SymId};
+use crate::source::Span;
+
+/// Where [`Op::Emit`] writes modules.
+pub trait Sink {
+    fn emit(&mut self, sym: SymId, params: &[f64]);
+}
+
+/// A sink for condition and probability chunks, which never emit.
+pub struct NoSink;
+
+impl Sink for NoSink {
+    fn emit(&mut self, _sym: SymId, _params: &[f64]) {
+        unreachable!("expression chunks do not emit modules")
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FaultKind {
+    /// `/` with a zero divisor.
+    DivisionByZero,
+    /// `%` with a zero divisor.
+    RemainderByZero,
+    /// A module parameter that is NaN or infinite.
+    NotFinite(f64),
+}
+
+/// A runtime fault at `span`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fault {
+    pub kind: FaultKind,
+    pub span: Span,
+}
+
+#[inline]
+fn b2f(b: bool) -> f64 {
+    if b {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// Apply a builtin to its arguments (`b` unused for unary functions).
+pub fn call(f: Func, a: f64, b: f64) -> f64 {
+    match f {
+        Func::Sin => a.to_radians().sin(),
+        Func::Cos => a.to_radians().cos(),
+        Func::Tan => a.to_radians().tan(),
+        Func::Asin => a.asin().to_degrees(),
+        Func::Acos => a.acos().to_degrees(),
+        Func::Atan => a.atan().to_degrees(),
+        Func::Atan2 => a.atan2(b).to_degrees(),
+        Func::Sqrt => a.sqrt(),
+        Func::Exp => a.exp(),
+        Func::Log => a.ln(),
+        Func::Floor => a.floor(),
+        Func::Ceil => a.ceil(),
+        Func::Trunc => a.trunc(),
+        Func::Abs => a.abs(),
+        Func::Sign => {
+            if a > 0.0 {
+                1.0
+            } else if a < 0.0 {
+                -1.0
+            } else if a.is_nan() {
+                a
+            } else {
+                0.0
+            }
+        }
+        Func::Min => a.min(b),
+        Func::Max => a.max(b),
+        Func::Ran => unreachable!("ran has its own instruction"),
+    }
+}
+
+/// Run `chunk`. `stack` must hold at least `chunk.max_stack` values and
+/// `binds` every slot the chunk reads. Returns the value on top of the
+/// stack at `Ret` (0 if the stack is empty).
+#[inline]
+pub fn run<S: Sink>(
+    chunk: &Chunk,
+    consts: &[f64],
+    binds: &[f64],
+    stack: &mut [f64],
+    rng: &mut Rand48,
+    sink: &mut S,
+) -> Result<f64, Fault> {
+    let code = &chunk.code[..];
+    let mut pc = 0usize;
+    let mut sp = 0usize;
+    macro_rules! bin {
+        ($f:expr) => {{
+            sp -= 1;
+            let b = stack[sp];
+            let a = stack[sp - 1];
+            stack[sp - 1] = $f(a, b);
+        }};
+    }
+    loop {
+        let op = code[pc];
+        pc += 1;
+        match op {
+            Op::Const(i) => {
+                stack[sp] = consts[i as usize];
+                sp += 1;
+            }
+            Op::Param(s) => {
+                stack[sp] = binds[s as usize];
+                sp += 1;
+            }
+            Op::Neg => stack[sp - 1] = -stack[sp - 1],
+            Op::Not => stack[sp - 1] = b2f(stack[sp - 1] == 0.0),
+            Op::Add => bin!(|a, b| a + b),
+            Op::Sub => bin!(|a, b| a - b),
+            Op::Mul => bin!(|a, b| a * b),
+            Op::Div | Op::Rem => {
+                sp -= 1;
+                let b = stack[sp];
+                if b == 0.0 {
+                    let kind = if op == Op::Div {
+                        FaultKind::DivisionByZero
+                    } else {
+                        FaultKind::RemainderByZero
+                    };
+                    return Err(Fault {
+                        kind,
+                        span: chunk.spans[pc - 1],
+                    });
+                }
+                let a = stack[sp - 1];
+                stack[sp - 1] = if op == Op::Div { a / b } else { a % b };
+            }
+            Op::Pow => bin!(f64::powf),
+            Op::Lt => bin!(|a, b| b2f(a < b)),
+            Op::Le => bin!(|a, b| b2f(a <= b)),
+            Op::Gt => bin!(|a, b| b2f(a > b)),
+            Op::Ge => bin!(|a, b| b2f(a >= b)),
+            Op::Eq => bin!(|a, b| b2f(a == b)),
+            Op::Ne => bin!(|a, b| b2f(a != b)),
+            Op::Jump(t) => pc = t as usize,
+            Op::JumpIfFalse(t) => {
+                sp -= 1;
+                if stack[sp] == 0.0 {
+                    pc = t as usize;
+                }
+            }
+            Op::JumpIfTrue(t) => {
+                sp -= 1;
+                if stack[sp] != 0.0 {
+                    pc = t as usize;
+                }
+            }
+            Op::Call(f) => {
+                if f.arity() == 2 {
+                    bin!(|a, b| call(f, a, b));
+                } else {
+                    stack[sp - 1] = call(f, stack[sp - 1], 0.0);
+                }
+            }
+            Op::Ran => stack[sp - 1] *= rng.next_f64(),
+            Op::Emit { sym, arity, args } => {
+                let n = arity as usize;
+                sp -= n;
+                let vals = &stack[sp..sp + n];
+                if let Some(k) = vals.iter().position(|v| !v.is_finite()) {
+                    return Err(Fault {
+                        kind: FaultKind::NotFinite(vals[k]),
+                        span: chunk.arg_spans[args as usize + k],
+                    });
+                }
+                sink.emit(sym, vals);
+            }
+            Op::EmitConst { sym, arity, first } => {
+                let f = first as usize;
+                sink.emit(sym, &consts[f..f + arity as usize]);
+            }
+            Op::Ret => return Ok(if sp > 0 { stack[sp - 1] } else { 0.0 }),
+        }
+    }
+}

@@ -1,0 +1,254 @@
+//! The flat module store: a string of modules as two vectors, with no
+//! allocation per module. Input: modules pushed by the VM or copied in
+//! bulk; output: iteration, printing in the CLI format, symbol counts.
+//!
+//! `heads[i]` packs module `i`'s parameter count into the top 8 bits and
+//! its symbol id into the low 24 bits; the parameters of all modules follow
+//! each other in `params`. A module's parameters start at the sum of the
+//! arities before it ([`ContextIndex`] precomputes these offsets and the
+//! bracket pairs when context matching needs random access).
+
+use std::io::{self, Write};
+
+use crate::bytecode::Sink;
+use crate::resolve::{SymId, Symbols, CLOSE_BRACKET, OPEN_BRACKET};
+
+/// Bits of a head that hold the symbol id.
+pub const SYM_BITS: u32 = 24;
+pub const SYM_MASK: u32 = (1 << SYM_BITS) - 1;
+/// Largest symbol id a store can hold.
+pub const MAX_SYMBOLS: usize = 1 << SYM_BITS;
+
+/// Pack a symbol and its parameter count into a head.
+#[inline]
+pub fn pack(sym: SymId, arity: u8) -> u32 {
+    debug_assert!(sym <= SYM_MASK);
+    ((arity as u32) << SYM_BITS) | sym
+}
+
+/// Symbol id of a head.
+#[inline]
+pub fn head_sym(head: u32) -> SymId {
+    head & SYM_MASK
+}
+
+/// Parameter count of a head.
+#[inline]
+pub fn head_arity(head: u32) -> usize {
+    (head >> SYM_BITS) as usize
+}
+
+/// One module, borrowed from a store.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Module<'a> {
+    pub sym: SymId,
+    pub params: &'a [f64],
+}
+
+/// A string of modules.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ModuleStore {
+    pub(crate) heads: Vec<u32>,
+    pub(crate) params: Vec<f64>,
+}
+
+impl ModuleStore {
+    pub fn new() -> ModuleStore {
+        ModuleStore::default()
+    }
+
+    /// Number of modules.
+    pub fn len(&self) -> usize {
+        self.heads.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.heads.is_empty()
+    }
+
+    /// Number of parameter values of all modules together.
+    pub fn param_count(&self) -> usize {
+        self.params.len()
+    }
+
+    /// Empty the store, keeping its memory.
+    pub fn clear(&mut self) {
+        self.heads.clear();
+        self.params.clear();
+    }
+
+    /// Append a module. Panics (in debug builds) beyond 255 parameters or
+    /// 2^24 symbols; the compiler and `Derivation::new` guarantee both.
+    #[inline]
+    pub fn push(&mut self, sym: SymId, params: &[f64]) {
+        debug_assert!(params.len() <= u8::MAX as usize);
+        self.heads.push(pack(sym, params.len() as u8));
+        self.params.extend_from_slice(params);
+    }
+
+    /// The packed heads (see the module docs).
+    pub fn heads(&self) -> &[u32] {
+        &self.heads
+    }
+
+    /// All parameters, module after module.
+    pub fn params(&self) -> &[f64] {
+        &self.params
+    }
+
+    /// Iterate over the modules in order.
+    pub fn iter(&self) -> Iter<'_> {
+        Iter {
+            heads: self.heads.iter(),
+            params: &self.params,
+        }
+    }
+
+    /// Number of modules with symbol `sym`.
+    pub fn count(&self, sym: SymId) -> usize {
+        self.heads.iter().filter(|&&h| head_sym(h) == sym).count()
+    }
+
+    /// Number of modules of every symbol, indexed by symbol id
+    /// (`nsyms` is `program.symbols.len()`).
+    pub fn counts(&self, nsyms: usize) -> Vec<usize> {
+        let mut c = vec![0usize; nsyms];
+        for &h in &self.heads {
+            let s = head_sym(h) as usize;
+            if s >= c.len() {
+                c.resize(s + 1, 0);
+            }
+            c[s] += 1;
+        }
+        c
+    }
+
+    /// Print in the CLI format: modules separated by one space, parameters
+    /// as `A(1,2.5)` with Rust's shortest round-trip `{}` for f64, no
+    /// trailing newline. Buffered internally; no allocation per module.
+    pub fn write_string<W: Write>(&self, symbols: &Symbols, out: &mut W) -> io::Result<()> {
+        let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
+        for (i, m) in self.iter().enumerate() {
+            if i > 0 {
+                buf.push(b' ');
+            }
+            buf.extend_from_slice(symbols.name(m.sym).as_bytes());
+            if !m.params.is_empty() {
+                buf.push(b'(');
+                for (k, v) in m.params.iter().enumerate() {
+                    if k > 0 {
+                        buf.push(b',');
+                    }
+                    write!(buf, "{v}")?;
+                }
+                buf.push(b')');
+            }
+            if buf.len() >= 1 << 16 {
+                out.write_all(&buf)?;
+                buf.clear();
+            }
+        }
+        out.write_all(&buf)
+    }
+
+    /// The CLI format as a `String` (tests, the REPL).
+    pub fn display(&self, symbols: &Symbols) -> String {
+        let mut v = Vec::new();
+        self.write_string(symbols, &mut v)
+            .expect("writing to a Vec cannot fail");
+        String::from_utf8(v).expect("symbol names are UTF-8")
+    }
+
+    /// Append modules `heads` whose parameters are `params` (bulk copy).
+    #[inline]
+    pub(crate) fn extend_raw(&mut self, heads: &[u32], params: &[f64]) {
+        self.heads.extend_from_slice(heads);
+        self.params.extend_from_slice(params);
+    }
+}
+
+impl Sink for ModuleStore {
+    #[inline]
+    fn emit(&mut self, sym: SymId, params: &[f64]) {
+        self.push(sym, params);
+    }
+}
+
+impl<'a> IntoIterator for &'a ModuleStore {
+    type Item = Module<'a>;
+    type IntoIter = Iter<'a>;
+    fn into_iter(self) -> Iter<'a> {
+        self.iter()
+    }
+}
+
+/// Iterator over the modules of a store.
+pub struct Iter<'a> {
+    heads: std::slice::Iter<'a, u32>,
+    params: &'a [f64],
+}
+
+impl<'a> Iterator for Iter<'a> {
+    type Item = Module<'a>;
+
+    #[inline]
+    fn next(&mut self) -> Option<Module<'a>> {
+        let &h = self.heads.next()?;
+        let (p, rest) = self.params.split_at(head_arity(h));
+        self.params = rest;
+        Some(Module {
+            sym: head_sym(h),
+            params: p,
+        })
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.heads.size_hint()
+    }
+}
+
+impl ExactSizeIterator for Iter<'_> {}
+
+/// No partner bracket (unbalanced string).
+pub const NO_MATCH: u32 = u32::MAX;
+
+/// Random access into a store for context matching, rebuilt per step:
+/// the parameter offset of every module and the index of the partner of
+/// every bracket.
+#[derive(Clone, Debug, Default)]
+pub struct ContextIndex {
+    /// `offsets[i]`: where module `i`'s parameters start.
+    pub offsets: Vec<u32>,
+    /// For `[` the index of its `]`, for `]` the index of its `[`,
+    /// [`NO_MATCH`] if unbalanced; unspecified for other modules.
+    pub partner: Vec<u32>,
+    stack: Vec<u32>,
+}
+
+impl ContextIndex {
+    /// Rebuild for `store`, reusing memory. The store's parameters must
+    /// number fewer than 2^32 (the derivation's arena limit ensures it).
+    pub fn build(&mut self, store: &ModuleStore) {
+        let n = store.heads.len();
+        self.offsets.clear();
+        self.offsets.reserve(n);
+        self.partner.clear();
+        self.partner.resize(n, NO_MATCH);
+        self.stack.clear();
+        let mut off = 0u32;
+        for (i, &h) in store.heads.iter().enumerate() {
+            self.offsets.push(off);
+            off += head_arity(h) as u32;
+            match head_sym(h) {
+                OPEN_BRACKET => self.stack.push(i as u32),
+                CLOSE_BRACKET => {
+                    if let Some(o) = self.stack.pop() {
+                        self.partner[o as usize] = i as u32;
+                        self.partner[i] = o;
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+}

@@ -1,0 +1,295 @@
+//! Syntax errors (`lsys::parse::*`): pest's failures turned into sentences
+//! that name what was expected in the language's own words.
+
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
+use pest::error::{Error as PestError, ErrorVariant, InputLocation};
+use thiserror::Error;
+
+use super::Rule;
+use crate::source::{FileId, SourceFile, Span};
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum ParseError {
+    #[error("syntax error: {message}")]
+    #[diagnostic(code(lsys::parse::syntax))]
+    Syntax {
+        message: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("{label}")]
+        span: SourceSpan,
+        label: String,
+        #[help]
+        help: Option<String>,
+        offset: usize,
+    },
+
+    #[error("comment is never closed")]
+    #[diagnostic(
+        code(lsys::parse::unclosed_comment),
+        help("close the comment with `*/`; everything after `/*` was read as comment")
+    )]
+    UnclosedComment {
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this `/*` has no matching `*/`")]
+        span: SourceSpan,
+        offset: usize,
+    },
+
+    #[error("bad number `{text}`: {why}")]
+    #[diagnostic(
+        code(lsys::parse::number),
+        help("write numbers as digits with an optional fraction and exponent, e.g. `2.5e-3`")
+    )]
+    BadNumber {
+        text: String,
+        why: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this number")]
+        span: SourceSpan,
+        offset: usize,
+    },
+}
+
+impl ParseError {
+    /// Byte offset of the error in its file.
+    pub fn offset(&self) -> usize {
+        match self {
+            ParseError::Syntax { offset, .. }
+            | ParseError::UnclosedComment { offset, .. }
+            | ParseError::BadNumber { offset, .. } => *offset,
+        }
+    }
+
+    pub(crate) fn unclosed_comment(file: &SourceFile, span: Span) -> ParseError {
+        ParseError::UnclosedComment {
+            src: file.named_source(),
+            span: span.into(),
+            offset: span.start as usize,
+        }
+    }
+
+    pub(crate) fn bad_number(file: &SourceFile, span: Span, why: &str) -> ParseError {
+        ParseError::BadNumber {
+            text: file.text[span.start as usize..span.end as usize].to_string(),
+            why: why.to_string(),
+            src: file.named_source(),
+            span: span.into(),
+            offset: span.start as usize,
+        }
+    }
+
+    /// Text left on a line after a complete statement.
+    pub(crate) fn trailing(file: &SourceFile, file_id: FileId, at: usize) -> ParseError {
+        let found = found_at(&file.text, at);
+        let (len, help) = typographic_help(&file.text, at)
+            .map(|(len, h)| (len, Some(h)))
+            .unwrap_or_else(|| {
+                let h = match file.text[at..].chars().next() {
+                    Some('(') => Some(
+                        "a parameter list must follow its module name directly: write `F(1)`, not `F (1)`"
+                            .to_string(),
+                    ),
+                    _ => Some(
+                        "one statement per line: start the next statement on a new line, or remove this text"
+                            .to_string(),
+                    ),
+                };
+                (found.1, h)
+            });
+        let span = Span::new(file_id, at, at + len);
+        ParseError::Syntax {
+            message: format!("unexpected {} after the end of the statement", found.0),
+            src: file.named_source(),
+            span: span.into(),
+            label: "the statement ended before this".to_string(),
+            help,
+            offset: at,
+        }
+    }
+
+    pub(crate) fn from_pest(
+        file: &SourceFile,
+        file_id: FileId,
+        base: usize,
+        e: &PestError<Rule>,
+    ) -> ParseError {
+        let at = base
+            + match e.location {
+                InputLocation::Pos(p) => p,
+                InputLocation::Span((s, _)) => s,
+            };
+        let mut expected: Vec<&str> = match &e.variant {
+            ErrorVariant::ParsingError { positives, .. } => {
+                positives.iter().filter_map(|r| describe(*r)).collect()
+            }
+            ErrorVariant::CustomError { .. } => Vec::new(),
+        };
+        // Prefix operators, names and numbers together are "an expression".
+        if expected.contains(&"a number") {
+            expected.retain(|e| !matches!(*e, "`!`" | "`+`" | "`-`" | "a name" | "a number"));
+            expected.push("an expression");
+        }
+        expected.sort_unstable();
+        expected.dedup();
+        let (found, len) = found_at(&file.text, at);
+        let message = match expected.as_slice() {
+            [] => format!("unexpected {found}"),
+            [one] => format!("expected {one}, found {found}"),
+            many => {
+                let (last, rest) = many.split_last().expect("non-empty");
+                format!("expected {} or {last}, found {found}", rest.join(", "))
+            }
+        };
+        let line = line_of(&file.text, at);
+        let col = at - file.text[..at].rfind('\n').map_or(0, |i| i + 1);
+        let (len, help) = match typographic_help(&file.text, at) {
+            Some((l, h)) => (l, Some(h)),
+            None => (len, structural_help(line, col, &expected)),
+        };
+        ParseError::Syntax {
+            message,
+            src: file.named_source(),
+            span: Span::new(file_id, at, at + len).into(),
+            label: "here".to_string(),
+            help,
+            offset: at,
+        }
+    }
+}
+
+/// How to name what stands at `at`, and its length in bytes.
+fn found_at(text: &str, at: usize) -> (String, usize) {
+    match text[at..].chars().next() {
+        None => ("the end of the file".to_string(), 0),
+        Some('\n') => ("the end of the line".to_string(), 0),
+        Some(c) => (format!("`{c}`"), c.len_utf8()),
+    }
+}
+
+fn line_of(text: &str, at: usize) -> &str {
+    let start = text[..at].rfind('\n').map_or(0, |i| i + 1);
+    let end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+    &text[start..end]
+}
+
+/// Characters that arrive by copying from a PDF, with their ASCII forms.
+fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
+    let c = text[at..].chars().next()?;
+    let ascii = match c {
+        '—' | '–' | '‐' | '‑' => "-",
+        '×' | '·' | '∗' => "*",
+        '÷' | '∕' => "/",
+        '‘' | '’' | '′' => "'",
+        '“' | '”' => "\"",
+        '⇒' | '⟹' | '↦' => "-->",
+        '≤' => "<=",
+        '≥' => ">=",
+        '≠' => "!=",
+        '\u{A0}' | '\u{2009}' | '\u{202F}' => " ",
+        _ => return None,
+    };
+    Some((
+        c.len_utf8(),
+        format!(
+            "`{c}` (U+{:04X}) is a typographic character, probably copied from a PDF; write the ASCII `{ascii}` instead",
+            c as u32
+        ),
+    ))
+}
+
+fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
+    let before = &line[..col.min(line.len())];
+    if before.matches('(').count() > before.matches(')').count() {
+        return Some("a `(` before this point is not closed: close the parameter list with `)`".to_string());
+    }
+    let has_arrow = ["-->", "->", "→"].iter().any(|a| line.contains(a));
+    if expected.contains(&"`-->`") && !has_arrow && !line.contains(':') {
+        return Some(
+            "a production needs an arrow between predecessor and successor: `A(x) --> B(x+1)`"
+                .to_string(),
+        );
+    }
+    if line.contains("=>") {
+        return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
+    }
+    if expected.iter().any(|e| e.contains("`)`")) {
+        return Some("a parameter list is closed by `)`; parameters are separated by `,`".to_string());
+    }
+    if expected.contains(&"an expression") {
+        return Some(
+            "an expression is numbers, names and operators such as `x*2+1`, `sqrt(p*q)`, `x < 5 && y > 1`"
+                .to_string(),
+        );
+    }
+    None
+}
+
+/// The language's name for a grammar rule in "expected ..." messages, or
+/// `None` for rules that never appear there. The match is exhaustive on
+/// purpose: a new rule does not compile until it has a human name.
+fn describe(rule: Rule) -> Option<&'static str> {
+    use Rule::*;
+    Some(match rule {
+        EOI => "the end of the file",
+        word | sym | pattern_sym | module | pattern_module => "a module",
+        ident | define_head | directive_name => "a name",
+        arrow => "`-->`",
+        number => "a number",
+        expr | expr_only => "an expression",
+        args | call_args | macro_params => "a parameter list `(...)`",
+        index_args => "an index `[...]`",
+        ternary => "`?`",
+        call | index => "a function call",
+        statement => "a statement",
+        define | include | other_directive => "a directive",
+        define_item => "a define `NAME value`",
+        include_path => "a quoted file name",
+        include_std => "a library name in `<...>`",
+        include_list => "component names",
+        path_text | std_name | rest_of_line => "text",
+        lsystem_h | lsystem_kw | dlength_h | dlength_kw | axiom_h | axiom_kw | ignore_h
+        | ignore_kw | consider_h | consider_kw | seed_h | seed_kw | maxdepth_h | maxdepth_kw
+        | endlsystem_h | homomorphism_h | homomorphism_kw | decomposition_h
+        | decomposition_kw | module_h | module_kw | block_h | block_kw => "a header statement",
+        module_decl => "a module declaration",
+        brace_block => "a `{ ... }` block",
+        production | head | lctx | pred | rctx => "a production",
+        open_br => "`[`",
+        close_br => "`]`",
+        arrow_form | paper_form => "`-->`",
+        condition | paper_cond | paper_cmp | paper_arith => "a condition",
+        cond_else => "`else`",
+        cond_always => "`*`",
+        probability => "a probability",
+        successor => "a successor",
+        neg | sub => "`-`",
+        pos | add => "`+`",
+        not => "`!`",
+        mul => "`*`",
+        div => "`/`",
+        rem => "`%`",
+        pow => "`^`",
+        le => "`<=`",
+        ge => "`>=`",
+        eq => "`==`",
+        ne => "`!=`",
+        lt => "`<`",
+        gt => "`>`",
+        and => "`&&`",
+        or => "`||`",
+        arith_op | rel_op | logic_op | infix_op | prefix_op => "an operator",
+        primary | paper_primary => "an expression",
+        at_sym | query_sym | tilde_sym | punct | pattern_punct | context_item => "a module",
+        stmt_start | directive | header => "a statement",
+        NL => "the end of the line",
+        WHITESPACE | COMMENT | block_comment | line_comment | cont | blank_line | indent
+        | line_has_arrow | keyword | word_char => {
+            return None
+        }
+    })
+}

@@ -1,0 +1,259 @@
+//! Lowering: pest pairs of one statement -> AST nodes with file spans.
+
+use pest::iterators::Pair;
+
+use super::ast::*;
+use super::error::ParseError;
+use super::Rule;
+use crate::source::{FileId, SourceFile, Span};
+
+/// Context for lowering one statement that was parsed from `file` starting
+/// at byte `base`.
+pub(crate) struct Lower<'a> {
+    pub file_id: FileId,
+    pub base: usize,
+    pub file: &'a SourceFile,
+}
+
+impl Lower<'_> {
+    pub fn span(&self, p: &Pair<Rule>) -> Span {
+        let s = p.as_span();
+        Span::new(self.file_id, self.base + s.start(), self.base + s.end())
+    }
+
+    pub fn ident(&self, p: Pair<Rule>) -> Ident {
+        Ident {
+            name: p.as_str().to_string(),
+            span: self.span(&p),
+        }
+    }
+
+    pub fn statement(&self, stmt: Pair<Rule>) -> Result<Item, ParseError> {
+        let p = stmt.into_inner().next().expect("statement has one child");
+        let span = self.span(&p);
+        Ok(match p.as_rule() {
+            Rule::define => Item::Define(
+                p.into_inner()
+                    .map(|d| self.define(d))
+                    .collect::<Result<_, _>>()?,
+            ),
+            Rule::include => {
+                let inner = p.into_inner().next().expect("include has a target");
+                let ispan = self.span(&inner);
+                Item::Include(match inner.as_rule() {
+                    Rule::include_path => Include::Path {
+                        path: inner.into_inner().as_str().to_string(),
+                        span: ispan,
+                    },
+                    Rule::include_std => Include::Std {
+                        name: inner.into_inner().as_str().to_string(),
+                        span: ispan,
+                    },
+                    _ => Include::Components(inner.into_inner().map(|i| self.ident(i)).collect()),
+                })
+            }
+            Rule::other_directive => {
+                let name = p.into_inner().next().expect("directive name");
+                Item::OtherDirective {
+                    name: self.ident(name),
+                    span,
+                }
+            }
+            Rule::production => Item::Production(self.production(p)?),
+            _ => Item::Header(self.header(p)?),
+        })
+    }
+
+    fn define(&self, d: Pair<Rule>) -> Result<Define, ParseError> {
+        let span = self.span(&d);
+        let mut inner = d.into_inner();
+        let mut head = inner.next().expect("define head").into_inner();
+        let name = self.ident(head.next().expect("define name"));
+        let params = head
+            .next()
+            .map(|ps| ps.into_inner().map(|i| self.ident(i)).collect());
+        let value = inner.next().map(|e| self.expr(e)).transpose()?;
+        Ok(Define {
+            name,
+            params,
+            value,
+            span,
+        })
+    }
+
+    fn header(&self, h: Pair<Rule>) -> Result<Header, ParseError> {
+        let span = self.span(&h);
+        let rule = h.as_rule();
+        let mut inner = h.into_inner();
+        // `endlsystem` is atomic and has no keyword child.
+        let kw = inner.next();
+        let keyword = kw.as_ref().map_or(span, |k| self.span(k));
+        let kind = match rule {
+            Rule::lsystem_h => {
+                HeaderKind::Lsystem(inner.next().map_or("", |r| r.as_str()).trim().to_string())
+            }
+            Rule::dlength_h => HeaderKind::DerivationLength(self.expr(next(&mut inner))?),
+            Rule::axiom_h => HeaderKind::Axiom(self.modules(next(&mut inner))?),
+            Rule::ignore_h => HeaderKind::Ignore(self.pattern(inner)?),
+            Rule::consider_h => HeaderKind::Consider(self.pattern(inner)?),
+            Rule::seed_h => HeaderKind::Seed(self.expr(next(&mut inner))?),
+            Rule::maxdepth_h => HeaderKind::MaximumDepth(self.expr(next(&mut inner))?),
+            Rule::endlsystem_h => HeaderKind::Endlsystem,
+            Rule::homomorphism_h => HeaderKind::Homomorphism,
+            Rule::decomposition_h => HeaderKind::Decomposition,
+            Rule::module_h => {
+                // The keyword was the first child; the rest are declarations.
+                let decls = kw
+                    .into_iter()
+                    .filter(|p| p.as_rule() == Rule::module_decl)
+                    .chain(inner)
+                    .map(|d| {
+                        let span = self.span(&d);
+                        let mut it = d.into_inner();
+                        let name = self.ident(next(&mut it));
+                        let params = it
+                            .next()
+                            .map(|ps| ps.into_inner().map(|i| self.ident(i)).collect())
+                            .unwrap_or_default();
+                        ModuleDecl { name, params, span }
+                    })
+                    .collect();
+                HeaderKind::Module(decls)
+            }
+            Rule::block_h => HeaderKind::Block(kw.map_or("", |k| k.as_str()).to_string()),
+            other => unreachable!("statement child {other:?} is not a header"),
+        };
+        Ok(Header {
+            kind,
+            keyword,
+            span,
+        })
+    }
+
+    fn production(&self, p: Pair<Rule>) -> Result<Production, ParseError> {
+        let span = self.span(&p);
+        let mut inner = p.into_inner();
+        let head = next(&mut inner);
+        let head_span = self.span(&head);
+        let (mut lctx, mut pred, mut rctx) = (Vec::new(), Vec::new(), Vec::new());
+        for part in head.into_inner() {
+            let rule = part.as_rule();
+            let pats = self.pattern(part.into_inner())?;
+            match rule {
+                Rule::lctx => lctx = pats,
+                Rule::pred => pred = pats,
+                _ => rctx = pats,
+            }
+        }
+        let form = next(&mut inner);
+        let arrow_form = form.as_rule() == Rule::arrow_form;
+        let (mut cond, mut arrow, mut succ, mut succ_span, mut prob) = (None, None, None, None, None);
+        for part in form.into_inner() {
+            match part.as_rule() {
+                Rule::condition => {
+                    let c = next(&mut part.into_inner());
+                    cond = Some(match c.as_rule() {
+                        Rule::cond_else => Condition::Else(self.span(&c)),
+                        Rule::cond_always => Condition::Always(self.span(&c)),
+                        _ => Condition::Expr(self.expr(c)?),
+                    });
+                }
+                Rule::paper_cond => {
+                    let first = part.clone().into_inner().next();
+                    cond = Some(match first {
+                        Some(c) if c.as_rule() == Rule::cond_else => {
+                            Condition::Else(self.span(&c))
+                        }
+                        _ => Condition::Expr(self.paper_cond(part)?),
+                    });
+                }
+                Rule::arrow => arrow = Some(self.span(&part)),
+                Rule::successor => {
+                    succ_span = Some(self.span(&part));
+                    succ = Some(self.modules(part)?);
+                }
+                Rule::probability => prob = Some(self.expr(next(&mut part.into_inner()))?),
+                other => unreachable!("production child {other:?}"),
+            }
+        }
+        debug_assert_eq!(arrow_form, arrow.is_some());
+        let succ_span = succ_span.unwrap_or(Span::new(self.file_id, span.end as usize, span.end as usize));
+        Ok(Production {
+            lctx,
+            pred,
+            rctx,
+            cond,
+            arrow,
+            succ: succ.unwrap_or_default(),
+            succ_span,
+            prob,
+            head_span,
+            span,
+        })
+    }
+
+    fn pattern<'i>(
+        &self,
+        items: impl Iterator<Item = Pair<'i, Rule>>,
+    ) -> Result<Vec<PatTok>, ParseError> {
+        items
+            .map(|it| {
+                Ok(match it.as_rule() {
+                    Rule::open_br => PatTok::Open(self.span(&it)),
+                    Rule::close_br => PatTok::Close(self.span(&it)),
+                    _ => PatTok::Module(self.module(it)?),
+                })
+            })
+            .collect()
+    }
+
+    fn modules(&self, seq: Pair<Rule>) -> Result<Vec<ModuleTok>, ParseError> {
+        seq.into_inner()
+            .filter(|m| m.as_rule() != Rule::cont)
+            .map(|m| self.module(m))
+            .collect()
+    }
+
+    fn module(&self, m: Pair<Rule>) -> Result<ModuleTok, ParseError> {
+        let span = self.span(&m);
+        let mut inner = m.into_inner();
+        let sym = next(&mut inner);
+        let name_span = self.span(&sym);
+        let raw = sym.as_str();
+        let first = raw.chars().next().expect("symbols are non-empty");
+        let (kind, text) = match first {
+            '@' => (TokKind::At, raw.to_string()),
+            '?' => (TokKind::Query, raw.to_string()),
+            '~' | '∼' if raw.chars().count() > 1 => {
+                (TokKind::Tilde, format!("~{}", &raw[first.len_utf8()..]))
+            }
+            c if c.is_alphanumeric() || c == '_' => (TokKind::Word, raw.to_string()),
+            c => (TokKind::Punct, canonical_punct(c).to_string()),
+        };
+        let args = inner
+            .next()
+            .map(|a| a.into_inner().map(|e| self.expr(e)).collect())
+            .transpose()?;
+        Ok(ModuleTok {
+            text,
+            kind,
+            name_span,
+            args,
+            span,
+        })
+    }
+}
+
+/// Typographic characters from the paper's PDF stand for ASCII commands.
+fn canonical_punct(c: char) -> char {
+    match c {
+        '−' => '-',
+        '∧' => '^',
+        '∼' => '~',
+        c => c,
+    }
+}
+
+pub(crate) fn next<'i>(it: &mut impl Iterator<Item = Pair<'i, Rule>>) -> Pair<'i, Rule> {
+    it.next().expect("the grammar guarantees this child")
+}
