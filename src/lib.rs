@@ -9,8 +9,12 @@
 //! ```
 
 pub mod bytecode;
+pub mod cli;
 pub mod derive;
 pub mod diag;
 pub mod parse;
+pub mod pipeline;
 pub mod resolve;
 pub mod source;
+pub mod stdlib;
+pub mod turtle;

@@ -32,7 +32,12 @@ pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
         max_stack: 0,
     };
     let mut max = out.axiom.max_stack;
-    for p in out.main.iter().chain(&out.decomposition).chain(&out.homomorphism) {
+    for p in out
+        .main
+        .iter()
+        .chain(&out.decomposition)
+        .chain(&out.homomorphism)
+    {
         let cond = match &p.cond {
             CondCode::Always => 0,
             CondCode::Never(ch) | CondCode::Code(ch) => ch.max_stack,

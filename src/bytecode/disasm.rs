@@ -119,7 +119,9 @@ fn describe(
             s.to_string(),
             names.get(s as usize).cloned().unwrap_or_else(|| "?".into()),
         ),
-        Op::Jump(t) | Op::JumpIfFalse(t) | Op::JumpIfTrue(t) => (format!("-> {t:04}"), String::new()),
+        Op::Jump(t) | Op::JumpIfFalse(t) | Op::JumpIfTrue(t) => {
+            (format!("-> {t:04}"), String::new())
+        }
         Op::Call(f) => (f.name().to_string(), String::new()),
         Op::Emit { sym: s, arity, .. } => (
             format!("{}/{arity}", sym(s)),

@@ -14,7 +14,9 @@ type Src = NamedSource<Arc<String>>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum DeriveError {
-    #[error("the string passed the module limit at step {step}: {reached} modules (limit {limit})")]
+    #[error(
+        "the string passed the module limit at step {step}: {reached} modules (limit {limit})"
+    )]
     #[diagnostic(
         code(lsys::derive::module_limit),
         help("raise the limit with `--max-modules N`, or derive fewer steps")
@@ -125,7 +127,9 @@ impl DeriveError {
 #[diagnostic(
     code(lsys::derive::depth_limit),
     severity(Warning),
-    help("raise `maximum depth:` of the {table} section, or make the recursion end with a condition")
+    help(
+        "raise `maximum depth:` of the {table} section, or make the recursion end with a condition"
+    )
 )]
 pub struct DepthWarning {
     /// "decomposition" or "homomorphism".

@@ -39,14 +39,14 @@ pub(crate) struct Shape {
     /// Parameters of the strict predecessor modules together.
     pub pred_params: usize,
     /// The bindings are exactly the predecessor's parameters as they lie
-    /// in the arena (no left context, no right-context parameters).
+    /// in the arena (no left context, no right-context parameters); the
+    /// contexts must still match.
     pub direct: bool,
-    pub never: bool,
     pub has_prob: bool,
 }
 
 impl Shape {
-    fn new(p: &Production, never: bool) -> Shape {
+    fn new(p: &Production) -> Shape {
         let pred: Vec<Pat> = p.pred.iter().map(Pat::new).collect();
         let pred_params = p.pred.iter().map(|m| m.arity as usize).sum();
         let mut next = 0usize;
@@ -69,7 +69,6 @@ impl Shape {
                 })
                 .collect(),
             pred_params,
-            never,
             has_prob: p.prob.is_some(),
         }
     }
@@ -91,11 +90,7 @@ pub(crate) struct Rules {
 impl Rules {
     /// `never[i]`: production `i`'s condition folded to false.
     pub fn new(prods: &[Production], never: &[bool], nsyms: usize) -> Rules {
-        let shapes: Vec<Shape> = prods
-            .iter()
-            .zip(never)
-            .map(|(p, &n)| Shape::new(p, n))
-            .collect();
+        let shapes: Vec<Shape> = prods.iter().map(Shape::new).collect();
         let mut per: Vec<Vec<u32>> = vec![Vec::new(); nsyms];
         for (i, p) in prods.iter().enumerate() {
             if never[i] {
@@ -176,17 +171,21 @@ pub(crate) fn match_at(
             return None;
         }
     }
-    if shape.direct {
-        return Some(Bound::Direct);
-    }
+    let bound = if shape.direct {
+        Bound::Direct
+    } else {
+        Bound::Buffer
+    };
     let params = inp.params;
-    let mut o = off;
-    for p in &shape.pred {
-        bind(binds, p.first, params, o, p.head);
-        o += head_arity(p.head);
+    if !shape.direct {
+        let mut o = off;
+        for p in &shape.pred {
+            bind(binds, p.first, params, o, p.head);
+            o += head_arity(p.head);
+        }
     }
     if shape.lctx.is_empty() && shape.rctx.is_empty() {
-        return Some(Bound::Buffer);
+        return Some(bound);
     }
     let idx = inp
         .index
@@ -283,5 +282,5 @@ pub(crate) fn match_at(
             },
         }
     }
-    Some(Bound::Buffer)
+    Some(bound)
 }

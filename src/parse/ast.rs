@@ -18,7 +18,10 @@ pub enum Item {
     Define(Vec<Define>),
     Include(Include),
     /// A `#word` line lsys does not know (cpfg preprocessor lines).
-    OtherDirective { name: Ident, span: Span },
+    OtherDirective {
+        name: Ident,
+        span: Span,
+    },
     Header(Header),
     Production(Production),
 }
@@ -336,7 +339,11 @@ fn dump_item(out: &mut String, item: &Item) {
             let _ = write!(out, "components {}", names.join(", "));
         }
         Item::OtherDirective { name, span } => {
-            let _ = write!(out, "directive #{} @{}..{}", name.name, span.start, span.end);
+            let _ = write!(
+                out,
+                "directive #{} @{}..{}",
+                name.name, span.start, span.end
+            );
         }
         Item::Header(h) => {
             let _ = write!(out, "@{}..{} ", h.span.start, h.span.end);

@@ -205,7 +205,9 @@ fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
 fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
     let before = &line[..col.min(line.len())];
     if before.matches('(').count() > before.matches(')').count() {
-        return Some("a `(` before this point is not closed: close the parameter list with `)`".to_string());
+        return Some(
+            "a `(` before this point is not closed: close the parameter list with `)`".to_string(),
+        );
     }
     let has_arrow = ["-->", "->", "→"].iter().any(|a| line.contains(a));
     if expected.contains(&"`-->`") && !has_arrow && !line.contains(':') {
@@ -218,7 +220,9 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
         return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
     }
     if expected.iter().any(|e| e.contains("`)`")) {
-        return Some("a parameter list is closed by `)`; parameters are separated by `,`".to_string());
+        return Some(
+            "a parameter list is closed by `)`; parameters are separated by `,`".to_string(),
+        );
     }
     if expected.contains(&"an expression") {
         return Some(
@@ -254,8 +258,8 @@ fn describe(rule: Rule) -> Option<&'static str> {
         path_text | std_name | rest_of_line => "text",
         lsystem_h | lsystem_kw | dlength_h | dlength_kw | axiom_h | axiom_kw | ignore_h
         | ignore_kw | consider_h | consider_kw | seed_h | seed_kw | maxdepth_h | maxdepth_kw
-        | endlsystem_h | homomorphism_h | homomorphism_kw | decomposition_h
-        | decomposition_kw | module_h | module_kw | block_h | block_kw => "a header statement",
+        | endlsystem_h | homomorphism_h | homomorphism_kw | decomposition_h | decomposition_kw
+        | module_h | module_kw | block_h | block_kw => "a header statement",
         module_decl => "a module declaration",
         brace_block => "a `{ ... }` block",
         production | head | lctx | pred | rctx => "a production",
@@ -288,8 +292,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         stmt_start | directive | header => "a statement",
         NL => "the end of the line",
         WHITESPACE | COMMENT | block_comment | line_comment | cont | blank_line | indent
-        | line_has_arrow | keyword | word_char => {
-            return None
-        }
+        | line_has_arrow | keyword | word_char => return None,
     })
 }

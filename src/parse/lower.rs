@@ -147,7 +147,8 @@ impl Lower<'_> {
         }
         let form = next(&mut inner);
         let arrow_form = form.as_rule() == Rule::arrow_form;
-        let (mut cond, mut arrow, mut succ, mut succ_span, mut prob) = (None, None, None, None, None);
+        let (mut cond, mut arrow, mut succ, mut succ_span, mut prob) =
+            (None, None, None, None, None);
         for part in form.into_inner() {
             match part.as_rule() {
                 Rule::condition => {
@@ -161,9 +162,7 @@ impl Lower<'_> {
                 Rule::paper_cond => {
                     let first = part.clone().into_inner().next();
                     cond = Some(match first {
-                        Some(c) if c.as_rule() == Rule::cond_else => {
-                            Condition::Else(self.span(&c))
-                        }
+                        Some(c) if c.as_rule() == Rule::cond_else => Condition::Else(self.span(&c)),
                         _ => Condition::Expr(self.paper_cond(part)?),
                     });
                 }
@@ -177,7 +176,11 @@ impl Lower<'_> {
             }
         }
         debug_assert_eq!(arrow_form, arrow.is_some());
-        let succ_span = succ_span.unwrap_or(Span::new(self.file_id, span.end as usize, span.end as usize));
+        let succ_span = succ_span.unwrap_or(Span::new(
+            self.file_id,
+            span.end as usize,
+            span.end as usize,
+        ));
         Ok(Production {
             lctx,
             pred,

@@ -1,3 +1,235 @@
-//! Resolve: AST of the root file and its includes -> [`Program`].
+//! Resolve: the root input and its includes -> a [`Program`]: defines
+//! applied (with `-D` overrides), the alphabet built and module runs split,
+//! every name bound, every arity checked, constants folded. All errors of
+//! all files are collected and reported together.
+
+mod alphabet;
+pub mod error;
+mod expr;
+mod fold;
 pub mod ir;
+mod load;
+mod modules;
+mod statements;
+
+use std::collections::HashMap;
+
+use miette::Report;
+
+pub use error::ResolveError;
+pub use fold::{apply_binary, apply_func, apply_unary};
 pub use ir::*;
+pub use load::{Input, InputError, MAX_INCLUDE_DEPTH};
+
+use crate::parse::ast;
+use crate::source::{Origin, SourceFile, SourceMap, Span};
+
+/// Options of one compilation.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// `-D NAME=VALUE` overrides, in command-line order (the last wins).
+    pub defines: Vec<(String, String)>,
+}
+
+/// A resolved grammar and the warnings found on the way.
+pub struct Resolved {
+    pub program: Program,
+    pub warnings: Vec<Report>,
+}
+
+/// The grammar has errors; `diagnostics` holds all of them (and warnings).
+pub struct Failure {
+    pub sources: SourceMap,
+    pub diagnostics: Vec<Report>,
+}
+
+/// Resolves `input`. `Err(InputError)` when the root cannot be read at all.
+pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure>, InputError> {
+    let loaded = load::load(input)?;
+    let mut r = Resolver {
+        sources: loaded.sources,
+        errors: loaded.errors,
+        warnings: Vec::new(),
+        defines: HashMap::new(),
+        define_order: Vec::new(),
+        symbols: Symbols::default(),
+        alphabet: alphabet::Alphabet::new(),
+        arities: HashMap::new(),
+    };
+    let program = r.run(loaded.items, opts);
+    if r.errors.is_empty() {
+        Ok(Ok(Resolved {
+            program: program.expect("no errors means a program"),
+            warnings: r.warnings,
+        }))
+    } else {
+        let mut diagnostics = r.errors;
+        diagnostics.extend(r.warnings);
+        Ok(Err(Failure {
+            sources: r.sources,
+            diagnostics,
+        }))
+    }
+}
+
+/// One `#define` as resolve sees it.
+#[derive(Clone, Debug)]
+pub(crate) struct DefineEntry {
+    pub name: String,
+    pub params: Option<Vec<String>>,
+    pub value: Option<ast::Expr>,
+    pub span: Span,
+    /// Position in the flattened statement list.
+    pub order: usize,
+    pub overridden: bool,
+}
+
+/// Declared parameter counts of a user symbol and where they were declared.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ArityInfo {
+    pub counts: Vec<usize>,
+    pub names: Vec<Vec<String>>,
+    pub decl: Option<Span>,
+}
+
+pub(crate) struct Resolver {
+    pub sources: SourceMap,
+    pub errors: Vec<Report>,
+    pub warnings: Vec<Report>,
+    pub defines: HashMap<String, DefineEntry>,
+    pub define_order: Vec<String>,
+    pub symbols: Symbols,
+    pub alphabet: alphabet::Alphabet,
+    pub arities: HashMap<SymId, ArityInfo>,
+}
+
+impl Resolver {
+    pub fn error(&mut self, e: ResolveError) {
+        self.errors.push(Report::new(e));
+    }
+
+    pub fn warn(&mut self, e: ResolveError) {
+        self.warnings.push(Report::new(e));
+    }
+
+    fn run(&mut self, items: Vec<(u32, ast::Item)>, opts: &Options) -> Option<Program> {
+        self.collect_defines(&items);
+        self.apply_overrides(opts);
+        self.build_alphabet(&items);
+        let program = self.statements(&items);
+        if !self.errors.is_empty() {
+            return None;
+        }
+        program
+    }
+
+    fn collect_defines(&mut self, items: &[(u32, ast::Item)]) {
+        for (order, (_, item)) in items.iter().enumerate() {
+            let ast::Item::Define(ds) = item else {
+                continue;
+            };
+            for d in ds {
+                if let Some(prev) = self.defines.get(&d.name.name) {
+                    let first = (prev.span.file == d.span.file).then(|| prev.span.into());
+                    self.error(ResolveError::DuplicateDefine {
+                        name: d.name.name.clone(),
+                        src: self.sources.named_source(d.name.span),
+                        span: d.name.span.into(),
+                        first,
+                    });
+                    continue;
+                }
+                self.define_order.push(d.name.name.clone());
+                self.defines.insert(
+                    d.name.name.clone(),
+                    DefineEntry {
+                        name: d.name.name.clone(),
+                        params: d
+                            .params
+                            .as_ref()
+                            .map(|ps| ps.iter().map(|p| p.name.clone()).collect()),
+                        value: d.value.clone(),
+                        span: d.name.span,
+                        order,
+                        overridden: false,
+                    },
+                );
+            }
+        }
+    }
+
+    fn apply_overrides(&mut self, opts: &Options) {
+        for (name, value) in &opts.defines {
+            let Some(entry) = self.defines.get(name) else {
+                let known: Vec<&str> = self.define_order.iter().map(String::as_str).collect();
+                let help = match expr::suggest(name, known.iter().copied()) {
+                    Some(s) => format!(
+                        "did you mean `{s}`? the grammar defines: {}",
+                        known.join(", ")
+                    ),
+                    None if known.is_empty() => {
+                        "the grammar has no #define to override".to_string()
+                    }
+                    None => format!("the grammar defines: {}", known.join(", ")),
+                };
+                self.error(ResolveError::UnknownOverride {
+                    name: name.clone(),
+                    help,
+                });
+                continue;
+            };
+            if entry.params.is_some() {
+                self.error(ResolveError::BadOverride {
+                    name: name.clone(),
+                    why: "it is a function-like #define".to_string(),
+                    help: Some("only #defines without parameters can be overridden".to_string()),
+                });
+                continue;
+            }
+            let file = SourceFile::new(format!("-D {name}"), Origin::Memory, value.clone());
+            let id = self.sources.add(file);
+            match crate::parse::parse_expr(id, self.sources.get(id)) {
+                Ok(e) => {
+                    let entry = self.defines.get_mut(name).expect("checked above");
+                    entry.value = Some(e);
+                    entry.overridden = true;
+                }
+                Err(e) => self.errors.push(Report::new(e)),
+            }
+        }
+    }
+
+    fn define_infos(&mut self) -> Vec<DefineInfo> {
+        let names = self.define_order.clone();
+        names
+            .iter()
+            .filter_map(|n| {
+                let d = self.defines.get(n)?.clone();
+                if d.params.is_some() || d.value.is_none() {
+                    return Some(DefineInfo {
+                        name: d.name,
+                        value: None,
+                        span: d.span,
+                        overridden: d.overridden,
+                    });
+                }
+                // Defines are evaluated for display only; errors surface
+                // where a define is used.
+                let saved = self.errors.len();
+                let value = self
+                    .expr(d.value.as_ref()?, &expr::Scope::EMPTY)
+                    .and_then(|e| match e.kind {
+                        ExprKind::Num(v) => Some(v),
+                        _ => None,
+                    });
+                self.errors.truncate(saved);
+                Some(DefineInfo {
+                    name: d.name,
+                    value,
+                    span: d.span,
+                    overridden: d.overridden,
+                })
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,195 @@
+//! The subcommands: each takes parsed arguments, runs the pipeline and
+//! prints results to standard output and diagnostics to standard error.
+
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+
+use miette::Diagnostic;
+
+use super::args::{Command, Common, DeriveArgs};
+use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
+use crate::derive::{self, DeriveOptions, ModuleStore};
+use crate::pipeline::{self, Compilation, Failure};
+use crate::resolve::{Input, Options};
+
+pub fn run(cmd: &Command, color: bool) -> i32 {
+    match cmd {
+        Command::Check(c) => check(c, color),
+        Command::Derive(d) => derive_cmd(d, color),
+        Command::Disasm(c) => match compile(c, color) {
+            Ok(comp) => emit_stdout(|out| {
+                out.write_all(crate::bytecode::disasm(&comp.program, &comp.compiled).as_bytes())
+            }),
+            Err(code) => code,
+        },
+    }
+}
+
+fn report(d: &dyn Diagnostic, color: bool) {
+    eprint!("{}", crate::diag::render(d, color));
+}
+
+/// Compiles, printing warnings; on failure prints every diagnostic and
+/// returns the exit code.
+fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
+    let opts = Options {
+        defines: c.define.clone(),
+    };
+    match pipeline::compile(&Input::from_arg(&c.file), &opts) {
+        Ok(comp) => {
+            for w in &comp.warnings {
+                report(w.as_ref(), color);
+            }
+            Ok(comp)
+        }
+        Err(Failure::Input(e)) => {
+            report(&e, color);
+            Err(EX_NOINPUT)
+        }
+        Err(Failure::Diagnostics { diagnostics, .. }) => {
+            let errors = diagnostics
+                .iter()
+                .filter(|d| crate::diag::is_error(d.as_ref()))
+                .count();
+            for d in &diagnostics {
+                report(d.as_ref(), color);
+            }
+            eprintln!(
+                "{}: {errors} error{}",
+                c.file,
+                if errors == 1 { "" } else { "s" }
+            );
+            Err(EX_DATAERR)
+        }
+    }
+}
+
+fn check(c: &Common, color: bool) -> i32 {
+    match compile(c, color) {
+        Ok(comp) => {
+            let p = &comp.program;
+            let n = p.productions.len() + p.decomposition.len() + p.homomorphism.len();
+            let w = comp.warnings.len();
+            eprintln!(
+                "{}: ok ({n} production{}, {} symbols{})",
+                c.file,
+                if n == 1 { "" } else { "s" },
+                p.symbols.len(),
+                if w > 0 {
+                    format!(", {w} warning{}", if w == 1 { "" } else { "s" })
+                } else {
+                    String::new()
+                }
+            );
+            EX_OK
+        }
+        Err(code) => code,
+    }
+}
+
+fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
+    let comp = match compile(&d.common, color) {
+        Ok(c) => c,
+        Err(code) => return code,
+    };
+    let (program, compiled) = (&comp.program, &comp.compiled);
+    let opts = DeriveOptions {
+        seed: d.seed,
+        max_modules: d.max_modules,
+        ..DeriveOptions::default()
+    };
+    let steps = d.steps.unwrap_or(program.derivation_length);
+    let write = |out: &mut dyn Write| -> Result<(), Outcome> {
+        let line = |s: &ModuleStore, step: u32, mut out: &mut dyn Write| -> Result<(), Outcome> {
+            let shown = if d.homomorphism {
+                let h = derive::homomorphism(program, compiled, s, &opts, step)
+                    .map_err(Outcome::Derive)?;
+                for w in &h.warnings {
+                    report(w, color);
+                }
+                h.modules
+            } else {
+                s.clone()
+            };
+            shown
+                .write_string(&program.symbols, &mut out)
+                .map_err(Outcome::Io)?;
+            out.write_all(b"\n").map_err(Outcome::Io)
+        };
+        let mut deriv =
+            derive::Derivation::new(program, compiled, opts.clone()).map_err(Outcome::Derive)?;
+        if d.every {
+            line(deriv.current(), 0, out)?;
+        }
+        for _ in 0..steps {
+            deriv.step().map_err(Outcome::Derive)?;
+            if d.every {
+                line(deriv.current(), deriv.step_number(), out)?;
+            }
+        }
+        for w in deriv.warnings() {
+            report(w, color);
+        }
+        if !d.every {
+            line(deriv.current(), deriv.step_number(), out)?;
+        }
+        Ok(())
+    };
+    let result = match &d.output {
+        None => {
+            let stdout = io::stdout();
+            let mut out = BufWriter::with_capacity(1 << 16, stdout.lock());
+            write(&mut out).and_then(|_| out.flush().map_err(Outcome::Io))
+        }
+        Some(path) => write_atomically(path, |f| write(f)),
+    };
+    match result {
+        Ok(()) => EX_OK,
+        Err(Outcome::Derive(e)) => {
+            report(&e, color);
+            EX_DATAERR
+        }
+        Err(Outcome::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => EX_OK,
+        Err(Outcome::Io(e)) => {
+            eprintln!("lsys: cannot write the output: {e}");
+            EX_IOERR
+        }
+    }
+}
+
+enum Outcome {
+    Derive(derive::DeriveError),
+    Io(io::Error),
+}
+
+/// Runs `body` with a temporary file beside `path` and renames it over
+/// `path` only when everything succeeded, so a failed run never leaves a
+/// half-written file (nor clobbers an existing one).
+fn write_atomically(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> Result<(), Outcome>,
+) -> Result<(), Outcome> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let tmp = tempfile::NamedTempFile::new_in(dir).map_err(Outcome::Io)?;
+    let mut out = BufWriter::new(tmp);
+    body(&mut out)?;
+    let tmp = out.into_inner().map_err(|e| Outcome::Io(e.into_error()))?;
+    tmp.persist(path).map_err(|e| Outcome::Io(e.error))?;
+    Ok(())
+}
+
+fn emit_stdout(body: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> i32 {
+    let stdout = io::stdout();
+    let mut out = BufWriter::new(stdout.lock());
+    match body(&mut out).and_then(|_| out.flush()) {
+        Ok(()) => EX_OK,
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => EX_OK,
+        Err(e) => {
+            eprintln!("lsys: cannot write the output: {e}");
+            EX_IOERR
+        }
+    }
+}

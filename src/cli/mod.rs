@@ -1,0 +1,46 @@
+//! The command line: arguments -> a command run against the library ->
+//! an exit code from sysexits (64 usage, 65 bad input, 66 missing input,
+//! 70 internal error, 74 I/O error).
+
+mod args;
+mod commands;
+
+use std::io::IsTerminal;
+
+use clap::Parser;
+
+pub use args::{Cli, Command};
+
+pub const EX_OK: i32 = 0;
+pub const EX_USAGE: i32 = 64;
+pub const EX_DATAERR: i32 = 65;
+pub const EX_NOINPUT: i32 = 66;
+pub const EX_SOFTWARE: i32 = 70;
+pub const EX_IOERR: i32 = 74;
+
+/// Runs the command line of this process and returns its exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { EX_USAGE } else { EX_OK };
+            let _ = e.print();
+            return code;
+        }
+    };
+    let color = match cli.color {
+        args::Color::Always => true,
+        args::Color::Never => false,
+        args::Color::Auto => {
+            std::io::stderr().is_terminal() && std::env::var_os("NO_COLOR").is_none()
+        }
+    };
+    // A panic is a bug in lsys, never the user's fault: say so and exit 70.
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("lsys: internal error: {info}\nThis is a bug in lsys; please report it with the input that caused it.");
+    }));
+    match std::panic::catch_unwind(|| commands::run(&cli.command, color)) {
+        Ok(code) => code,
+        Err(_) => EX_SOFTWARE,
+    }
+}

@@ -1,0 +1,343 @@
+//! Resolve errors and warnings (`lsys::resolve::*`): names, arities,
+//! includes, defines and everything else that is wrong with a grammar that
+//! parsed.
+
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
+use thiserror::Error;
+
+type Src = NamedSource<Arc<String>>;
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum ResolveError {
+    #[error("cannot include \"{path}\": {cause}")]
+    #[diagnostic(code(lsys::resolve::include_not_found))]
+    IncludeNotFound {
+        path: String,
+        cause: String,
+        #[source_code]
+        src: Src,
+        #[label("included here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("no standard library file <{name}>")]
+    #[diagnostic(code(lsys::resolve::unknown_std))]
+    UnknownStd {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("included here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("include cycle: {chain}")]
+    #[diagnostic(
+        code(lsys::resolve::include_cycle),
+        help("a file may not include itself, directly or through other files; remove one of the includes in the chain")
+    )]
+    IncludeCycle {
+        chain: String,
+        #[source_code]
+        src: Src,
+        #[label("this include closes the cycle")]
+        span: SourceSpan,
+    },
+
+    #[error("includes nested deeper than {limit} files")]
+    #[diagnostic(
+        code(lsys::resolve::include_depth),
+        help("the include chain is longer than any grammar needs; look for a file that includes a chain of generated files")
+    )]
+    IncludeDepth {
+        limit: usize,
+        #[source_code]
+        src: Src,
+        #[label("this include is one too many")]
+        span: SourceSpan,
+    },
+
+    #[error("`{name}` is defined twice")]
+    #[diagnostic(
+        code(lsys::resolve::duplicate_define),
+        help("remove one of the definitions, or give the second a different name; to change a value for one run use `-D {name}=VALUE`")
+    )]
+    DuplicateDefine {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("defined again here")]
+        span: SourceSpan,
+        #[label("first defined here")]
+        first: Option<SourceSpan>,
+    },
+
+    #[error("`-D {name}` does not match any #define")]
+    #[diagnostic(code(lsys::resolve::unknown_override))]
+    UnknownOverride {
+        name: String,
+        #[help]
+        help: String,
+    },
+
+    #[error("bad value for `-D {name}`: {why}")]
+    #[diagnostic(code(lsys::resolve::bad_override))]
+    BadOverride {
+        name: String,
+        why: String,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("unknown name `{name}`")]
+    #[diagnostic(code(lsys::resolve::unknown_name))]
+    UnknownName {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("not a parameter, #define or function")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("unknown function `{name}`")]
+    #[diagnostic(code(lsys::resolve::unknown_function))]
+    UnknownFunction {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("no built-in function or function-like #define has this name")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("`{name}` takes {expected} argument{}, found {found}", if *expected == 1 { "" } else { "s" })]
+    #[diagnostic(code(lsys::resolve::call_arity))]
+    CallArity {
+        name: String,
+        expected: usize,
+        found: usize,
+        #[source_code]
+        src: Src,
+        #[label("called here")]
+        span: SourceSpan,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("`{name}` has no value")]
+    #[diagnostic(code(lsys::resolve::define_without_value))]
+    DefineWithoutValue {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("used here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("`{name}` is defined in terms of itself: {chain}")]
+    #[diagnostic(
+        code(lsys::resolve::define_cycle),
+        help("a #define may use other defines, but not itself, directly or through others")
+    )]
+    DefineCycle {
+        name: String,
+        chain: String,
+        #[source_code]
+        src: Src,
+        #[label("used here")]
+        span: SourceSpan,
+    },
+
+    #[error("`{name}` is used before its #define")]
+    #[diagnostic(code(lsys::resolve::define_after_use))]
+    DefineAfterUse {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("used here")]
+        span: SourceSpan,
+        #[label("defined later, here")]
+        def: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("unknown module `{name}`")]
+    #[diagnostic(code(lsys::resolve::unknown_module))]
+    UnknownModule {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("no production, declaration, component or turtle command has this name")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("`{name}` takes {expected}, found {found}")]
+    #[diagnostic(code(lsys::resolve::arity))]
+    Arity {
+        name: String,
+        expected: String,
+        found: String,
+        #[source_code]
+        src: Src,
+        #[label("{found} here")]
+        span: SourceSpan,
+        #[label("its parameters are declared here")]
+        decl: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("the parameters of a predecessor must be names")]
+    #[diagnostic(
+        code(lsys::resolve::pattern_param),
+        help("write a name for each parameter (`A(x,y)`) and test values in the condition: `A(x,y) : x == 1 --> ...`")
+    )]
+    PatternParam {
+        #[source_code]
+        src: Src,
+        #[label("this is not a plain name")]
+        span: SourceSpan,
+    },
+
+    #[error("parameter `{name}` is bound twice in one production")]
+    #[diagnostic(
+        code(lsys::resolve::duplicate_parameter),
+        help("give each parameter of the predecessor and its contexts its own name")
+    )]
+    DuplicateParam {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("bound again here")]
+        span: SourceSpan,
+        #[label("first bound here")]
+        first: SourceSpan,
+    },
+
+    #[error("`else` has no earlier production for `{pred}` to be the alternative of")]
+    #[diagnostic(
+        code(lsys::resolve::else_first),
+        help("`else` applies when no earlier production with the same predecessor matched; put the conditional productions for `{pred}` above this one, or drop the `else`")
+    )]
+    ElseFirst {
+        pred: String,
+        #[source_code]
+        src: Src,
+        #[label("first production for `{pred}`")]
+        span: SourceSpan,
+    },
+
+    #[error("this production can never apply")]
+    #[diagnostic(code(lsys::resolve::unreachable), severity(Warning))]
+    Unreachable {
+        #[source_code]
+        src: Src,
+        #[label("never reached")]
+        span: SourceSpan,
+        #[label("this earlier production always applies to `{pred}` first")]
+        earlier: Option<SourceSpan>,
+        pred: String,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what} must be a constant")]
+    #[diagnostic(code(lsys::resolve::not_constant))]
+    NotConstant {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("this depends on parameters or random numbers")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("bad {what}: {why}")]
+    #[diagnostic(code(lsys::resolve::bad_value))]
+    BadValue {
+        what: String,
+        why: String,
+        #[source_code]
+        src: Src,
+        #[label("{why}")]
+        span: SourceSpan,
+        #[help]
+        help: Option<String>,
+    },
+
+    #[error("`{what}` appears twice")]
+    #[diagnostic(code(lsys::resolve::duplicate_header))]
+    DuplicateHeader {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("again here")]
+        span: SourceSpan,
+        #[label("first here")]
+        first: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what} is not supported")]
+    #[diagnostic(code(lsys::resolve::unsupported))]
+    Unsupported {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what}")]
+    #[diagnostic(code(lsys::resolve::misplaced))]
+    Misplaced {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("the grammar has no axiom")]
+    #[diagnostic(
+        code(lsys::resolve::no_axiom),
+        help("add the starting string, e.g. `Axiom: F` (also written `axiom:`, `ω:` or `Ω:`)")
+    )]
+    NoAxiom {
+        #[source_code]
+        src: Src,
+        #[label("in this file")]
+        span: SourceSpan,
+    },
+
+    #[error("division by zero in a constant expression")]
+    #[diagnostic(
+        code(lsys::resolve::division_by_zero),
+        help("the divisor is zero for every module; check the #define values it uses")
+    )]
+    DivisionByZero {
+        #[source_code]
+        src: Src,
+        #[label("this divisor is 0")]
+        span: SourceSpan,
+    },
+}

@@ -1,0 +1,310 @@
+//! Expressions: AST expressions -> IR expressions. Names bind, innermost
+//! first, to a function-like define's arguments, the production's
+//! parameters, then `#define`s, whose values are inlined at the use site
+//! (C macro semantics: `#define h sqrt(p*q)` sees the `p` and `q` of the
+//! production that uses `h`).
+
+use std::collections::HashMap;
+
+use miette::Report;
+
+use super::error::ResolveError;
+use super::ir::{BinOp, Expr, ExprKind, Func, UnOp};
+use super::Resolver;
+use crate::parse::ast;
+
+/// What names mean where an expression stands.
+pub(super) struct Scope<'a> {
+    /// Parameter names of the production, with their binding slots.
+    pub params: &'a [(String, u16)],
+    /// Position in the flattened statement list, for "used before its
+    /// #define".
+    pub order: usize,
+}
+
+impl Scope<'_> {
+    pub const EMPTY: Scope<'static> = Scope {
+        params: &[],
+        order: usize::MAX,
+    };
+}
+
+/// Expansion state: defines being expanded (for cycles) and the arguments
+/// of the function-like define being expanded.
+#[derive(Default, Clone)]
+struct Expansion {
+    stack: Vec<String>,
+    args: HashMap<String, Expr>,
+}
+
+impl Resolver {
+    /// Resolves and folds an expression; `None` when an error was recorded.
+    pub(super) fn expr(&mut self, e: &ast::Expr, scope: &Scope) -> Option<Expr> {
+        let r = self.expr_in(e, scope, &Expansion::default())?;
+        match super::fold::fold(r, &self.sources) {
+            Ok(f) => Some(f),
+            Err(err) => {
+                self.errors.push(Report::new(err));
+                None
+            }
+        }
+    }
+
+    fn expr_in(&mut self, e: &ast::Expr, scope: &Scope, exp: &Expansion) -> Option<Expr> {
+        let span = e.span;
+        let kind = match &e.kind {
+            ast::ExprKind::Num(v) => ExprKind::Num(*v),
+            ast::ExprKind::Name(n) => return self.name(n, span, scope, exp),
+            ast::ExprKind::Unary(op, a) => {
+                let a = self.expr_in(a, scope, exp)?;
+                match op {
+                    ast::UnaryOp::Pos => return Some(a),
+                    ast::UnaryOp::Neg => ExprKind::Unary(UnOp::Neg, Box::new(a)),
+                    ast::UnaryOp::Not => ExprKind::Unary(UnOp::Not, Box::new(a)),
+                }
+            }
+            ast::ExprKind::Binary(op, a, b) => {
+                let a = self.expr_in(a, scope, exp);
+                let b = self.expr_in(b, scope, exp);
+                ExprKind::Binary(bin_op(*op), Box::new(a?), Box::new(b?))
+            }
+            ast::ExprKind::Ternary(c, a, b) => {
+                let c = self.expr_in(c, scope, exp);
+                let a = self.expr_in(a, scope, exp);
+                let b = self.expr_in(b, scope, exp);
+                ExprKind::Cond(Box::new(c?), Box::new(a?), Box::new(b?))
+            }
+            ast::ExprKind::Call(name, args) => return self.call(name, args, span, scope, exp),
+            ast::ExprKind::Index(name, _) => {
+                self.error(ResolveError::Unsupported {
+                    what: format!("indexing a table (`{}[...]`)", name.name),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: "tables are not part of the language yet; use a #define per value, or a function of the index such as `(i == 1) * a + (i == 2) * b`".to_string(),
+                });
+                return None;
+            }
+        };
+        Some(Expr { kind, span })
+    }
+
+    fn name(
+        &mut self,
+        n: &str,
+        span: crate::source::Span,
+        scope: &Scope,
+        exp: &Expansion,
+    ) -> Option<Expr> {
+        if let Some(arg) = exp.args.get(n) {
+            return Some(arg.clone());
+        }
+        if let Some((_, slot)) = scope.params.iter().find(|(p, _)| p == n) {
+            return Some(Expr {
+                kind: ExprKind::Param(*slot),
+                span,
+            });
+        }
+        if let Some(def) = self.defines.get(n).cloned() {
+            if def.params.is_some() {
+                self.error(ResolveError::CallArity {
+                    name: n.to_string(),
+                    expected: def.params.as_ref().map_or(0, Vec::len),
+                    found: 0,
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: Some(format!(
+                        "`{n}` is a function-like #define; call it with its arguments: `{n}(...)`"
+                    )),
+                });
+                return None;
+            }
+            return self.expand(&def, span, scope, exp, HashMap::new());
+        }
+        let mut candidates: Vec<String> = scope.params.iter().map(|(p, _)| p.clone()).collect();
+        candidates.extend(self.defines.keys().cloned());
+        let mut help = match suggest(n, candidates.iter().map(String::as_str)) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None => String::new(),
+        };
+        if scope.params.is_empty() {
+            help.push_str(if help.is_empty() { "" } else { " " });
+            help.push_str(
+                "names here are #defines; define it with `#define NAME value` above its first use",
+            );
+        } else {
+            let ps: Vec<&str> = scope.params.iter().map(|(p, _)| p.as_str()).collect();
+            help.push_str(if help.is_empty() { "" } else { " " });
+            help.push_str(&format!(
+                "names here are the production's parameters ({}) and #defines",
+                ps.join(", ")
+            ));
+        }
+        self.error(ResolveError::UnknownName {
+            name: n.to_string(),
+            src: self.sources.named_source(span),
+            span: span.into(),
+            help,
+        });
+        None
+    }
+
+    fn expand(
+        &mut self,
+        def: &super::DefineEntry,
+        span: crate::source::Span,
+        scope: &Scope,
+        exp: &Expansion,
+        args: HashMap<String, Expr>,
+    ) -> Option<Expr> {
+        let name = &def.name;
+        if exp.stack.is_empty() && scope.order < def.order {
+            self.error(ResolveError::DefineAfterUse {
+                name: name.clone(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                def: (def.span.file == span.file).then(|| def.span.into()),
+                help: format!(
+                    "move `#define {name}` above its first use, as the C preprocessor requires"
+                ),
+            });
+            return None;
+        }
+        if exp.stack.contains(name) {
+            let mut chain = exp.stack.clone();
+            chain.push(name.clone());
+            self.error(ResolveError::DefineCycle {
+                name: name.clone(),
+                chain: chain.join(" -> "),
+                src: self.sources.named_source(span),
+                span: span.into(),
+            });
+            return None;
+        }
+        let Some(value) = def.value.clone() else {
+            self.error(ResolveError::DefineWithoutValue {
+                name: name.clone(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: format!(
+                    "`#define {name}` declares a parameter without a value; give it one in the file (`#define {name} 5`) or for this run (`-D {name}=5`)"
+                ),
+            });
+            return None;
+        };
+        let mut inner = Expansion {
+            stack: exp.stack.clone(),
+            args,
+        };
+        inner.stack.push(name.clone());
+        self.expr_in(&value, scope, &inner)
+    }
+
+    fn call(
+        &mut self,
+        name: &ast::Ident,
+        args: &[ast::Expr],
+        span: crate::source::Span,
+        scope: &Scope,
+        exp: &Expansion,
+    ) -> Option<Expr> {
+        let resolved: Vec<Option<Expr>> =
+            args.iter().map(|a| self.expr_in(a, scope, exp)).collect();
+        let resolved: Vec<Expr> = resolved.into_iter().collect::<Option<_>>()?;
+        if let Some(def) = self.defines.get(&name.name).cloned() {
+            let Some(params) = def.params.clone() else {
+                self.error(ResolveError::Unsupported {
+                    what: format!("calling `{}`, which is a #define with no parameters,", name.name),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: format!("use it without parentheses (`{}`), or give the #define parameters: `#define {}(x) ...`", name.name, name.name),
+                });
+                return None;
+            };
+            if params.len() != resolved.len() {
+                self.error(ResolveError::CallArity {
+                    name: name.name.clone(),
+                    expected: params.len(),
+                    found: resolved.len(),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: Some(format!(
+                        "`{}({})` is defined at {}",
+                        name.name,
+                        params.join(","),
+                        self.sources.location(def.span)
+                    )),
+                });
+                return None;
+            }
+            let map = params.into_iter().zip(resolved).collect();
+            return self.expand(&def, span, scope, exp, map);
+        }
+        let Some(f) = Func::from_name(&name.name) else {
+            let mut known: Vec<String> = Func::ALL.iter().map(|f| f.name().to_string()).collect();
+            known.extend(
+                self.defines
+                    .iter()
+                    .filter(|(_, d)| d.params.is_some())
+                    .map(|(k, _)| k.clone()),
+            );
+            let mut help = suggest(&name.name, known.iter().map(String::as_str))
+                .map(|s| format!("did you mean `{s}`? "))
+                .unwrap_or_default();
+            help.push_str(&format!(
+                "the built-in functions are {}",
+                Func::ALL.map(|f| f.name()).join(", ")
+            ));
+            self.error(ResolveError::UnknownFunction {
+                name: name.name.clone(),
+                src: self.sources.named_source(name.span),
+                span: name.span.into(),
+                help,
+            });
+            return None;
+        };
+        if f.arity() != resolved.len() {
+            self.error(ResolveError::CallArity {
+                name: name.name.clone(),
+                expected: f.arity(),
+                found: resolved.len(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: None,
+            });
+            return None;
+        }
+        Some(Expr {
+            kind: ExprKind::Call(f, resolved),
+            span,
+        })
+    }
+}
+
+fn bin_op(op: ast::BinaryOp) -> BinOp {
+    use ast::BinaryOp as A;
+    match op {
+        A::Add => BinOp::Add,
+        A::Sub => BinOp::Sub,
+        A::Mul => BinOp::Mul,
+        A::Div => BinOp::Div,
+        A::Rem => BinOp::Rem,
+        A::Pow => BinOp::Pow,
+        A::Lt => BinOp::Lt,
+        A::Le => BinOp::Le,
+        A::Gt => BinOp::Gt,
+        A::Ge => BinOp::Ge,
+        A::Eq => BinOp::Eq,
+        A::Ne => BinOp::Ne,
+        A::And => BinOp::And,
+        A::Or => BinOp::Or,
+    }
+}
+
+/// The closest known name, if one is close enough to be a typo.
+pub(super) fn suggest<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    known
+        .map(|k| (strsim::damerau_levenshtein(name, k), k))
+        .filter(|(d, k)| *d <= 2 && *d < name.chars().count().max(2) && *k != name)
+        .min_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(b.1)))
+        .map(|(_, k)| k)
+}

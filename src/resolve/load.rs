@@ -1,0 +1,221 @@
+//! Loading: the root input -> every source file it includes, parsed, with
+//! their statements flattened in include order (an `#include "f"` line is
+//! replaced by the statements of `f`, as the C preprocessor would).
+
+use std::path::{Path, PathBuf};
+
+use miette::Report;
+
+use super::error::ResolveError;
+use crate::parse::ast::{Include, Item};
+use crate::parse::{self};
+use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
+use crate::stdlib;
+
+/// Includes nested deeper than this are refused (a runaway generator, not
+/// a grammar).
+pub const MAX_INCLUDE_DEPTH: usize = 64;
+
+/// What to compile.
+#[derive(Clone, Debug)]
+pub enum Input {
+    /// A file on disk.
+    Path(PathBuf),
+    /// `std:NAME`: a standard library file.
+    Std(String),
+    /// Text from memory (tests, the REPL).
+    Text { name: String, text: String },
+}
+
+impl Input {
+    /// Reads a command-line argument: `std:NAME` or a path.
+    pub fn from_arg(arg: &str) -> Input {
+        match arg.strip_prefix("std:") {
+            Some(name) => Input::Std(name.to_string()),
+            None => Input::Path(PathBuf::from(arg)),
+        }
+    }
+}
+
+/// The root input could not be read at all (no diagnostics to point at).
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+pub enum InputError {
+    #[error("cannot read {path}: {cause}")]
+    #[diagnostic(
+        code(lsys::resolve::input),
+        help("check the path; standard library grammars are named `std:NAME`")
+    )]
+    NotFound { path: String, cause: String },
+    #[error("no standard library grammar `std:{name}`")]
+    #[diagnostic(
+        code(lsys::resolve::unknown_std),
+        help("the standard library has: {available}")
+    )]
+    UnknownStd { name: String, available: String },
+}
+
+/// Every file of one compilation and their statements in include order.
+pub struct Loaded {
+    pub sources: SourceMap,
+    pub items: Vec<(FileId, Item)>,
+    pub errors: Vec<Report>,
+}
+
+pub fn load(input: &Input) -> Result<Loaded, InputError> {
+    let root = match input {
+        Input::Path(p) => {
+            let text = std::fs::read(p).map_err(|e| InputError::NotFound {
+                path: p.display().to_string(),
+                cause: e.to_string(),
+            })?;
+            SourceFile::new(
+                p.display().to_string(),
+                Origin::Disk(p.clone()),
+                String::from_utf8_lossy(&text).into_owned(),
+            )
+        }
+        Input::Std(name) => {
+            let text = stdlib::get(name).ok_or_else(|| InputError::UnknownStd {
+                name: name.clone(),
+                available: stdlib::names().join(", "),
+            })?;
+            SourceFile::new(format!("std:{name}"), Origin::Std(name.clone()), text)
+        }
+        Input::Text { name, text } => SourceFile::new(name.clone(), Origin::Memory, text.clone()),
+    };
+    let mut loader = Loader {
+        loaded: Loaded {
+            sources: SourceMap::new(),
+            items: Vec::new(),
+            errors: Vec::new(),
+        },
+        stack: Vec::new(),
+    };
+    let id = loader.loaded.sources.add(root);
+    loader.file(id);
+    Ok(loader.loaded)
+}
+
+struct Loader {
+    loaded: Loaded,
+    /// The include chain being loaded: (file, its identity for cycles).
+    stack: Vec<(FileId, String)>,
+}
+
+impl Loader {
+    fn identity(file: &SourceFile) -> String {
+        match &file.origin {
+            Origin::Disk(p) => std::fs::canonicalize(p)
+                .unwrap_or_else(|_| p.clone())
+                .display()
+                .to_string(),
+            Origin::Std(n) => format!("std:{n}"),
+            Origin::Memory => file.name.clone(),
+        }
+    }
+
+    fn file(&mut self, id: FileId) {
+        let file = self.loaded.sources.get(id).clone();
+        self.stack.push((id, Self::identity(&file)));
+        let (ast, errors) = parse::parse(id, &file);
+        self.loaded
+            .errors
+            .extend(errors.into_iter().map(Report::new));
+        for item in ast.items {
+            match item {
+                Item::Include(Include::Path { ref path, span }) => {
+                    self.include_path(&file, path, span)
+                }
+                Item::Include(Include::Std { ref name, span }) => {
+                    self.include_std(&file, name, span)
+                }
+                other => self.loaded.items.push((id, other)),
+            }
+        }
+        self.stack.pop();
+    }
+
+    fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
+        let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
+        let full = base.join(path);
+        let text = match std::fs::read(&full) {
+            Ok(t) => String::from_utf8_lossy(&t).into_owned(),
+            Err(e) => {
+                let help = if from.dir().is_some() {
+                    format!(
+                        "the path is relative to the including file's folder; lsys looked for {}",
+                        full.display()
+                    )
+                } else {
+                    format!("lsys looked for {}", full.display())
+                };
+                self.loaded
+                    .errors
+                    .push(Report::new(ResolveError::IncludeNotFound {
+                        path: path.to_string(),
+                        cause: e.to_string(),
+                        src: from.named_source(),
+                        span: span.into(),
+                        help,
+                    }));
+                return;
+            }
+        };
+        let name = if from.dir().is_some() {
+            full.display().to_string()
+        } else {
+            path.to_string()
+        };
+        let file = SourceFile::new(name, Origin::Disk(full), text);
+        self.enter(from, file, span);
+    }
+
+    fn include_std(&mut self, from: &SourceFile, name: &str, span: Span) {
+        match stdlib::get(name) {
+            Some(text) => {
+                let file = SourceFile::new(format!("std:{name}"), Origin::Std(name.into()), text);
+                self.enter(from, file, span);
+            }
+            None => self
+                .loaded
+                .errors
+                .push(Report::new(ResolveError::UnknownStd {
+                    name: name.to_string(),
+                    src: from.named_source(),
+                    span: span.into(),
+                    help: format!("the standard library has: {}", stdlib::names().join(", ")),
+                })),
+        }
+    }
+
+    fn enter(&mut self, from: &SourceFile, file: SourceFile, span: Span) {
+        let ident = Self::identity(&file);
+        if let Some(pos) = self.stack.iter().position(|(_, i)| *i == ident) {
+            let mut chain: Vec<String> = self.stack[pos..]
+                .iter()
+                .map(|(id, _)| self.loaded.sources.get(*id).name.clone())
+                .collect();
+            chain.push(file.name.clone());
+            self.loaded
+                .errors
+                .push(Report::new(ResolveError::IncludeCycle {
+                    chain: chain.join(" -> "),
+                    src: from.named_source(),
+                    span: span.into(),
+                }));
+            return;
+        }
+        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+            self.loaded
+                .errors
+                .push(Report::new(ResolveError::IncludeDepth {
+                    limit: MAX_INCLUDE_DEPTH,
+                    src: from.named_source(),
+                    span: span.into(),
+                }));
+            return;
+        }
+        let id = self.loaded.sources.add(file);
+        self.file(id);
+    }
+}

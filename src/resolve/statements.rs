@@ -1,0 +1,329 @@
+//! Statements: the flattened statement list -> the [`Program`]: headers
+//! evaluated, sections tracked, productions lowered and checked (`else`
+//! placement, unreachable productions).
+
+use std::collections::HashMap;
+
+use super::error::ResolveError;
+use super::expr::Scope;
+use super::ir::*;
+use super::Resolver;
+use crate::parse::ast::{self, Condition, HeaderKind, Item};
+use crate::source::Span;
+
+/// A predecessor's identity for `else` and reachability checks: its
+/// symbols and parameter counts.
+type PredKey = Vec<(SymId, u8)>;
+
+#[derive(Default)]
+struct Sections {
+    table: Option<Table>,
+    ended: Option<Span>,
+    lsystem: Option<Span>,
+    axiom: Option<(Vec<SuccModule>, Span)>,
+    dlength: Option<(u32, Span)>,
+    seed: Option<(u64, Span)>,
+    context: Option<(ContextFilter, Span)>,
+    depth: HashMap<Table, (u32, Span)>,
+    /// Per table and predecessor: was there a production, and which
+    /// production always applies first (no context, condition, probability).
+    seen: HashMap<(Table, PredKey), Option<Span>>,
+}
+
+impl Resolver {
+    pub(super) fn statements(&mut self, items: &[(u32, Item)]) -> Option<Program> {
+        self.record_arities(items);
+        let mut s = Sections::default();
+        let mut tables: HashMap<Table, Vec<Production>> = HashMap::new();
+        for (order, (_, item)) in items.iter().enumerate() {
+            match item {
+                Item::Production(p) => {
+                    if let Some(end) = s.ended {
+                        self.after_end(p.span, end);
+                        continue;
+                    }
+                    let table = s.table.unwrap_or(Table::Main);
+                    if let Some(prod) = self.production(p, table, order, &mut s) {
+                        tables.entry(table).or_default().push(prod);
+                    }
+                }
+                Item::Header(h) => self.header(h, order, &mut s),
+                Item::OtherDirective { name, span } => self.error(ResolveError::Unsupported {
+                    what: format!("the preprocessor directive `#{}`", name.name),
+                    src: self.sources.named_source(*span),
+                    span: (*span).into(),
+                    help: "lsys understands #define and #include; cpfg's C preprocessor conditionals (#if, #ifdef, ...) are planned with cpfg compatibility. Remove the line, or keep one branch of the conditional".to_string(),
+                }),
+                Item::Define(_) | Item::Include(_) => {}
+            }
+        }
+        let root = Span::new(0, 0, 0);
+        let Some((axiom, _)) = s.axiom.take() else {
+            self.error(ResolveError::NoAxiom {
+                src: self.sources.named_source(root),
+                span: root.into(),
+            });
+            return None;
+        };
+        let defines = self.define_infos();
+        let mut take = |t| tables.remove(&t).unwrap_or_default();
+        Some(Program {
+            sources: self.sources.clone(),
+            symbols: self.symbols.clone(),
+            axiom,
+            derivation_length: s.dlength.map_or(0, |d| d.0),
+            seed: s.seed.map(|d| d.0),
+            context: s.context.map(|c| c.0).unwrap_or_default(),
+            productions: take(Table::Main),
+            decomposition: take(Table::Decomposition),
+            homomorphism: take(Table::Homomorphism),
+            decomposition_depth: s
+                .depth
+                .get(&Table::Decomposition)
+                .map_or(DEFAULT_DEPTH, |d| d.0),
+            homomorphism_depth: s
+                .depth
+                .get(&Table::Homomorphism)
+                .map_or(DEFAULT_DEPTH, |d| d.0),
+            defines,
+        })
+    }
+
+    fn after_end(&mut self, span: Span, end: Span) {
+        self.error(ResolveError::Misplaced {
+            what: "statement after `endlsystem`".to_string(),
+            src: self.sources.named_source(span),
+            span: span.into(),
+            help: format!(
+                "`endlsystem` ({}) ends the grammar; move this above it (several L-systems in one file are not supported yet)",
+                self.sources.location(end)
+            ),
+        });
+    }
+
+    fn header(&mut self, h: &ast::Header, order: usize, s: &mut Sections) {
+        let scope = Scope { params: &[], order };
+        if let Some(end) = s.ended {
+            if !matches!(h.kind, HeaderKind::Endlsystem) {
+                self.after_end(h.span, end);
+                return;
+            }
+        }
+        match &h.kind {
+            HeaderKind::Lsystem(_) => {
+                if let Some(first) = s.lsystem {
+                    self.duplicate(h, "Lsystem:", first, "several L-systems in one file (cpfg sub-L-systems) are not supported yet; keep one per file");
+                }
+                s.lsystem = Some(h.keyword);
+            }
+            HeaderKind::DerivationLength(e) => {
+                if let Some((_, first)) = s.dlength {
+                    self.duplicate(h, "derivation length:", first, "keep one `derivation length:`; to change it for one run use `-n STEPS`");
+                } else if let Some(n) = self.const_count(e, &scope, "derivation length", 10_000_000) {
+                    s.dlength = Some((n as u32, h.keyword));
+                }
+            }
+            HeaderKind::Axiom(toks) => {
+                if let Some((_, first)) = &s.axiom {
+                    let first = *first;
+                    self.duplicate(h, "Axiom:", first, "a grammar has one axiom; remove one of them");
+                } else {
+                    let m = self.successor(toks, &scope);
+                    s.axiom = Some((m, h.keyword));
+                }
+            }
+            HeaderKind::Ignore(toks) | HeaderKind::Consider(toks) => {
+                let is_ignore = matches!(h.kind, HeaderKind::Ignore(_));
+                if let Some((_, first)) = &s.context {
+                    let first = *first;
+                    self.duplicate(h, "ignore:/consider:", first, "use one `ignore:` or one `consider:` list, not both; list every symbol in it");
+                    return;
+                }
+                let mut syms = Vec::new();
+                for t in toks {
+                    if let ast::PatTok::Module(m) = t {
+                        for p in self.split(m) {
+                            syms.push(self.intern(&p.name, Some(p.span)));
+                        }
+                    }
+                }
+                let f = if is_ignore {
+                    ContextFilter::Ignore(syms)
+                } else {
+                    ContextFilter::Consider(syms)
+                };
+                s.context = Some((f, h.keyword));
+            }
+            HeaderKind::Seed(e) => {
+                if let Some((_, first)) = s.seed {
+                    self.duplicate(h, "seed:", first, "keep one `seed:`; to change it for one run use `--seed N`");
+                } else if let Some(n) = self.const_count(e, &scope, "seed", u32::MAX as u64) {
+                    s.seed = Some((n, h.keyword));
+                }
+            }
+            HeaderKind::MaximumDepth(e) => {
+                let Some(t @ (Table::Homomorphism | Table::Decomposition)) = s.table else {
+                    self.error(ResolveError::Misplaced {
+                        what: "`maximum depth:` outside a homomorphism or decomposition section".to_string(),
+                        src: self.sources.named_source(h.span),
+                        span: h.span.into(),
+                        help: "put `maximum depth:` right after the `homomorphism` or `decomposition` line it applies to".to_string(),
+                    });
+                    return;
+                };
+                if let Some((_, first)) = s.depth.get(&t) {
+                    let first = *first;
+                    self.duplicate(h, "maximum depth:", first, "each section has one `maximum depth:`");
+                } else if let Some(n) = self.const_count(e, &scope, "maximum depth", 100_000) {
+                    s.depth.insert(t, (n.max(1) as u32, h.keyword));
+                }
+            }
+            HeaderKind::Endlsystem => s.ended = Some(h.span),
+            HeaderKind::Homomorphism => s.table = Some(Table::Homomorphism),
+            HeaderKind::Decomposition => s.table = Some(Table::Decomposition),
+            HeaderKind::Module(_) => {}
+            HeaderKind::Block(kw) => self.error(ResolveError::Unsupported {
+                what: format!("cpfg's statement block `{kw}:`"),
+                src: self.sources.named_source(h.span),
+                span: h.span.into(),
+                help: "C-like statement blocks (Start:, StartEach:, EndEach:, End:, define:) are planned with cpfg compatibility; compute the values with #defines instead".to_string(),
+            }),
+        }
+    }
+
+    fn duplicate(&mut self, h: &ast::Header, what: &str, first: Span, help: &str) {
+        self.error(ResolveError::DuplicateHeader {
+            what: what.to_string(),
+            src: self.sources.named_source(h.keyword),
+            span: h.keyword.into(),
+            first: (first.file == h.keyword.file).then(|| first.into()),
+            help: help.to_string(),
+        });
+    }
+
+    /// A constant whole number in `0..=max` (derivation length, seed, depth).
+    fn const_count(&mut self, e: &ast::Expr, scope: &Scope, what: &str, max: u64) -> Option<u64> {
+        let v = self.expr(e, scope)?;
+        let ExprKind::Num(x) = v.kind else {
+            self.error(ResolveError::NotConstant {
+                what: format!("the {what}"),
+                src: self.sources.named_source(e.span),
+                span: e.span.into(),
+                help: "use numbers and #defines only".to_string(),
+            });
+            return None;
+        };
+        if x < 0.0 || x.fract() != 0.0 || x > max as f64 {
+            self.error(ResolveError::BadValue {
+                what: what.to_string(),
+                why: format!("{x} is not a whole number from 0 to {max}"),
+                src: self.sources.named_source(e.span),
+                span: e.span.into(),
+                help: None,
+            });
+            return None;
+        }
+        Some(x as u64)
+    }
+
+    fn production(
+        &mut self,
+        p: &ast::Production,
+        table: Table,
+        order: usize,
+        s: &mut Sections,
+    ) -> Option<Production> {
+        let errors_before = self.errors.len();
+        let mut params = Vec::new();
+        let mut spans = Vec::new();
+        let lctx = self.pattern(&p.lctx, false, &mut params, &mut spans, false);
+        let pred = self.pattern(&p.pred, false, &mut params, &mut spans, true);
+        let rctx = self.pattern(&p.rctx, true, &mut params, &mut spans, false);
+        let lctx: Vec<PatModule> = lctx
+            .into_iter()
+            .filter_map(|i| match i {
+                PatItem::Module(m) => Some(m),
+                _ => None,
+            })
+            .collect();
+        let pred: Vec<PatModule> = pred
+            .into_iter()
+            .filter_map(|i| match i {
+                PatItem::Module(m) => Some(m),
+                _ => None,
+            })
+            .collect();
+        if table != Table::Main && (!lctx.is_empty() || !rctx.is_empty()) {
+            self.error(ResolveError::Unsupported {
+                what: "context in a homomorphism or decomposition production".to_string(),
+                src: self.sources.named_source(p.head_span),
+                span: p.head_span.into(),
+                help: "these sections rewrite each module on its own; move the context-sensitive production above the `homomorphism`/`decomposition` line".to_string(),
+            });
+        }
+        let scope = Scope {
+            params: &params,
+            order,
+        };
+        let key: PredKey = pred.iter().map(|m| (m.sym, m.arity)).collect();
+        let pred_text = self.sources.slice(p.head_span).to_string();
+        let cond = match &p.cond {
+            None | Some(Condition::Always(_)) => Cond::Always,
+            Some(Condition::Else(span)) => {
+                if !s.seen.contains_key(&(table, key.clone())) {
+                    self.error(ResolveError::ElseFirst {
+                        pred: pred_text.clone(),
+                        src: self.sources.named_source(*span),
+                        span: (*span).into(),
+                    });
+                }
+                Cond::Else(*span)
+            }
+            Some(Condition::Expr(e)) => match self.expr(e, &scope) {
+                Some(Expr {
+                    kind: ExprKind::Num(v),
+                    ..
+                }) if v != 0.0 => Cond::Always,
+                Some(e) => Cond::Expr(e),
+                None => Cond::Always,
+            },
+        };
+        let succ = self.successor(&p.succ, &scope);
+        let prob = p.prob.as_ref().and_then(|e| self.expr(e, &scope));
+        let always = lctx.is_empty()
+            && rctx.is_empty()
+            && prob.is_none()
+            && matches!(cond, Cond::Always | Cond::Else(_));
+        let entry = s.seen.entry((table, key)).or_insert(None);
+        if let Some(earlier) = *entry {
+            self.warn(ResolveError::Unreachable {
+                src: self.sources.named_source(p.span),
+                span: p.head_span.into(),
+                earlier: (earlier.file == p.span.file).then(|| earlier.into()),
+                pred: pred_text,
+                help: "an earlier production for the same predecessor has no condition, context or probability, so it always wins; add a condition to it or remove this one".to_string(),
+            });
+        } else if always {
+            *entry = Some(p.head_span);
+        }
+        if self.errors.len() > errors_before {
+            return None;
+        }
+        Some(Production {
+            table,
+            span: p.span,
+            head_span: p.head_span,
+            lctx,
+            pred,
+            rctx,
+            nparams: params.len() as u16,
+            param_names: params.into_iter().map(|(n, _)| n).collect(),
+            cond,
+            succ,
+            prob,
+        })
+    }
+}
+
+/// `maximum depth:` when a section does not say.
+pub const DEFAULT_DEPTH: u32 = 1;

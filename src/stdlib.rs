@@ -1,0 +1,25 @@
+//! The standard library: `.lsys` files from `grammar/std/`, embedded in the
+//! binary so `std:NAME` and `#include <NAME>` work on any machine.
+
+/// (name, source text) of every standard library file.
+pub const FILES: &[(&str, &str)] = &[
+    (
+        "toukung_middle",
+        include_str!("../grammar/std/toukung_middle.lsys"),
+    ),
+    (
+        "toukung_side",
+        include_str!("../grammar/std/toukung_side.lsys"),
+    ),
+];
+
+/// The text of the standard library file `name` (with or without `.lsys`).
+pub fn get(name: &str) -> Option<&'static str> {
+    let name = name.strip_suffix(".lsys").unwrap_or(name);
+    FILES.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}
+
+/// Names of all standard library files, for help texts.
+pub fn names() -> Vec<&'static str> {
+    FILES.iter().map(|(n, _)| *n).collect()
+}
