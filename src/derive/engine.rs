@@ -3,8 +3,9 @@
 //! that produces the interpreted string ([`homomorphism`]).
 
 use std::mem;
+use std::sync::Arc;
 
-use super::error::{DepthWarning, DeriveError};
+use super::error::{DepthWarning, DeriveError, Src};
 use super::matching::{match_at, Bound, Input, Rules};
 use super::rng::{Rand48, DEFAULT_SEED};
 use super::store::{head_arity, head_sym, ContextIndex, ModuleStore, MAX_SYMBOLS};
@@ -146,6 +147,10 @@ impl State {
     }
 }
 
+fn src(tab: &Tables, span: Span) -> Src {
+    Arc::new(tab.program.sources.named_source(span))
+}
+
 /// Where code ran, for error messages.
 #[derive(Clone, Copy)]
 enum Site {
@@ -170,7 +175,7 @@ fn site_context(tab: &Tables, site: Site) -> (String, Option<Span>) {
 fn fault_error(tab: &Tables, fault: Fault, site: Site, step: u32) -> DeriveError {
     let (context, prod) = site_context(tab, site);
     let production = prod.filter(|p| p.file == fault.span.file).map(Into::into);
-    let src = tab.program.sources.named_source(fault.span);
+    let src = src(tab, fault.span);
     let span = fault.span.into();
     match fault.kind {
         FaultKind::DivisionByZero | FaultKind::RemainderByZero => DeriveError::DivisionByZero {
@@ -210,10 +215,7 @@ fn check_limits(
     let (src, production) = match site {
         Some(Site::Prod(t, i)) => {
             let p = &tab.program.table(t)[i];
-            (
-                Some(tab.program.sources.named_source(p.head_span)),
-                Some(p.head_span.into()),
-            )
+            (Some(src(tab, p.head_span)), Some(p.head_span.into()))
         }
         _ => (None, None),
     };
@@ -384,7 +386,7 @@ fn weight(
             value: w,
             context,
             step: st.step,
-            src: tab.program.sources.named_source(span),
+            src: src(tab, span),
             span: span.into(),
             production: prod.filter(|s| s.file == span.file).map(Into::into),
         });
@@ -410,7 +412,7 @@ fn warn_depth(tab: &Tables, st: &mut State, t: Table, p: usize, depth: u32) {
         step: st.step,
         count: 1,
         production: p,
-        src: tab.program.sources.named_source(span),
+        src: src(tab, span),
         span: span.into(),
     });
 }

@@ -10,7 +10,8 @@ use thiserror::Error;
 #[allow(unused_imports)] // for the docs
 use crate::bytecode::Fault;
 
-type Src = NamedSource<Arc<String>>;
+/// Shared, so that errors stay small (`Result`s are returned per module).
+pub type Src = Arc<NamedSource<Arc<String>>>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum DeriveError {

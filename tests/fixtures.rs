@@ -1,0 +1,178 @@
+//! One test binary, one insta glob per stage. Each fixture is an `.lsys`
+//! file under `tests/fixtures/<stage>/{ok,err}/`; its snapshot records
+//! what that stage makes of it. `ok` fixtures must compile without errors
+//! and `err` fixtures must fail, so a fixture cannot silently change sides.
+
+use std::path::Path;
+
+use lsys::derive::{self, DeriveOptions};
+use lsys::pipeline::{self, Failure};
+use lsys::resolve::{Input, Options};
+use lsys::source::{Origin, SourceFile};
+
+/// The fixture's path relative to the package, so snapshots do not depend
+/// on where the repository is checked out.
+fn rel(path: &Path) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    path.strip_prefix(root)
+        .unwrap_or(path)
+        .to_string_lossy()
+        .replace('\\', "/")
+}
+
+fn expect_ok(path: &Path) -> bool {
+    let p = rel(path);
+    assert!(
+        p.contains("/ok/") || p.contains("/err/"),
+        "fixture {p} must live in an ok/ or err/ folder"
+    );
+    p.contains("/ok/")
+}
+
+/// `-D NAME=VALUE` overrides a fixture asks for on a `// -D NAME=VALUE` line.
+fn fixture_defines(text: &str) -> Vec<(String, String)> {
+    text.lines()
+        .filter_map(|l| l.trim().strip_prefix("// -D "))
+        .filter_map(|d| d.split_once('='))
+        .map(|(n, v)| (n.trim().to_string(), v.trim().to_string()))
+        .collect()
+}
+
+/// Compiles a fixture: the compilation, or every diagnostic rendered.
+fn compile(path: &Path) -> Result<pipeline::Compilation, String> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let opts = Options {
+        defines: fixture_defines(&text),
+    };
+    match pipeline::compile(&Input::Path(rel(path).into()), &opts) {
+        Ok(c) => Ok(c),
+        Err(Failure::Input(e)) => Err(lsys::diag::render_plain(&e)),
+        Err(Failure::Diagnostics { diagnostics, .. }) => Err(diagnostics
+            .iter()
+            .map(|d| lsys::diag::render_plain(d.as_ref()))
+            .collect()),
+    }
+}
+
+fn warnings(c: &pipeline::Compilation) -> String {
+    c.warnings
+        .iter()
+        .map(|d| lsys::diag::render_plain(d.as_ref()))
+        .collect()
+}
+
+#[test]
+fn parse() {
+    insta::glob!("fixtures/parse/*/*.lsys", |path| {
+        let name = rel(path);
+        let text = std::fs::read_to_string(path).unwrap();
+        let file = SourceFile::new(name.clone(), Origin::Disk(name.clone().into()), text);
+        let (ast, errors) = lsys::parse::parse(0, &file);
+        assert_eq!(expect_ok(path), errors.is_empty(), "{name}: ok/ fixtures parse, err/ ones do not");
+        let mut out = ast.dump();
+        for e in &errors {
+            out.push_str(&lsys::diag::render_plain(e));
+        }
+        insta::assert_snapshot!(out);
+    });
+}
+
+#[test]
+fn resolve() {
+    insta::glob!("fixtures/resolve/*/*.lsys", |path| {
+        let out = match compile(path) {
+            Ok(c) => {
+                assert!(expect_ok(path), "{}: expected errors", rel(path));
+                let p = &c.program;
+                let mut out = warnings(&c);
+                out.push_str(&format!(
+                    "symbols: {}\naxiom: {}\nderivation length: {}\nproductions: {} main, {} decomposition, {} homomorphism\n",
+                    p.symbols.list.iter().map(|s| format!("{}:{:?}", s.name, s.kind)).collect::<Vec<_>>().join(" "),
+                    p.axiom.iter().map(|m| p.symbols.name(m.sym)).collect::<Vec<_>>().join(" "),
+                    p.derivation_length,
+                    p.productions.len(),
+                    p.decomposition.len(),
+                    p.homomorphism.len(),
+                ));
+                for d in &p.defines {
+                    out.push_str(&format!("define {} = {:?}{}\n", d.name, d.value, if d.overridden { " (overridden)" } else { "" }));
+                }
+                out
+            }
+            Err(diags) => {
+                assert!(!expect_ok(path), "{}: expected no errors, got:\n{diags}", rel(path));
+                diags
+            }
+        };
+        insta::assert_snapshot!(out);
+    });
+}
+
+#[test]
+fn bytecode() {
+    insta::glob!("fixtures/bytecode/*/*.lsys", |path| {
+        let out = match compile(path) {
+            Ok(c) => {
+                assert!(expect_ok(path), "{}: expected errors", rel(path));
+                lsys::bytecode::disasm(&c.program, &c.compiled)
+            }
+            Err(diags) => {
+                assert!(!expect_ok(path), "{}: expected no errors, got:\n{diags}", rel(path));
+                diags
+            }
+        };
+        insta::assert_snapshot!(out);
+    });
+}
+
+/// Derives a fixture, printing every step (and the homomorphism of the
+/// last one when the grammar has one); `err` fixtures fail at run time.
+#[test]
+fn derive() {
+    insta::glob!("fixtures/derive/*/*.lsys", |path| {
+        let c = compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
+        let (p, code) = (&c.program, &c.compiled);
+        let opts = DeriveOptions {
+            max_modules: 10_000,
+            ..DeriveOptions::default()
+        };
+        let mut out = warnings(&c);
+        let result = derive::derive_each(p, code, opts.clone(), p.derivation_length, |step, s| {
+            out.push_str(&format!("{step}: {}\n", s.display(&p.symbols)));
+        });
+        match result {
+            Ok(last) => {
+                assert!(expect_ok(path), "{}: expected a runtime error", rel(path));
+                if !p.homomorphism.is_empty() {
+                    let h = derive::homomorphism(p, code, &last, &opts, p.derivation_length).unwrap();
+                    out.push_str(&format!("homomorphism: {}\n", h.modules.display(&p.symbols)));
+                    for w in &h.warnings {
+                        out.push_str(&lsys::diag::render_plain(w));
+                    }
+                }
+            }
+            Err(e) => {
+                assert!(!expect_ok(path), "{}: unexpected runtime error:\n{}", rel(path), lsys::diag::render_plain(&e));
+                out.push_str(&lsys::diag::render_plain(&e));
+            }
+        }
+        insta::assert_snapshot!(out);
+    });
+}
+
+/// The classic systems of ABOP chapter 1 derive to the strings the book
+/// gives, as computed independently by `scripts/abop_oracle.py`.
+#[test]
+fn abop_examples() {
+    insta::glob!("../examples/abop/*.lsys", |path| {
+        let c = compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
+        let s = derive::derive(&c.program, &c.compiled, DeriveOptions::default(), c.program.derivation_length)
+            .unwrap()
+            .display(&c.program.symbols);
+        let stem = path.file_stem().unwrap().to_string_lossy();
+        let oracle = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/abop_expected/{stem}.txt"));
+        let expected = std::fs::read_to_string(&oracle).unwrap_or_else(|e| panic!("{}: {e}", oracle.display()));
+        assert_eq!(s, expected.trim_end(), "{stem} differs from the oracle");
+        insta::assert_snapshot!(s);
+    });
+}
