@@ -674,6 +674,30 @@ p: B(y) < A(x) --> A(x+y)
     assert_eq!(last(src, 1), "B [ D ] C X B D C A");
 }
 
+#[test]
+fn context_is_checked_when_bindings_come_straight_from_the_string() {
+    // Predecessor parameters only: the fast binding path, context still checked.
+    let src = "axiom: A(1) B A(2) C A(3)[B]B\np: A(x) > B --> X(x)\n";
+    assert_eq!(last(src, 1), "X(1) B A(2) C X(3) [ B ] B");
+    let src = "axiom: B A(1) C A(2)\np: B < A(x) --> X(x)\n";
+    assert_eq!(last(src, 1), "B X(1) C A(2)");
+}
+
+#[test]
+fn contexts_use_the_string_before_the_step() {
+    // Parallel rewriting: every context sees the old string.
+    let s = strings("axiom: BAAA\np: B < A --> B\n", 3);
+    assert_eq!(s[1], "B B A A");
+    assert_eq!(s[2], "B B B A");
+    assert_eq!(s[3], "B B B B");
+}
+
+#[test]
+fn unbalanced_brackets_fail_context_but_do_not_crash() {
+    assert_eq!(last("axiom: B]A\np: B < A --> X\n", 1), "B ] A");
+    assert_eq!(last("axiom: A[B\np: A > B --> X\n", 1), "A [ B");
+}
+
 /// POSIX drand48 computed independently (128-bit arithmetic).
 fn drand48_seq(seed: u64, n: usize) -> Vec<f64> {
     let mut x: u128 = (((seed as u32) as u128) << 16) | 0x330E;

@@ -151,7 +151,7 @@ fn bind(binds: &mut [f64], first: u16, params: &[f64], off: usize, head: u32) {
 /// `i` (whose parameters start at `off`); on success the bindings are where
 /// the returned [`Bound`] says. `skip[s]`: context matching passes over
 /// symbol `s`.
-#[inline]
+#[inline(always)]
 pub(crate) fn match_at(
     shape: &Shape,
     inp: &Input,

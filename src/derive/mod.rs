@@ -55,6 +55,7 @@
 mod engine;
 pub mod error;
 mod matching;
+mod rewrite;
 pub mod rng;
 pub mod store;
 

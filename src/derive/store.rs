@@ -79,11 +79,20 @@ impl ModuleStore {
 
     /// Append a module. Panics (in debug builds) beyond 255 parameters or
     /// 2^24 symbols; the compiler and `Derivation::new` guarantee both.
-    #[inline]
+    #[inline(always)]
     pub fn push(&mut self, sym: SymId, params: &[f64]) {
         debug_assert!(params.len() <= u8::MAX as usize);
         self.heads.push(pack(sym, params.len() as u8));
-        self.params.extend_from_slice(params);
+        // Short runs by hand: `extend_from_slice` calls `memcpy`.
+        match *params {
+            [] => {}
+            [a] => self.params.push(a),
+            [a, b] => {
+                self.params.push(a);
+                self.params.push(b);
+            }
+            _ => self.params.extend_from_slice(params),
+        }
     }
 
     /// The packed heads (see the module docs).
@@ -160,15 +169,30 @@ impl ModuleStore {
     }
 
     /// Append modules `heads` whose parameters are `params` (bulk copy).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn extend_raw(&mut self, heads: &[u32], params: &[f64]) {
-        self.heads.extend_from_slice(heads);
-        self.params.extend_from_slice(params);
+        // Runs are often a few modules long; `memcpy` calls cost more then.
+        if heads.len() <= 8 {
+            self.heads.reserve(heads.len());
+            for &h in heads {
+                self.heads.push(h);
+            }
+        } else {
+            self.heads.extend_from_slice(heads);
+        }
+        if params.len() <= 8 {
+            self.params.reserve(params.len());
+            for &v in params {
+                self.params.push(v);
+            }
+        } else {
+            self.params.extend_from_slice(params);
+        }
     }
 }
 
 impl Sink for ModuleStore {
-    #[inline]
+    #[inline(always)]
     fn emit(&mut self, sym: SymId, params: &[f64]) {
         self.push(sym, params);
     }

@@ -135,6 +135,8 @@ pub struct Production {
     pub pred: Vec<PatTok>,
     pub rctx: Vec<PatTok>,
     pub cond: Option<Condition>,
+    /// cpfg statement blocks (`{ x = 1; }`) around the condition.
+    pub blocks: Vec<Span>,
     /// The arrow, if the production was written with one.
     pub arrow: Option<Span>,
     pub succ: Vec<ModuleTok>,

@@ -84,12 +84,16 @@ impl ParseError {
     }
 
     /// Text left on a line after a complete statement.
-    pub(crate) fn trailing(file: &SourceFile, file_id: FileId, at: usize) -> ParseError {
+    pub(crate) fn trailing(file: &SourceFile, file_id: FileId, at: usize, in_define: bool) -> ParseError {
         let found = found_at(&file.text, at);
         let (len, help) = typographic_help(&file.text, at)
             .map(|(len, h)| (len, Some(h)))
             .unwrap_or_else(|| {
                 let h = match file.text[at..].chars().next() {
+                    _ if in_define => Some(
+                        "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
+                            .to_string(),
+                    ),
                     Some('(') => Some(
                         "a parameter list must follow its module name directly: write `F(1)`, not `F (1)`"
                             .to_string(),
@@ -261,7 +265,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | endlsystem_h | homomorphism_h | homomorphism_kw | decomposition_h | decomposition_kw
         | module_h | module_kw | block_h | block_kw => "a header statement",
         module_decl => "a module declaration",
-        brace_block => "a `{ ... }` block",
+        brace_block | stmt_block => "a `{ ... }` block",
         production | head | lctx | pred | rctx => "a production",
         open_br => "`[`",
         close_br => "`]`",
@@ -292,6 +296,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         stmt_start | directive | header => "a statement",
         NL => "the end of the line",
         WHITESPACE | COMMENT | block_comment | line_comment | cont | blank_line | indent
-        | line_has_arrow | keyword | word_char => return None,
+        | line_has_arrow | nl_indent | keyword | word_char => return None,
     })
 }

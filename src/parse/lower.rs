@@ -149,6 +149,7 @@ impl Lower<'_> {
         let arrow_form = form.as_rule() == Rule::arrow_form;
         let (mut cond, mut arrow, mut succ, mut succ_span, mut prob) =
             (None, None, None, None, None);
+        let mut blocks = Vec::new();
         for part in form.into_inner() {
             match part.as_rule() {
                 Rule::condition => {
@@ -167,6 +168,8 @@ impl Lower<'_> {
                     });
                 }
                 Rule::arrow => arrow = Some(self.span(&part)),
+                Rule::stmt_block => blocks.push(self.span(&part)),
+                Rule::nl_indent => {}
                 Rule::successor => {
                     succ_span = Some(self.span(&part));
                     succ = Some(self.modules(part)?);
@@ -186,6 +189,7 @@ impl Lower<'_> {
             pred,
             rctx,
             cond,
+            blocks,
             arrow,
             succ: succ.unwrap_or_default(),
             succ_span,

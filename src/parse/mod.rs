@@ -48,6 +48,7 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
             Ok(mut pairs) => {
                 let pair = pairs.next().expect("statement rule yields one pair");
                 let end = pos + pair.as_span().end();
+                let is_define = pair.clone().into_inner().next().map(|p| p.as_rule()) == Some(Rule::define);
                 let lower = lower::Lower {
                     file_id,
                     base: pos,
@@ -59,7 +60,7 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
                 }
                 let after = skip_inline(text, end);
                 if after < text.len() && text.as_bytes()[after] != b'\n' {
-                    errors.push(ParseError::trailing(file, file_id, after));
+                    errors.push(ParseError::trailing(file, file_id, after, is_define));
                     pos = next_statement(text, after);
                 } else {
                     pos = after;

@@ -234,6 +234,14 @@ impl Resolver {
         s: &mut Sections,
     ) -> Option<Production> {
         let errors_before = self.errors.len();
+        for b in &p.blocks {
+            self.error(ResolveError::Unsupported {
+                what: "a cpfg statement block in a production".to_string(),
+                src: self.sources.named_source(*b),
+                span: (*b).into(),
+                help: "C-like statements (`{ x = y*2; }`) around conditions are planned with cpfg compatibility; compute the value in the successor's expressions instead".to_string(),
+            });
+        }
         let mut params = Vec::new();
         let mut spans = Vec::new();
         let lctx = self.pattern(&p.lctx, false, &mut params, &mut spans, false);

@@ -1,0 +1,529 @@
+//! One rewriting pass: a table of productions (with their code) and an
+//! input string in, the rewritten string appended to an output store out.
+//! Holds the dispatch loop, condition / probability evaluation, the
+//! stochastic choice, the recursion of decomposition and homomorphism, and
+//! the conversion of VM faults and limit overruns into [`DeriveError`]s.
+
+use std::mem;
+use std::sync::Arc;
+
+use super::engine::DeriveOptions;
+use super::error::{DepthWarning, DeriveError, Src};
+use super::matching::{match_at, Bound, Input, Rules};
+use super::rng::Rand48;
+use super::store::{head_arity, head_sym, ContextIndex, ModuleStore, MAX_SYMBOLS};
+use crate::bytecode::vm::{self, NoSink};
+use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
+use crate::resolve::{Program, Table};
+use crate::source::Span;
+
+/// Internal error: boxed so that the `Result`s passed per module stay small.
+pub(crate) type Fail = Box<DeriveError>;
+
+impl From<Box<DeriveError>> for DeriveError {
+    fn from(b: Box<DeriveError>) -> DeriveError {
+        *b
+    }
+}
+
+const TABLES: [Table; 3] = [Table::Main, Table::Decomposition, Table::Homomorphism];
+
+pub(crate) fn table_index(t: Table) -> usize {
+    match t {
+        Table::Main => 0,
+        Table::Decomposition => 1,
+        Table::Homomorphism => 2,
+    }
+}
+
+pub(crate) fn table_name(t: Table) -> &'static str {
+    match t {
+        Table::Main => "production",
+        Table::Decomposition => "decomposition",
+        Table::Homomorphism => "homomorphism",
+    }
+}
+
+/// Everything that does not change during a derivation.
+pub(crate) struct Tables<'p> {
+    pub(crate) program: &'p Program,
+    pub(crate) compiled: &'p Compiled,
+    pub(crate) rules: [Rules; 3],
+    /// `skip[s]`: context matching passes over symbol `s`.
+    pub(crate) skip: Vec<bool>,
+    pub(crate) max_modules: usize,
+    pub(crate) max_params: usize,
+}
+
+impl<'p> Tables<'p> {
+    pub(crate) fn new(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: &DeriveOptions,
+    ) -> Result<Tables<'p>, Fail> {
+        let nsyms = program.symbols.len();
+        if nsyms > MAX_SYMBOLS {
+            return Err(Box::new(DeriveError::TooManySymbols {
+                count: nsyms,
+                limit: MAX_SYMBOLS,
+            }));
+        }
+        let rules = TABLES.map(|t| {
+            let never: Vec<bool> = compiled
+                .table(t)
+                .iter()
+                .map(|c| matches!(c.cond, CondCode::Never(_)))
+                .collect();
+            Rules::new(program.table(t), &never, nsyms)
+        });
+        Ok(Tables {
+            program,
+            compiled,
+            rules,
+            skip: (0..nsyms as u32)
+                .map(|s| program.skips_in_context(s))
+                .collect(),
+            max_modules: opts.max_modules,
+            max_params: opts.max_params.min(u32::MAX as usize),
+        })
+    }
+
+    fn nbinds(&self) -> usize {
+        TABLES
+            .iter()
+            .flat_map(|&t| self.program.table(t))
+            .map(|p| p.nparams as usize)
+            .max()
+            .unwrap_or(0)
+    }
+}
+
+/// Scratch for one recursion level of decomposition / homomorphism.
+#[derive(Default)]
+struct Level {
+    store: ModuleStore,
+    index: ContextIndex,
+}
+
+/// Everything that changes.
+pub(crate) struct State {
+    pub(crate) rng: Rand48,
+    pub(crate) stack: Vec<f64>,
+    pub(crate) binds: Vec<f64>,
+    pub(crate) weights: Vec<(u32, f64)>,
+    levels: Vec<Level>,
+    pub(crate) warnings: Vec<DepthWarning>,
+    pub(crate) step: u32,
+}
+
+impl State {
+    pub(crate) fn new(tab: &Tables, seed: u64) -> State {
+        State {
+            rng: Rand48::new(seed),
+            stack: vec![0.0; tab.compiled.max_stack.max(1)],
+            binds: vec![0.0; tab.nbinds().max(1)],
+            weights: Vec::new(),
+            levels: Vec::new(),
+            warnings: Vec::new(),
+            step: 0,
+        }
+    }
+}
+
+fn src(tab: &Tables, span: Span) -> Src {
+    Arc::new(tab.program.sources.named_source(span))
+}
+
+/// Where code ran, for error messages.
+#[derive(Clone, Copy)]
+pub(crate) enum Site {
+    Axiom,
+    Prod(Table, usize),
+}
+
+fn site_context(tab: &Tables, site: Site) -> (String, Option<Span>) {
+    match site {
+        Site::Axiom => ("in the axiom".to_string(), None),
+        Site::Prod(t, i) => {
+            let p = &tab.program.table(t)[i];
+            let mut text = crate::bytecode::one_line(tab.program.sources.slice(p.span));
+            if text.chars().count() > 80 {
+                text = text.chars().take(77).collect::<String>() + "...";
+            }
+            (format!("in {} `{text}`", table_name(t)), Some(p.head_span))
+        }
+    }
+}
+
+pub(crate) fn fault_error(tab: &Tables, fault: Fault, site: Site, step: u32) -> Fail {
+    let (context, prod) = site_context(tab, site);
+    let production = prod.filter(|p| p.file == fault.span.file).map(Into::into);
+    let src = src(tab, fault.span);
+    let span = fault.span.into();
+    Box::new(match fault.kind {
+        FaultKind::DivisionByZero | FaultKind::RemainderByZero => DeriveError::DivisionByZero {
+            what: if fault.kind == FaultKind::DivisionByZero {
+                "division"
+            } else {
+                "remainder"
+            },
+            context,
+            step,
+            src,
+            span,
+            production,
+        },
+        FaultKind::NotFinite(value) => DeriveError::NotFinite {
+            value,
+            context,
+            step,
+            src,
+            span,
+            production,
+        },
+    })
+}
+
+#[inline(always)]
+pub(crate) fn check_limits(
+    tab: &Tables,
+    out: &ModuleStore,
+    site: Option<Site>,
+    step: u32,
+) -> Result<(), Fail> {
+    if out.len() > tab.max_modules || out.param_count() > tab.max_params {
+        return Err(limit_error(tab, out, site, step));
+    }
+    Ok(())
+}
+
+#[cold]
+fn limit_error(tab: &Tables, out: &ModuleStore, site: Option<Site>, step: u32) -> Fail {
+    let over_modules = out.len() > tab.max_modules;
+    let (src, production) = match site {
+        Some(Site::Prod(t, i)) => {
+            let p = &tab.program.table(t)[i];
+            (Some(src(tab, p.head_span)), Some(p.head_span.into()))
+        }
+        _ => (None, None),
+    };
+    Box::new(if over_modules {
+        DeriveError::ModuleLimit {
+            step,
+            limit: tab.max_modules,
+            reached: out.len(),
+            src,
+            production,
+        }
+    } else {
+        DeriveError::ParamLimit {
+            step,
+            limit: tab.max_params,
+            reached: out.param_count(),
+            src,
+            production,
+        }
+    })
+}
+
+/// Run an expression chunk (condition or probability).
+#[inline(always)]
+fn eval(
+    tab: &Tables,
+    st: &mut State,
+    chunk: &Chunk,
+    binds: &[f64],
+    site: Site,
+) -> Result<f64, Fail> {
+    vm::run(
+        chunk,
+        &tab.compiled.consts,
+        binds,
+        &mut st.stack,
+        &mut st.rng,
+        &mut NoSink,
+    )
+    .map_err(|f| fault_error(tab, f, site, st.step))
+}
+
+/// The slice a match's bindings are in.
+#[inline(always)]
+fn bindings<'a>(
+    bound: Bound,
+    params: &'a [f64],
+    off: usize,
+    n: usize,
+    buf: &'a [f64],
+) -> &'a [f64] {
+    match bound {
+        Bound::Direct => &params[off..off + n],
+        Bound::Buffer => buf,
+    }
+}
+
+/// Whether production `p` of table `t` applies at `i` (pattern and
+/// condition); leaves its bindings in place.
+#[inline(always)]
+fn applies(
+    tab: &Tables,
+    st: &mut State,
+    t: Table,
+    p: usize,
+    inp: &Input,
+    i: usize,
+    off: usize,
+) -> Result<Option<Bound>, Fail> {
+    let shape = &tab.rules[table_index(t)].shapes[p];
+    let Some(bound) = match_at(shape, inp, &tab.skip, i, off, &mut st.binds) else {
+        return Ok(None);
+    };
+    if let CondCode::Code(ch) = &tab.compiled.table(t)[p].cond {
+        let binds = mem::take(&mut st.binds);
+        let b = bindings(bound, inp.params, off, shape.pred_params, &binds);
+        let v = eval(tab, st, ch, b, Site::Prod(t, p));
+        st.binds = binds;
+        if v? == 0.0 {
+            return Ok(None);
+        }
+    }
+    Ok(Some(bound))
+}
+
+/// The production to apply at `i`, if any (first match in file order,
+/// stochastic choice among the matching productions with a probability).
+fn choose(
+    tab: &Tables,
+    st: &mut State,
+    t: Table,
+    inp: &Input,
+    i: usize,
+    off: usize,
+) -> Result<Option<(usize, Bound)>, Fail> {
+    let rules = &tab.rules[table_index(t)];
+    let cands = rules.candidates(head_sym(inp.heads[i]));
+    for (ci, &p) in cands.iter().enumerate() {
+        let p = p as usize;
+        let Some(bound) = applies(tab, st, t, p, inp, i, off)? else {
+            continue;
+        };
+        if !rules.shapes[p].has_prob {
+            return Ok(Some((p, bound)));
+        }
+        st.weights.clear();
+        let w = weight(tab, st, t, p, inp, off, bound)?;
+        st.weights.push((p as u32, w));
+        for &q in &cands[ci + 1..] {
+            let q = q as usize;
+            if !rules.shapes[q].has_prob {
+                continue;
+            }
+            if let Some(b) = applies(tab, st, t, q, inp, i, off)? {
+                let w = weight(tab, st, t, q, inp, off, b)?;
+                st.weights.push((q as u32, w));
+            }
+        }
+        // Exactly one draw per decision.
+        let u = st.rng.next_f64();
+        let total: f64 = st.weights.iter().map(|&(_, w)| w).sum();
+        if total <= 0.0 {
+            return Ok(None);
+        }
+        let r = u * total;
+        let mut acc = 0.0;
+        let mut chosen = None;
+        for &(q, w) in &st.weights {
+            if w > 0.0 {
+                chosen = Some(q as usize);
+                acc += w;
+                if acc > r {
+                    break;
+                }
+            }
+        }
+        let q = chosen.expect("a positive weight exists");
+        let bound = match_at(&rules.shapes[q], inp, &tab.skip, i, off, &mut st.binds)
+            .expect("the chosen production matched");
+        return Ok(Some((q, bound)));
+    }
+    Ok(None)
+}
+
+fn weight(
+    tab: &Tables,
+    st: &mut State,
+    t: Table,
+    p: usize,
+    inp: &Input,
+    off: usize,
+    bound: Bound,
+) -> Result<f64, Fail> {
+    let ch = tab.compiled.table(t)[p]
+        .prob
+        .as_ref()
+        .expect("stochastic productions have a probability chunk");
+    let binds = mem::take(&mut st.binds);
+    let pred_params = tab.rules[table_index(t)].shapes[p].pred_params;
+    let b = bindings(bound, inp.params, off, pred_params, &binds);
+    let w = eval(tab, st, ch, b, Site::Prod(t, p));
+    st.binds = binds;
+    let w = w?;
+    if !(w >= 0.0 && w.is_finite()) {
+        let (context, prod) = site_context(tab, Site::Prod(t, p));
+        let span = ch.spans.last().copied().unwrap_or_default();
+        return Err(Box::new(DeriveError::BadProbability {
+            value: w,
+            context,
+            step: st.step,
+            src: src(tab, span),
+            span: span.into(),
+            production: prod.filter(|s| s.file == span.file).map(Into::into),
+        }));
+    }
+    Ok(w)
+}
+
+/// Record that production `p` of `t` still applied at the depth limit.
+fn warn_depth(tab: &Tables, st: &mut State, t: Table, p: usize, depth: u32) {
+    let name = table_name(t);
+    if let Some(w) = st
+        .warnings
+        .iter_mut()
+        .find(|w| w.table == name && w.production == p)
+    {
+        w.count += 1;
+        return;
+    }
+    let span = tab.program.table(t)[p].head_span;
+    st.warnings.push(DepthWarning {
+        table: name,
+        depth,
+        step: st.step,
+        count: 1,
+        production: p,
+        src: src(tab, span),
+        span: span.into(),
+    });
+}
+
+/// Rewrite `input` with table `t` into `out` (appending). The main table
+/// rewrites once; decomposition and homomorphism rewrite the successors
+/// again, recursively, until nothing applies or `depth` reaches the limit.
+pub(crate) fn rewrite(
+    tab: &Tables,
+    st: &mut State,
+    t: Table,
+    input: &ModuleStore,
+    index: Option<&ContextIndex>,
+    depth: u32,
+    out: &mut ModuleStore,
+) -> Result<(), Fail> {
+    let rules = &tab.rules[table_index(t)];
+    let codes = tab.compiled.table(t);
+    let consts = &tab.compiled.consts[..];
+    let max_depth = match t {
+        Table::Main => None,
+        Table::Decomposition => Some(tab.program.decomposition_depth),
+        Table::Homomorphism => Some(tab.program.homomorphism_depth),
+    };
+    let inp = Input {
+        heads: &input.heads,
+        params: &input.params,
+        index,
+    };
+    let heads = inp.heads;
+    let params = inp.params;
+    let n = heads.len();
+    let (mut i, mut off) = (0usize, 0usize);
+    while i < n {
+        let h = heads[i];
+        if !rules.has_rules[head_sym(h) as usize] {
+            // A run of modules no production looks at: copy in bulk.
+            let (i0, off0) = (i, off);
+            while i < n && !rules.has_rules[head_sym(heads[i]) as usize] {
+                off += head_arity(heads[i]);
+                i += 1;
+            }
+            out.extend_raw(&heads[i0..i], &params[off0..off]);
+            check_limits(tab, out, None, st.step)?;
+            continue;
+        }
+        let Some((p, bound)) = choose(tab, st, t, &inp, i, off)? else {
+            let a = head_arity(h);
+            out.extend_raw(&heads[i..i + 1], &params[off..off + a]);
+            i += 1;
+            off += a;
+            continue;
+        };
+        let shape = &rules.shapes[p];
+        let site = Site::Prod(t, p);
+        let binds = mem::take(&mut st.binds);
+        let b = bindings(bound, params, off, shape.pred_params, &binds);
+        let succ = &codes[p].succ;
+        match max_depth {
+            None => {
+                let r = vm::run(succ, consts, b, &mut st.stack, &mut st.rng, out);
+                st.binds = binds;
+                r.map_err(|f| fault_error(tab, f, site, st.step))?;
+            }
+            Some(max) if depth >= max => {
+                st.binds = binds;
+                warn_depth(tab, st, t, p, max);
+                let plen = shape.pred.len();
+                out.extend_raw(&heads[i..i + plen], &params[off..off + shape.pred_params]);
+            }
+            Some(_) => {
+                let d = depth as usize;
+                if st.levels.len() <= d {
+                    st.levels.resize_with(d + 1, Level::default);
+                }
+                let mut level = mem::take(&mut st.levels[d]);
+                level.store.clear();
+                let r = vm::run(
+                    succ,
+                    consts,
+                    b,
+                    &mut st.stack,
+                    &mut st.rng,
+                    &mut level.store,
+                )
+                .map_err(|f| fault_error(tab, f, site, st.step));
+                st.binds = binds;
+                let r = r.and_then(|_| {
+                    let idx = if rules.has_context {
+                        level.index.build(&level.store);
+                        Some(&level.index)
+                    } else {
+                        None
+                    };
+                    rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                });
+                st.levels[d] = level;
+                r?;
+            }
+        }
+        i += shape.pred.len();
+        off += shape.pred_params;
+        check_limits(tab, out, Some(site), st.step)?;
+    }
+    Ok(())
+}
+
+/// Apply table `t` (decomposition or homomorphism) to `input` into `out`,
+/// building the context index when the table needs it.
+pub(crate) fn rewrite_recursive(
+    tab: &Tables,
+    st: &mut State,
+    t: Table,
+    input: &ModuleStore,
+    index: &mut ContextIndex,
+    out: &mut ModuleStore,
+) -> Result<(), Fail> {
+    out.clear();
+    let idx = if tab.rules[table_index(t)].has_context {
+        index.build(input);
+        Some(&*index)
+    } else {
+        None
+    };
+    rewrite(tab, st, t, input, idx, 0, out)
+}
