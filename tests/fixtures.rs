@@ -143,6 +143,13 @@ fn derive() {
         match result {
             Ok(last) => {
                 assert!(expect_ok(path), "{}: expected a runtime error", rel(path));
+                let mut d = derive::Derivation::new(p, code, opts.clone()).unwrap();
+                for _ in 0..p.derivation_length {
+                    d.step().unwrap();
+                }
+                for w in d.warnings() {
+                    out.push_str(&lsys::diag::render_plain(w));
+                }
                 if !p.homomorphism.is_empty() {
                     let h = derive::homomorphism(p, code, &last, &opts, p.derivation_length).unwrap();
                     out.push_str(&format!("homomorphism: {}\n", h.modules.display(&p.symbols)));
@@ -164,7 +171,7 @@ fn derive() {
 /// gives, as computed independently by `scripts/abop_oracle.py`.
 #[test]
 fn abop_examples() {
-    insta::glob!("../examples/abop/*.lsys", |path| {
+    insta::glob!(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/abop"), "*.lsys", |path| {
         let c = compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
         let s = derive::derive(&c.program, &c.compiled, DeriveOptions::default(), c.program.derivation_length)
             .unwrap()

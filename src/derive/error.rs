@@ -1,4 +1,5 @@
-//! Errors and warnings of the derivation. Input: a VM [`Fault`] or a limit
+//! Errors and warnings of the derivation. Input: a VM
+//! [`Fault`](crate::bytecode::Fault) or a limit
 //! overrun plus where it happened (production, step); output: diagnostics
 //! with the source, a label on the exact expression and a help sentence.
 
@@ -6,9 +7,6 @@ use std::sync::Arc;
 
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
-
-#[allow(unused_imports)] // for the docs
-use crate::bytecode::Fault;
 
 /// Shared, so that errors stay small (`Result`s are returned per module).
 pub type Src = Arc<NamedSource<Arc<String>>>;

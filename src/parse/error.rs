@@ -85,6 +85,14 @@ impl ParseError {
 
     /// Text left on a line after a complete statement.
     pub(crate) fn trailing(file: &SourceFile, file_id: FileId, at: usize, in_define: bool) -> ParseError {
+        // A typographic character later on the line (`F(x—1)`) is the
+        // likelier cause than the token the statement stopped at.
+        let line_end = file.text[at..].find('\n').map_or(file.text.len(), |i| at + i);
+        let at = file.text[at..line_end]
+            .char_indices()
+            .map(|(i, _)| at + i)
+            .find(|&i| typographic_help(&file.text, i).is_some())
+            .unwrap_or(at);
         let found = found_at(&file.text, at);
         let (len, help) = typographic_help(&file.text, at)
             .map(|(len, h)| (len, Some(h)))
@@ -93,6 +101,9 @@ impl ParseError {
                     _ if in_define => Some(
                         "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
                             .to_string(),
+                    ),
+                    Some('(') if !closes(&file.text[at..]) => Some(
+                        "this `(` is never closed: end the parameter list with `)`".to_string(),
                     ),
                     Some('(') => Some(
                         "a parameter list must follow its module name directly: write `F(1)`, not `F (1)`"
@@ -164,6 +175,20 @@ impl ParseError {
             offset: at,
         }
     }
+}
+
+/// Whether the `(` that starts `rest` is closed on its line.
+fn closes(rest: &str) -> bool {
+    let mut depth = 0;
+    for c in rest.chars().take_while(|&c| c != '\n') {
+        match c {
+            '(' => depth += 1,
+            ')' if depth == 1 => return true,
+            ')' => depth -= 1,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// How to name what stands at `at`, and its length in bytes.

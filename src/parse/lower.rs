@@ -134,7 +134,9 @@ impl Lower<'_> {
         let span = self.span(&p);
         let mut inner = p.into_inner();
         let head = next(&mut inner);
-        let head_span = self.span(&head);
+        let mut head_span = self.span(&head);
+        // pest's span of `head` takes in the blanks before `:`/`-->`.
+        head_span.end -= (head.as_str().len() - head.as_str().trim_end().len()) as u32;
         let (mut lctx, mut pred, mut rctx) = (Vec::new(), Vec::new(), Vec::new());
         for part in head.into_inner() {
             let rule = part.as_rule();

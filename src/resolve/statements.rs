@@ -274,7 +274,7 @@ impl Resolver {
             order,
         };
         let key: PredKey = pred.iter().map(|m| (m.sym, m.arity)).collect();
-        let pred_text = self.sources.slice(p.head_span).to_string();
+        let pred_text = self.sources.slice(p.head_span).trim().to_string();
         let cond = match &p.cond {
             None | Some(Condition::Always(_)) => Cond::Always,
             Some(Condition::Else(span)) => {
