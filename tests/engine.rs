@@ -1026,6 +1026,20 @@ fn bytecode_uses_jumps_for_logic_and_ternary() {
 
 #[test]
 #[ignore]
+fn show_disassembly_and_diagnostic() {
+    let p = program("axiom: A(ran(2))\np: A(x) : x > 0 && x < 2 --> B(x > 1 ? 1 : 2)[+(25)]A(x/0) ~ 0.5\nh: B(y) --> F\n");
+    let c = compile(&p);
+    println!("{}", disasm(&p, &c));
+    let e = derive::derive(&p, &c, opts(), 1).unwrap_err();
+    let mut s = String::new();
+    miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
+        .render_report(&mut s, &e)
+        .unwrap();
+    println!("{s}");
+}
+
+#[test]
+#[ignore]
 fn w2_throughput() {
     let p = program(W2);
     let c = compile(&p);

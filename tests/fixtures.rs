@@ -68,7 +68,11 @@ fn parse() {
         let text = std::fs::read_to_string(path).unwrap();
         let file = SourceFile::new(name.clone(), Origin::Disk(name.clone().into()), text);
         let (ast, errors) = lsys::parse::parse(0, &file);
-        assert_eq!(expect_ok(path), errors.is_empty(), "{name}: ok/ fixtures parse, err/ ones do not");
+        assert_eq!(
+            expect_ok(path),
+            errors.is_empty(),
+            "{name}: ok/ fixtures parse, err/ ones do not"
+        );
         let mut out = ast.dump();
         for e in &errors {
             out.push_str(&lsys::diag::render_plain(e));
@@ -95,12 +99,21 @@ fn resolve() {
                     p.homomorphism.len(),
                 ));
                 for d in &p.defines {
-                    out.push_str(&format!("define {} = {:?}{}\n", d.name, d.value, if d.overridden { " (overridden)" } else { "" }));
+                    out.push_str(&format!(
+                        "define {} = {:?}{}\n",
+                        d.name,
+                        d.value,
+                        if d.overridden { " (overridden)" } else { "" }
+                    ));
                 }
                 out
             }
             Err(diags) => {
-                assert!(!expect_ok(path), "{}: expected no errors, got:\n{diags}", rel(path));
+                assert!(
+                    !expect_ok(path),
+                    "{}: expected no errors, got:\n{diags}",
+                    rel(path)
+                );
                 diags
             }
         };
@@ -117,7 +130,11 @@ fn bytecode() {
                 lsys::bytecode::disasm(&c.program, &c.compiled)
             }
             Err(diags) => {
-                assert!(!expect_ok(path), "{}: expected no errors, got:\n{diags}", rel(path));
+                assert!(
+                    !expect_ok(path),
+                    "{}: expected no errors, got:\n{diags}",
+                    rel(path)
+                );
                 diags
             }
         };
@@ -151,15 +168,24 @@ fn derive() {
                     out.push_str(&lsys::diag::render_plain(w));
                 }
                 if !p.homomorphism.is_empty() {
-                    let h = derive::homomorphism(p, code, &last, &opts, p.derivation_length).unwrap();
-                    out.push_str(&format!("homomorphism: {}\n", h.modules.display(&p.symbols)));
+                    let h =
+                        derive::homomorphism(p, code, &last, &opts, p.derivation_length).unwrap();
+                    out.push_str(&format!(
+                        "homomorphism: {}\n",
+                        h.modules.display(&p.symbols)
+                    ));
                     for w in &h.warnings {
                         out.push_str(&lsys::diag::render_plain(w));
                     }
                 }
             }
             Err(e) => {
-                assert!(!expect_ok(path), "{}: unexpected runtime error:\n{}", rel(path), lsys::diag::render_plain(&e));
+                assert!(
+                    !expect_ok(path),
+                    "{}: unexpected runtime error:\n{}",
+                    rel(path),
+                    lsys::diag::render_plain(&e)
+                );
                 out.push_str(&lsys::diag::render_plain(&e));
             }
         }
@@ -171,15 +197,27 @@ fn derive() {
 /// gives, as computed independently by `scripts/abop_oracle.py`.
 #[test]
 fn abop_examples() {
-    insta::glob!(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/abop"), "*.lsys", |path| {
-        let c = compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
-        let s = derive::derive(&c.program, &c.compiled, DeriveOptions::default(), c.program.derivation_length)
+    insta::glob!(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/examples/abop"),
+        "*.lsys",
+        |path| {
+            let c =
+                compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
+            let s = derive::derive(
+                &c.program,
+                &c.compiled,
+                DeriveOptions::default(),
+                c.program.derivation_length,
+            )
             .unwrap()
             .display(&c.program.symbols);
-        let stem = path.file_stem().unwrap().to_string_lossy();
-        let oracle = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/abop_expected/{stem}.txt"));
-        let expected = std::fs::read_to_string(&oracle).unwrap_or_else(|e| panic!("{}: {e}", oracle.display()));
-        assert_eq!(s, expected.trim_end(), "{stem} differs from the oracle");
-        insta::assert_snapshot!(s);
-    });
+            let stem = path.file_stem().unwrap().to_string_lossy();
+            let oracle = Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join(format!("tests/abop_expected/{stem}.txt"));
+            let expected = std::fs::read_to_string(&oracle)
+                .unwrap_or_else(|e| panic!("{}: {e}", oracle.display()));
+            assert_eq!(s, expected.trim_end(), "{stem} differs from the oracle");
+            insta::assert_snapshot!(s);
+        }
+    );
 }

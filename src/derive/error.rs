@@ -1,7 +1,7 @@
 //! Errors and warnings of the derivation. Input: a VM
-//! [`Fault`](crate::bytecode::Fault) or a limit
-//! overrun plus where it happened (production, step); output: diagnostics
-//! with the source, a label on the exact expression and a help sentence.
+//! [`Fault`](crate::bytecode::Fault) or a limit overrun plus where it
+//! happened (production, step); output: diagnostics with the source, a
+//! label on the exact expression and a help sentence.
 
 use std::sync::Arc;
 
@@ -57,7 +57,7 @@ pub enum DeriveError {
         step: u32,
         #[source_code]
         src: Src,
-        #[label("this divisor is zero")]
+        #[label("the divisor of this is zero")]
         span: SourceSpan,
         #[label("in this production")]
         production: Option<SourceSpan>,

@@ -23,7 +23,7 @@ pub enum Item {
         span: Span,
     },
     Header(Header),
-    Production(Production),
+    Production(Box<Production>),
 }
 
 #[derive(Clone, Debug, PartialEq)]

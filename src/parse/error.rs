@@ -10,6 +10,10 @@ use thiserror::Error;
 use super::Rule;
 use crate::source::{FileId, SourceFile, Span};
 
+/// Errors are boxed on the way up: they are rare and large (each carries
+/// its source for rendering), results are common and should stay small.
+pub(crate) type PResult<T> = Result<T, Box<ParseError>>;
+
 #[derive(Debug, Error, Diagnostic)]
 pub enum ParseError {
     #[error("syntax error: {message}")]
@@ -84,10 +88,17 @@ impl ParseError {
     }
 
     /// Text left on a line after a complete statement.
-    pub(crate) fn trailing(file: &SourceFile, file_id: FileId, at: usize, in_define: bool) -> ParseError {
+    pub(crate) fn trailing(
+        file: &SourceFile,
+        file_id: FileId,
+        at: usize,
+        in_define: bool,
+    ) -> ParseError {
         // A typographic character later on the line (`F(x—1)`) is the
         // likelier cause than the token the statement stopped at.
-        let line_end = file.text[at..].find('\n').map_or(file.text.len(), |i| at + i);
+        let line_end = file.text[at..]
+            .find('\n')
+            .map_or(file.text.len(), |i| at + i);
         let at = file.text[at..line_end]
             .char_indices()
             .map(|(i, _)| at + i)

@@ -8,7 +8,7 @@ use pest::iterators::Pair;
 use pest::pratt_parser::{Assoc, Op, PrattParser};
 
 use super::ast::*;
-use super::error::ParseError;
+use super::error::{PResult, ParseError};
 use super::lower::Lower;
 use super::Rule;
 
@@ -31,7 +31,7 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 
 impl Lower<'_> {
     /// Lowers an `expr` pair.
-    pub fn expr(&self, e: Pair<Rule>) -> Result<Expr, ParseError> {
+    pub fn expr(&self, e: Pair<Rule>) -> PResult<Expr> {
         let mut parts: Vec<Pair<Rule>> = e.into_inner().collect();
         let ternary = match parts.last() {
             Some(p) if p.as_rule() == Rule::ternary => parts.pop(),
@@ -54,7 +54,7 @@ impl Lower<'_> {
     }
 
     /// Lowers the paper's arrowless condition (`i == 1 and j == 1`).
-    pub fn paper_cond(&self, c: Pair<Rule>) -> Result<Expr, ParseError> {
+    pub fn paper_cond(&self, c: Pair<Rule>) -> PResult<Expr> {
         let mut flat = Vec::new();
         for part in c.into_inner() {
             match part.as_rule() {
@@ -72,7 +72,7 @@ impl Lower<'_> {
         self.climb(flat)
     }
 
-    fn climb(&self, parts: Vec<Pair<Rule>>) -> Result<Expr, ParseError> {
+    fn climb(&self, parts: Vec<Pair<Rule>>) -> PResult<Expr> {
         PRATT
             .map_primary(|p| self.primary(p))
             .map_prefix(|op, rhs| {
@@ -114,19 +114,23 @@ impl Lower<'_> {
             .parse(parts.into_iter())
     }
 
-    fn primary(&self, p: Pair<Rule>) -> Result<Expr, ParseError> {
+    fn primary(&self, p: Pair<Rule>) -> PResult<Expr> {
         let span = self.span(&p);
         let kind = match p.as_rule() {
             Rule::number => {
                 let v: f64 = p.as_str().parse().map_err(|_| {
-                    ParseError::bad_number(self.file, span, "it is not a valid number")
+                    Box::new(ParseError::bad_number(
+                        self.file,
+                        span,
+                        "it is not a valid number",
+                    ))
                 })?;
                 if !v.is_finite() {
-                    return Err(ParseError::bad_number(
+                    return Err(Box::new(ParseError::bad_number(
                         self.file,
                         span,
                         "it is too large for a 64-bit float",
-                    ));
+                    )));
                 }
                 ExprKind::Num(v)
             }

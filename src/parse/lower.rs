@@ -3,7 +3,7 @@
 use pest::iterators::Pair;
 
 use super::ast::*;
-use super::error::ParseError;
+use super::error::PResult;
 use super::Rule;
 use crate::source::{FileId, SourceFile, Span};
 
@@ -28,7 +28,7 @@ impl Lower<'_> {
         }
     }
 
-    pub fn statement(&self, stmt: Pair<Rule>) -> Result<Item, ParseError> {
+    pub fn statement(&self, stmt: Pair<Rule>) -> PResult<Item> {
         let p = stmt.into_inner().next().expect("statement has one child");
         let span = self.span(&p);
         Ok(match p.as_rule() {
@@ -59,12 +59,12 @@ impl Lower<'_> {
                     span,
                 }
             }
-            Rule::production => Item::Production(self.production(p)?),
+            Rule::production => Item::Production(Box::new(self.production(p)?)),
             _ => Item::Header(self.header(p)?),
         })
     }
 
-    fn define(&self, d: Pair<Rule>) -> Result<Define, ParseError> {
+    fn define(&self, d: Pair<Rule>) -> PResult<Define> {
         let span = self.span(&d);
         let mut inner = d.into_inner();
         let mut head = inner.next().expect("define head").into_inner();
@@ -81,7 +81,7 @@ impl Lower<'_> {
         })
     }
 
-    fn header(&self, h: Pair<Rule>) -> Result<Header, ParseError> {
+    fn header(&self, h: Pair<Rule>) -> PResult<Header> {
         let span = self.span(&h);
         let rule = h.as_rule();
         let mut inner = h.into_inner();
@@ -130,7 +130,7 @@ impl Lower<'_> {
         })
     }
 
-    fn production(&self, p: Pair<Rule>) -> Result<Production, ParseError> {
+    fn production(&self, p: Pair<Rule>) -> PResult<Production> {
         let span = self.span(&p);
         let mut inner = p.into_inner();
         let head = next(&mut inner);
@@ -201,10 +201,7 @@ impl Lower<'_> {
         })
     }
 
-    fn pattern<'i>(
-        &self,
-        items: impl Iterator<Item = Pair<'i, Rule>>,
-    ) -> Result<Vec<PatTok>, ParseError> {
+    fn pattern<'i>(&self, items: impl Iterator<Item = Pair<'i, Rule>>) -> PResult<Vec<PatTok>> {
         items
             .map(|it| {
                 Ok(match it.as_rule() {
@@ -216,14 +213,14 @@ impl Lower<'_> {
             .collect()
     }
 
-    fn modules(&self, seq: Pair<Rule>) -> Result<Vec<ModuleTok>, ParseError> {
+    fn modules(&self, seq: Pair<Rule>) -> PResult<Vec<ModuleTok>> {
         seq.into_inner()
             .filter(|m| m.as_rule() != Rule::cont)
             .map(|m| self.module(m))
             .collect()
     }
 
-    fn module(&self, m: Pair<Rule>) -> Result<ModuleTok, ParseError> {
+    fn module(&self, m: Pair<Rule>) -> PResult<ModuleTok> {
         let span = self.span(&m);
         let mut inner = m.into_inner();
         let sym = next(&mut inner);

@@ -48,7 +48,8 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
             Ok(mut pairs) => {
                 let pair = pairs.next().expect("statement rule yields one pair");
                 let end = pos + pair.as_span().end();
-                let is_define = pair.clone().into_inner().next().map(|p| p.as_rule()) == Some(Rule::define);
+                let is_define =
+                    pair.clone().into_inner().next().map(|p| p.as_rule()) == Some(Rule::define);
                 let lower = lower::Lower {
                     file_id,
                     base: pos,
@@ -56,7 +57,7 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
                 };
                 match lower.statement(pair) {
                     Ok(item) => items.push(item),
-                    Err(e) => errors.push(e),
+                    Err(e) => errors.push(*e),
                 }
                 let after = skip_inline(text, end);
                 if after < text.len() && text.as_bytes()[after] != b'\n' {
@@ -78,7 +79,7 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
 }
 
 /// Parses the value of a `-D NAME=VALUE` override or a REPL expression.
-pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, ParseError> {
+pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<ParseError>> {
     let text = file.text.as_str();
     match LsysParser::parse(Rule::expr_only, text) {
         Ok(mut pairs) => {
@@ -94,7 +95,7 @@ pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Parse
             }
             .expr(e)
         }
-        Err(e) => Err(ParseError::from_pest(file, file_id, 0, &e)),
+        Err(e) => Err(Box::new(ParseError::from_pest(file, file_id, 0, &e))),
     }
 }
 

@@ -44,7 +44,7 @@ impl Resolver {
         match super::fold::fold(r, &self.sources) {
             Ok(f) => Some(f),
             Err(err) => {
-                self.errors.push(Report::new(err));
+                self.errors.push(Report::new(*err));
                 None
             }
         }

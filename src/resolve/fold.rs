@@ -7,7 +7,7 @@ use super::error::ResolveError;
 use super::ir::{BinOp, Expr, ExprKind, Func, UnOp};
 use crate::source::SourceMap;
 
-pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, ResolveError> {
+pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
     let span = e.span;
     let kind = match e.kind {
         ExprKind::Unary(op, a) => {
@@ -22,10 +22,10 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, ResolveError> {
             let b = fold(*b, sources)?;
             match (op, &a.kind, &b.kind) {
                 (BinOp::Div | BinOp::Rem, _, ExprKind::Num(z)) if *z == 0.0 => {
-                    return Err(ResolveError::DivisionByZero {
+                    return Err(Box::new(ResolveError::DivisionByZero {
                         src: sources.named_source(b.span),
                         span: b.span.into(),
-                    })
+                    }))
                 }
                 (_, ExprKind::Num(x), ExprKind::Num(y)) => ExprKind::Num(apply_binary(op, *x, *y)),
                 // A constant left side decides `&&` / `||` alone when it can.

@@ -194,7 +194,7 @@ impl Resolver {
                     entry.value = Some(e);
                     entry.overridden = true;
                 }
-                Err(e) => self.errors.push(Report::new(e)),
+                Err(e) => self.errors.push(Report::new(*e)),
             }
         }
     }
