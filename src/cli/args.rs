@@ -52,8 +52,8 @@ pub struct DeriveArgs {
     /// Derivation steps (default: the file's `derivation length:`).
     #[arg(short = 'n', long = "steps", value_name = "STEPS")]
     pub steps: Option<u32>,
-    /// Seed of the random generator (overrides the file's `seed:`).
-    #[arg(long)]
+    /// Seed of the random generator, 0 to 4294967295 (overrides the file's `seed:`).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(..=u32::MAX as u64))]
     pub seed: Option<u64>,
     /// Print the string after every step, one line per step, from the axiom.
     #[arg(long)]
@@ -64,6 +64,9 @@ pub struct DeriveArgs {
     /// Stop with an error when a string would exceed this many modules.
     #[arg(long, value_name = "N", default_value_t = 50_000_000)]
     pub max_modules: usize,
+    /// Stop with an error when a string would hold more parameter values than this.
+    #[arg(long, value_name = "N", default_value_t = 200_000_000)]
+    pub max_params: usize,
     /// Write the string here instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

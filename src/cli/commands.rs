@@ -96,7 +96,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
     let opts = DeriveOptions {
         seed: d.seed,
         max_modules: d.max_modules,
-        ..DeriveOptions::default()
+        max_params: d.max_params,
     };
     let steps = d.steps.unwrap_or(program.derivation_length);
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {

@@ -217,7 +217,7 @@ impl Resolver {
                     });
                 }
             }
-            SymbolKind::Component if n > 3 => {
+            SymbolKind::Component if n == 2 || n > 3 => {
                 self.error(ResolveError::Arity {
                     name: name.clone(),
                     expected: "0, 1 or 3 parameters".to_string(),
