@@ -1,10 +1,11 @@
 //! Constant folding: a resolved expression -> the same expression with
-//! every constant sub-expression computed. Shared with the VM's semantics
-//! through [`apply_binary`] and [`apply_func`], so a folded value is exactly
-//! what the VM would have computed.
+//! every constant sub-expression computed. Arithmetic is IEEE f64, the same
+//! operations the VM performs, so a folded value is exactly
+//! what the VM would have computed (functions go through the VM's own
+//! table, `bytecode::vm::call`).
 
 use super::error::ResolveError;
-use super::ir::{BinOp, Expr, ExprKind, Func, UnOp};
+use super::ir::{BinOp, Expr, ExprKind, UnOp};
 use crate::source::SourceMap;
 
 pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
@@ -56,7 +57,13 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
                 })
                 .collect();
             match consts {
-                Some(vals) if f.is_pure() => ExprKind::Num(apply_func(f, &vals, 0.0)),
+                // The VM's own function table, so a folded value is bit for bit
+                // what the VM computes at run time.
+                Some(vals) if f.is_pure() => ExprKind::Num(crate::bytecode::vm::call(
+                    f,
+                    vals[0],
+                    vals.get(1).copied().unwrap_or(0.0),
+                )),
                 _ => ExprKind::Call(f, args),
             }
         }
@@ -65,7 +72,7 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
     Ok(Expr { kind, span })
 }
 
-pub fn apply_unary(op: UnOp, v: f64) -> f64 {
+fn apply_unary(op: UnOp, v: f64) -> f64 {
     match op {
         UnOp::Neg => -v,
         UnOp::Not => bool_f(v == 0.0),
@@ -74,7 +81,7 @@ pub fn apply_unary(op: UnOp, v: f64) -> f64 {
 
 /// The arithmetic of the language. Division by zero is the caller's to
 /// detect (it is an error, not infinity).
-pub fn apply_binary(op: BinOp, x: f64, y: f64) -> f64 {
+fn apply_binary(op: BinOp, x: f64, y: f64) -> f64 {
     match op {
         BinOp::Add => x + y,
         BinOp::Sub => x - y,
@@ -90,40 +97,6 @@ pub fn apply_binary(op: BinOp, x: f64, y: f64) -> f64 {
         BinOp::Ne => bool_f(x != y),
         BinOp::And => bool_f(x != 0.0 && y != 0.0),
         BinOp::Or => bool_f(x != 0.0 || y != 0.0),
-    }
-}
-
-/// Built-in functions; trigonometry in degrees as in cpfg. `uniform` is a
-/// draw in [0,1) used by `ran`.
-pub fn apply_func(f: Func, a: &[f64], uniform: f64) -> f64 {
-    let deg = std::f64::consts::PI / 180.0;
-    match f {
-        Func::Sin => (a[0] * deg).sin(),
-        Func::Cos => (a[0] * deg).cos(),
-        Func::Tan => (a[0] * deg).tan(),
-        Func::Asin => a[0].asin() / deg,
-        Func::Acos => a[0].acos() / deg,
-        Func::Atan => a[0].atan() / deg,
-        Func::Atan2 => a[0].atan2(a[1]) / deg,
-        Func::Sqrt => a[0].sqrt(),
-        Func::Exp => a[0].exp(),
-        Func::Log => a[0].ln(),
-        Func::Floor => a[0].floor(),
-        Func::Ceil => a[0].ceil(),
-        Func::Trunc => a[0].trunc(),
-        Func::Abs => a[0].abs(),
-        Func::Sign => {
-            if a[0] > 0.0 {
-                1.0
-            } else if a[0] < 0.0 {
-                -1.0
-            } else {
-                0.0
-            }
-        }
-        Func::Min => a[0].min(a[1]),
-        Func::Max => a[0].max(a[1]),
-        Func::Ran => a[0] * uniform,
     }
 }
 

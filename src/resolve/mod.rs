@@ -17,7 +17,6 @@ use std::collections::HashMap;
 use miette::Report;
 
 pub use error::ResolveError;
-pub use fold::{apply_binary, apply_func, apply_unary};
 pub use ir::*;
 pub use load::{Input, InputError, MAX_INCLUDE_DEPTH};
 
