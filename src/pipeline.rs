@@ -6,7 +6,6 @@ use miette::Report;
 
 use crate::bytecode::{self, Compiled};
 use crate::resolve::{self, Input, InputError, Options, Program};
-use crate::source::SourceMap;
 
 /// A grammar ready to derive.
 pub struct Compilation {
@@ -21,10 +20,7 @@ pub enum Failure {
     /// The root input could not be read (exit code 66).
     Input(InputError),
     /// The grammar has errors; all of them, with any warnings.
-    Diagnostics {
-        sources: SourceMap,
-        diagnostics: Vec<Report>,
-    },
+    Diagnostics { diagnostics: Vec<Report> },
 }
 
 pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
@@ -32,7 +28,6 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
         Err(e) => return Err(Failure::Input(e)),
         Ok(Err(f)) => {
             return Err(Failure::Diagnostics {
-                sources: f.sources,
                 diagnostics: f.diagnostics,
             })
         }
@@ -47,10 +42,7 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
         Err(e) => {
             let mut diagnostics = vec![Report::new(e)];
             diagnostics.extend(resolved.warnings);
-            Err(Failure::Diagnostics {
-                sources: resolved.program.sources,
-                diagnostics,
-            })
+            Err(Failure::Diagnostics { diagnostics })
         }
     }
 }

@@ -54,6 +54,25 @@ fn compile(path: &Path) -> Result<pipeline::Compilation, String> {
     }
 }
 
+/// What a stage makes of a fixture: `ok` applied to the compilation of an
+/// `ok/` fixture, or the diagnostics of an `err/` one.
+fn outcome(path: &Path, ok: impl FnOnce(&pipeline::Compilation) -> String) -> String {
+    match compile(path) {
+        Ok(c) => {
+            assert!(expect_ok(path), "{}: expected errors", rel(path));
+            ok(&c)
+        }
+        Err(diags) => {
+            assert!(
+                !expect_ok(path),
+                "{}: expected no errors, got:\n{diags}",
+                rel(path)
+            );
+            diags
+        }
+    }
+}
+
 fn warnings(c: &pipeline::Compilation) -> String {
     c.warnings
         .iter()
@@ -84,12 +103,10 @@ fn parse() {
 #[test]
 fn resolve() {
     insta::glob!("fixtures/resolve/*/*.lsys", |path| {
-        let out = match compile(path) {
-            Ok(c) => {
-                assert!(expect_ok(path), "{}: expected errors", rel(path));
-                let p = &c.program;
-                let mut out = warnings(&c);
-                out.push_str(&format!(
+        let out = outcome(path, |c| {
+            let p = &c.program;
+            let mut out = warnings(c);
+            out.push_str(&format!(
                     "symbols: {}\naxiom: {}\nderivation length: {}\nproductions: {} main, {} decomposition, {} homomorphism\n",
                     p.symbols.list.iter().map(|s| format!("{}:{:?}", s.name, s.kind)).collect::<Vec<_>>().join(" "),
                     p.axiom.iter().map(|m| p.symbols.name(m.sym)).collect::<Vec<_>>().join(" "),
@@ -98,25 +115,16 @@ fn resolve() {
                     p.decomposition.len(),
                     p.homomorphism.len(),
                 ));
-                for d in &p.defines {
-                    out.push_str(&format!(
-                        "define {} = {:?}{}\n",
-                        d.name,
-                        d.value,
-                        if d.overridden { " (overridden)" } else { "" }
-                    ));
-                }
-                out
+            for d in &p.defines {
+                out.push_str(&format!(
+                    "define {} = {:?}{}\n",
+                    d.name,
+                    d.value,
+                    if d.overridden { " (overridden)" } else { "" }
+                ));
             }
-            Err(diags) => {
-                assert!(
-                    !expect_ok(path),
-                    "{}: expected no errors, got:\n{diags}",
-                    rel(path)
-                );
-                diags
-            }
-        };
+            out
+        });
         insta::assert_snapshot!(out);
     });
 }
@@ -124,20 +132,7 @@ fn resolve() {
 #[test]
 fn bytecode() {
     insta::glob!("fixtures/bytecode/*/*.lsys", |path| {
-        let out = match compile(path) {
-            Ok(c) => {
-                assert!(expect_ok(path), "{}: expected errors", rel(path));
-                lsys::bytecode::disasm(&c.program, &c.compiled)
-            }
-            Err(diags) => {
-                assert!(
-                    !expect_ok(path),
-                    "{}: expected no errors, got:\n{diags}",
-                    rel(path)
-                );
-                diags
-            }
-        };
+        let out = outcome(path, |c| lsys::bytecode::disasm(&c.program, &c.compiled));
         insta::assert_snapshot!(out);
     });
 }
@@ -154,22 +149,27 @@ fn derive() {
             ..DeriveOptions::default()
         };
         let mut out = warnings(&c);
-        let result = derive::derive_each(p, code, opts.clone(), p.derivation_length, |step, s| {
-            out.push_str(&format!("{step}: {}\n", s.display(&p.symbols)));
-        });
-        match result {
-            Ok(last) => {
+        let mut run = || -> Result<derive::Derivation, derive::DeriveError> {
+            let mut d = derive::Derivation::new(p, code, opts.clone())?;
+            out.push_str(&format!("0: {}\n", d.current().display(&p.symbols)));
+            for _ in 0..p.derivation_length {
+                d.step()?;
+                out.push_str(&format!(
+                    "{}: {}\n",
+                    d.step_number(),
+                    d.current().display(&p.symbols)
+                ));
+            }
+            Ok(d)
+        };
+        match run() {
+            Ok(d) => {
                 assert!(expect_ok(path), "{}: expected a runtime error", rel(path));
-                let mut d = derive::Derivation::new(p, code, opts.clone()).unwrap();
-                for _ in 0..p.derivation_length {
-                    d.step().unwrap();
-                }
                 for w in d.warnings() {
                     out.push_str(&lsys::diag::render_plain(w));
                 }
                 if !p.homomorphism.is_empty() {
-                    let h =
-                        derive::homomorphism(p, code, &last, &opts, p.derivation_length).unwrap();
+                    let h = d.homomorphism().unwrap();
                     out.push_str(&format!(
                         "homomorphism: {}\n",
                         h.modules.display(&p.symbols)

@@ -1,6 +1,7 @@
 //! The subcommands: each takes parsed arguments, runs the pipeline and
 //! prints results to standard output and diagnostics to standard error.
 
+use std::borrow::Cow;
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
@@ -107,9 +108,9 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
                 for w in &h.warnings {
                     report(w, color);
                 }
-                h.modules
+                Cow::Owned(h.modules)
             } else {
-                s.clone()
+                Cow::Borrowed(s)
             };
             shown
                 .write_string(&program.symbols, &mut out)

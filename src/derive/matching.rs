@@ -3,7 +3,7 @@
 //! production at one position of a string and binds its parameters.
 //! The semantics are documented in the [`derive`](crate::derive) module.
 
-use super::store::{head_arity, head_sym, pack, ContextIndex, NO_MATCH};
+use super::store::{head_arity, head_sym, pack, ContextIndex};
 use crate::resolve::{PatItem, PatModule, Production, CLOSE_BRACKET, OPEN_BRACKET};
 
 /// A pattern module: packed head (symbol and arity, compared in one go)
@@ -201,11 +201,7 @@ pub(crate) fn match_at(
             let s = head_sym(heads[j]);
             if s == CLOSE_BRACKET {
                 // A branch to our left: skip it whole, continue left of its `[`.
-                let o = idx.partner[j];
-                if o == NO_MATCH {
-                    return None;
-                }
-                j = o as usize;
+                j = idx.partner_of(j)?;
             } else if s == OPEN_BRACKET || skip[s as usize] {
                 // `[`: climb out of our branch to its parent.
             } else {
@@ -229,11 +225,7 @@ pub(crate) fn match_at(
                     let s = head_sym(heads[j]);
                     if s == OPEN_BRACKET {
                         // A branch the pattern does not enter: skip it.
-                        let c = idx.partner[j];
-                        if c == NO_MATCH {
-                            return None;
-                        }
-                        j = c as usize + 1;
+                        j = idx.partner_of(j)? + 1;
                     } else if s == CLOSE_BRACKET {
                         return None; // end of our branch
                     } else if skip[s as usize] {
@@ -268,11 +260,7 @@ pub(crate) fn match_at(
                 }
                 let s = head_sym(heads[j]);
                 if s == OPEN_BRACKET {
-                    let c = idx.partner[j];
-                    if c == NO_MATCH {
-                        return None;
-                    }
-                    j = c as usize + 1;
+                    j = idx.partner_of(j)? + 1;
                 } else {
                     j += 1;
                     if s == CLOSE_BRACKET {

@@ -250,6 +250,16 @@ pub struct ContextIndex {
 }
 
 impl ContextIndex {
+    /// The index of the bracket matching the one at `j`; `None` when it
+    /// is unbalanced (then no context can be matched across it).
+    #[inline]
+    pub fn partner_of(&self, j: usize) -> Option<usize> {
+        match self.partner[j] {
+            NO_MATCH => None,
+            k => Some(k as usize),
+        }
+    }
+
     /// Rebuild for `store`, reusing memory. The store's parameters must
     /// number fewer than 2^32 (the derivation's arena limit ensures it).
     pub fn build(&mut self, store: &ModuleStore) {

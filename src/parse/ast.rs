@@ -173,6 +173,8 @@ pub enum UnaryOp {
     Not,
 }
 
+/// Binary operators. `And` and `Or` short-circuit; comparisons and logic
+/// yield 1.0 or 0.0. Shared by the AST and the resolved IR (`ir::BinOp`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BinaryOp {
     Add,

@@ -102,20 +102,16 @@ pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<P
 /// Skips white space, newlines and comments. `Err(start)` for a block
 /// comment that is never closed.
 fn skip_blank(text: &str, mut pos: usize) -> Result<usize, usize> {
-    let b = text.as_bytes();
     loop {
-        while pos < b.len() && matches!(b[pos], b' ' | b'\t' | b'\r' | b'\n') {
+        pos = skip_inline(text, pos);
+        let rest = &text[pos..];
+        if rest.starts_with('\n') {
             pos += 1;
-        }
-        if text[pos..].starts_with('\u{FEFF}') {
+        } else if rest.starts_with('\u{FEFF}') {
             pos += '\u{FEFF}'.len_utf8();
-        } else if text[pos..].starts_with("//") {
-            pos = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
-        } else if text[pos..].starts_with("/*") {
-            match text[pos + 2..].find("*/") {
-                Some(i) => pos = pos + 2 + i + 2,
-                None => return Err(pos),
-            }
+        } else if rest.starts_with("/*") {
+            // skip_inline stops at a block comment only when it is unclosed.
+            return Err(pos);
         } else {
             return Ok(pos);
         }

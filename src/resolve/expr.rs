@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use miette::Report;
 
 use super::error::ResolveError;
-use super::ir::{BinOp, Expr, ExprKind, Func, UnOp};
+use super::ir::{Expr, ExprKind, Func, UnOp};
 use super::Resolver;
 use crate::parse::ast;
 
@@ -66,7 +66,7 @@ impl Resolver {
             ast::ExprKind::Binary(op, a, b) => {
                 let a = self.expr_in(a, scope, exp);
                 let b = self.expr_in(b, scope, exp);
-                ExprKind::Binary(bin_op(*op), Box::new(a?), Box::new(b?))
+                ExprKind::Binary(*op, Box::new(a?), Box::new(b?))
             }
             ast::ExprKind::Ternary(c, a, b) => {
                 let c = self.expr_in(c, scope, exp);
@@ -277,26 +277,6 @@ impl Resolver {
             kind: ExprKind::Call(f, resolved),
             span,
         })
-    }
-}
-
-fn bin_op(op: ast::BinaryOp) -> BinOp {
-    use ast::BinaryOp as A;
-    match op {
-        A::Add => BinOp::Add,
-        A::Sub => BinOp::Sub,
-        A::Mul => BinOp::Mul,
-        A::Div => BinOp::Div,
-        A::Rem => BinOp::Rem,
-        A::Pow => BinOp::Pow,
-        A::Lt => BinOp::Lt,
-        A::Le => BinOp::Le,
-        A::Gt => BinOp::Gt,
-        A::Ge => BinOp::Ge,
-        A::Eq => BinOp::Eq,
-        A::Ne => BinOp::Ne,
-        A::And => BinOp::And,
-        A::Or => BinOp::Or,
     }
 }
 

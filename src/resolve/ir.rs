@@ -92,23 +92,8 @@ pub enum UnOp {
     Not,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BinOp {
-    Add,
-    Sub,
-    Mul,
-    Div,
-    Rem,
-    Pow,
-    Lt,
-    Le,
-    Gt,
-    Ge,
-    Eq,
-    Ne,
-    And,
-    Or,
-}
+/// Binary operators: the parser's enum, used unchanged by every stage.
+pub use crate::parse::ast::BinaryOp as BinOp;
 
 /// Built-in functions. Trigonometry works in degrees, as in cpfg.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -36,9 +36,9 @@ pub struct Resolved {
     pub warnings: Vec<Report>,
 }
 
-/// The grammar has errors; `diagnostics` holds all of them (and warnings).
+/// The grammar has errors; `diagnostics` holds all of them (and warnings),
+/// each with the source text it points into.
 pub struct Failure {
-    pub sources: SourceMap,
     pub diagnostics: Vec<Report>,
 }
 
@@ -64,10 +64,7 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
     } else {
         let mut diagnostics = r.errors;
         diagnostics.extend(r.warnings);
-        Ok(Err(Failure {
-            sources: r.sources,
-            diagnostics,
-        }))
+        Ok(Err(Failure { diagnostics }))
     }
 }
 

@@ -17,7 +17,6 @@ pub(super) struct Split<'a> {
     pub name: String,
     pub span: Span,
     pub args: Option<&'a [ast::Expr]>,
-    pub fallback: bool,
 }
 
 impl Resolver {
@@ -118,7 +117,6 @@ impl Resolver {
                 name: p.name,
                 span,
                 args: if last { tok.args.as_deref() } else { None },
-                fallback: p.fallback,
             });
         }
         out
@@ -175,12 +173,9 @@ impl Resolver {
             }
             for s in self.split(tok) {
                 let sym = self.intern(&s.name, Some(s.span));
-                let args: Vec<SuccArg> = s.args.map_or(Vec::new(), |a| a.iter().collect());
+                let args = s.args.unwrap_or(&[]);
                 self.check_arity(sym, args.len(), s.span);
-                let args = args
-                    .into_iter()
-                    .filter_map(|a| self.expr(a, scope))
-                    .collect::<Vec<_>>();
+                let args = args.iter().filter_map(|a| self.expr(a, scope)).collect();
                 out.push(SuccModule {
                     sym,
                     args,
@@ -307,7 +302,6 @@ impl Resolver {
                             name: m.text.clone(),
                             span: m.span,
                             args: m.args.as_deref(),
-                            fallback: false,
                         }]
                     } else {
                         self.split(m)
@@ -342,7 +336,6 @@ impl Resolver {
                             first_param: first,
                             span: s.span,
                         }));
-                        let _ = s.fallback;
                     }
                 }
             }
@@ -394,8 +387,6 @@ impl Resolver {
         info.decl.get_or_insert(span);
     }
 }
-
-type SuccArg<'a> = &'a ast::Expr;
 
 fn params_text(n: usize) -> String {
     match n {

@@ -68,8 +68,8 @@ impl Resolver {
         let defines = self.define_infos();
         let mut take = |t| tables.remove(&t).unwrap_or_default();
         Some(Program {
-            sources: self.sources.clone(),
-            symbols: self.symbols.clone(),
+            sources: std::mem::take(&mut self.sources),
+            symbols: std::mem::take(&mut self.symbols),
             axiom,
             derivation_length: s.dlength.map_or(0, |d| d.0),
             seed: s.seed.map(|d| d.0),
