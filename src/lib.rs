@@ -6,12 +6,17 @@
 //!   -> resolve    #define/#include, alphabet, names, arity, constant folding
 //!   -> bytecode   productions -> documented instructions (+ spans), disassembler
 //!   -> derive     parallel rewriting over a flat module store
+//!   -> turtle     module string -> strokes, polygons and component placements
+//!   -> mesh       tubes, polygons, components (OBJ via tobj) -> a Scene
+//!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
 
 pub mod bytecode;
 pub mod cli;
 pub mod derive;
 pub mod diag;
+pub mod export;
+pub mod mesh;
 pub mod parse;
 pub mod pipeline;
 pub mod resolve;

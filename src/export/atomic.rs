@@ -1,0 +1,84 @@
+//! Atomic output: bytes for one or more paths -> files that appear complete
+//! or not at all. Each file is written to a temporary file in its target
+//! directory and renamed over the target only after every file of the set
+//! was written, so a failed run never leaves a half-written model (nor
+//! clobbers the model a previous run wrote).
+
+use std::io::{self, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use tempfile::NamedTempFile;
+
+/// A set of files being written; nothing is visible until [`commit`].
+///
+/// [`commit`]: AtomicFiles::commit
+#[derive(Default)]
+pub struct AtomicFiles {
+    pending: Vec<(PathBuf, NamedTempFile)>,
+}
+
+impl AtomicFiles {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Writes one file's content with `body`. The file appears at `path` on
+    /// [`commit`](AtomicFiles::commit).
+    pub fn write<E: From<io::Error>>(
+        &mut self,
+        path: &Path,
+        body: impl FnOnce(&mut dyn Write) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let dir = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let tmp = NamedTempFile::new_in(dir)?;
+        let mut out = BufWriter::with_capacity(1 << 16, tmp);
+        body(&mut out)?;
+        let tmp = out.into_inner().map_err(|e| e.into_error())?;
+        self.pending.push((path.to_path_buf(), tmp));
+        Ok(())
+    }
+
+    /// Renames every written file into place, in the order written (write a
+    /// file that others refer to, like an `.mtl`, first). Dropping the set
+    /// instead deletes the temporary files.
+    pub fn commit(self) -> io::Result<()> {
+        for (path, tmp) in self.pending {
+            tmp.persist(&path).map_err(|e| e.error)?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes one file atomically.
+pub fn write_file<E: From<io::Error>>(
+    path: &Path,
+    body: impl FnOnce(&mut dyn Write) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut files = AtomicFiles::new();
+    files.write(path, body)?;
+    files.commit().map_err(E::from)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn failed_write_keeps_the_old_file_and_leaves_no_temporaries() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("model.obj");
+        std::fs::write(&path, "old").unwrap();
+        let r: io::Result<()> = write_file(&path, |w| {
+            w.write_all(b"half")?;
+            Err(io::Error::other("boom"))
+        });
+        assert!(r.is_err());
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "old");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+        write_file::<io::Error>(&path, |w| w.write_all(b"new")).unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+    }
+}
