@@ -409,6 +409,7 @@ fn program(src: &str) -> Program {
         decomposition_depth: 16,
         homomorphism_depth: 16,
         defines: Vec::new(),
+        turtle: Default::default(),
     };
     for line in text.lines() {
         let Some((key, rest)) = line.trim_start().split_once(':') else {

@@ -167,7 +167,10 @@ pub struct Scene {
 impl Scene {
     /// Vertices as drawn: strokes plus every instance's copy of its component.
     pub fn vertex_count(&self) -> usize {
-        self.strokes.iter().map(|s| s.mesh.vertex_count()).sum::<usize>()
+        self.strokes
+            .iter()
+            .map(|s| s.mesh.vertex_count())
+            .sum::<usize>()
             + self
                 .instances
                 .iter()
@@ -234,7 +237,12 @@ impl Scene {
         }
         for i in &self.instances {
             for p in &self.components[i.component].parts {
-                emit(&p.mesh, i.transform, p.material.unwrap_or(i.material), &mut f);
+                emit(
+                    &p.mesh,
+                    i.transform,
+                    p.material.unwrap_or(i.material),
+                    &mut f,
+                );
             }
         }
     }

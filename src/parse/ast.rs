@@ -76,6 +76,16 @@ pub enum HeaderKind {
     Module(Vec<ModuleDecl>),
     /// cpfg statement blocks (`Start: { ... }`), not supported yet.
     Block(String),
+    /// `angle: θ` — the default turning angle in degrees.
+    Angle(Expr),
+    /// `step: d` — the default step length.
+    Step(Expr),
+    /// `width: w` — the initial line width.
+    Width(Expr),
+    /// `dialect: paper|cpfg`, with the name's span.
+    Dialect(String, Span),
+    /// `colour i: #rrggbb`, with the colour's span.
+    Colour(Expr, String, Span),
 }
 
 #[derive(Clone, Debug)]
@@ -388,6 +398,21 @@ fn dump_item(out: &mut String, item: &Item) {
                 }
                 HeaderKind::Block(kw) => {
                     let _ = write!(out, "block {kw}");
+                }
+                HeaderKind::Angle(e) => {
+                    let _ = write!(out, "angle {e}");
+                }
+                HeaderKind::Step(e) => {
+                    let _ = write!(out, "step {e}");
+                }
+                HeaderKind::Width(e) => {
+                    let _ = write!(out, "width {e}");
+                }
+                HeaderKind::Dialect(d, _) => {
+                    let _ = write!(out, "dialect {d}");
+                }
+                HeaderKind::Colour(i, hex, _) => {
+                    let _ = write!(out, "colour {i} {hex}");
                 }
             }
         }

@@ -121,6 +121,18 @@ impl Lower<'_> {
                 HeaderKind::Module(decls)
             }
             Rule::block_h => HeaderKind::Block(kw.map_or("", |k| k.as_str()).to_string()),
+            Rule::angle_h => HeaderKind::Angle(self.expr(next(&mut inner))?),
+            Rule::step_h => HeaderKind::Step(self.expr(next(&mut inner))?),
+            Rule::width_h => HeaderKind::Width(self.expr(next(&mut inner))?),
+            Rule::dialect_h => {
+                let name = next(&mut inner);
+                HeaderKind::Dialect(name.as_str().to_string(), self.span(&name))
+            }
+            Rule::colour_h => {
+                let index = self.expr(next(&mut inner))?;
+                let hex = next(&mut inner);
+                HeaderKind::Colour(index, hex.as_str().to_string(), self.span(&hex))
+            }
             other => unreachable!("statement child {other:?} is not a header"),
         };
         Ok(Header {

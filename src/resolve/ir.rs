@@ -303,6 +303,24 @@ pub struct Program {
     pub decomposition_depth: u32,
     pub homomorphism_depth: u32,
     pub defines: Vec<DefineInfo>,
+    /// The turtle headers (`angle:`, `dialect:`, ...).
+    pub turtle: TurtleSettings,
+}
+
+/// What the file's turtle headers say; `None` where a header is absent, so
+/// that the command line and the turtle's defaults can fill in.
+#[derive(Clone, Debug, Default)]
+pub struct TurtleSettings {
+    /// `dialect:`, or the default for the file's name.
+    pub dialect: crate::turtle::Dialect,
+    /// `angle:` in degrees.
+    pub angle: Option<f64>,
+    /// `step:`.
+    pub step: Option<f64>,
+    /// `width:`.
+    pub width: Option<f64>,
+    /// `colour i: #rrggbb` entries, sRGB 0..=1, in file order.
+    pub palette: Vec<(usize, [f32; 3])>,
 }
 
 impl Program {

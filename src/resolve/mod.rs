@@ -11,6 +11,7 @@ pub mod ir;
 mod load;
 mod modules;
 mod statements;
+mod view;
 
 use std::collections::HashMap;
 

@@ -28,6 +28,7 @@ struct Sections {
     /// Per table and predecessor: was there a production, and which
     /// production always applies first (no context, condition, probability).
     seen: HashMap<(Table, PredKey), Option<Span>>,
+    turtle: super::view::TurtleHeaders,
 }
 
 impl Resolver {
@@ -66,6 +67,10 @@ impl Resolver {
             return None;
         };
         let defines = self.define_infos();
+        let mut turtle = std::mem::take(&mut s.turtle.settings);
+        if s.turtle.dialect_given().is_none() {
+            turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
+        }
         let mut take = |t| tables.remove(&t).unwrap_or_default();
         Some(Program {
             sources: std::mem::take(&mut self.sources),
@@ -86,6 +91,7 @@ impl Resolver {
                 .get(&Table::Homomorphism)
                 .map_or(DEFAULT_DEPTH, |d| d.0),
             defines,
+            turtle,
         })
     }
 
@@ -108,6 +114,9 @@ impl Resolver {
                 self.after_end(h.span, end);
                 return;
             }
+        }
+        if self.turtle_header(h, &scope, &mut s.turtle) {
+            return;
         }
         match &h.kind {
             HeaderKind::Lsystem(_) => {
@@ -182,6 +191,11 @@ impl Resolver {
             HeaderKind::Homomorphism => s.table = Some(Table::Homomorphism),
             HeaderKind::Decomposition => s.table = Some(Table::Decomposition),
             HeaderKind::Module(_) => {}
+            HeaderKind::Angle(_)
+            | HeaderKind::Step(_)
+            | HeaderKind::Width(_)
+            | HeaderKind::Dialect(..)
+            | HeaderKind::Colour(..) => unreachable!("handled by turtle_header"),
             HeaderKind::Block(kw) => self.error(ResolveError::Unsupported {
                 what: format!("cpfg's statement block `{kw}:`"),
                 src: self.sources.named_source(h.span),
@@ -191,7 +205,7 @@ impl Resolver {
         }
     }
 
-    fn duplicate(&mut self, h: &ast::Header, what: &str, first: Span, help: &str) {
+    pub(super) fn duplicate(&mut self, h: &ast::Header, what: &str, first: Span, help: &str) {
         self.error(ResolveError::DuplicateHeader {
             what: what.to_string(),
             src: self.sources.named_source(h.keyword),
@@ -202,7 +216,13 @@ impl Resolver {
     }
 
     /// A constant whole number in `0..=max` (derivation length, seed, depth).
-    fn const_count(&mut self, e: &ast::Expr, scope: &Scope, what: &str, max: u64) -> Option<u64> {
+    pub(super) fn const_count(
+        &mut self,
+        e: &ast::Expr,
+        scope: &Scope,
+        what: &str,
+        max: u64,
+    ) -> Option<u64> {
         let v = self.expr(e, scope)?;
         let ExprKind::Num(x) = v.kind else {
             self.error(ResolveError::NotConstant {

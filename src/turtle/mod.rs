@@ -1,4 +1,7 @@
-//! Turtle: the command table that the checker, help text and (later) the
-//! 3D turtle VM all read. Input: symbol names; output: what each means.
+//! Turtle: the command table that the checker, help text and the 3D turtle
+//! all read, and the turtle itself. Input: a derived module string; output:
+//! strokes, polygons and component placements handed to the mesh builder.
 pub mod commands;
+pub mod dialect;
 pub use commands::{lookup, Command, COMMANDS};
+pub use dialect::Dialect;
