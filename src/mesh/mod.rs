@@ -2,3 +2,5 @@
 //! spheres and discs, and components loaded once and placed by transform.
 pub mod scene;
 pub use scene::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};
+pub mod shapes;
+pub mod tube;

@@ -1,0 +1,46 @@
+//! Turtle errors: a derived string the turtle cannot draw. Input: the
+//! offending module (its index in the string and its text); output: a
+//! diagnostic that says what to change.
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum TurtleError {
+    #[error("module {index} of the string, `{text}`, has the value {value}, which the turtle cannot draw")]
+    #[diagnostic(
+        code(lsys::turtle::non_finite),
+        help("an expression divided by zero or overflowed; check the production that writes `{symbol}`, e.g. with `lsys derive FILE | tr ' ' '\\n' | grep -n nan`")
+    )]
+    NonFinite {
+        index: usize,
+        text: String,
+        symbol: String,
+        value: f64,
+    },
+
+    #[error("module {index} of the string is a `]` with no `[` before it")]
+    #[diagnostic(
+        code(lsys::turtle::unbalanced_bracket),
+        help("every `]` must close a `[`; the productions that write brackets must write them in pairs")
+    )]
+    UnbalancedBracket { index: usize },
+
+    #[error("module {index} of the string is a `}}` with no `{{` before it")]
+    #[diagnostic(
+        code(lsys::turtle::unbalanced_polygon),
+        help("every `}}` must close a polygon opened by `{{`")
+    )]
+    UnopenedPolygon { index: usize },
+
+    #[error("{count} polygon{} opened with `{{` never closed by `}}`", if *count == 1 { " is" } else { "s are" })]
+    #[diagnostic(
+        code(lsys::turtle::unclosed_polygon),
+        help("close every polygon with `}}`; the first one was opened by module {first}")
+    )]
+    UnclosedPolygon { count: usize, first: usize },
+
+    #[error("module {index} of the string, `{text}`, divides the step scale by zero")]
+    #[diagnostic(code(lsys::turtle::zero_scale), help("`@Dd(s)` needs s ≠ 0"))]
+    ZeroScale { index: usize, text: String },
+}

@@ -1,0 +1,578 @@
+//! The 3D turtle: a derived module string -> a [`Drawing`]. Each symbol is
+//! mapped once to an [`Act`] through the command table and the file's
+//! dialect, then the string is walked left to right with a branch stack.
+
+use glam::{Mat4, Vec3, Vec4};
+
+use super::dialect::Dialect;
+use super::drawing::{Chain, Drawing, Placement, Polygon, ShapeKind, TubePoint};
+use super::error::TurtleError;
+use super::frame::Frame;
+use crate::derive::store::{head_arity, head_sym};
+use crate::derive::ModuleStore;
+use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols, TurtleSettings};
+
+/// Defaults the turtle starts from.
+#[derive(Clone, Debug)]
+pub struct TurtleOptions {
+    pub dialect: Dialect,
+    /// Turning angle of `+`, `&`, ... without a parameter, in degrees.
+    pub angle: f32,
+    /// Length of `F`, `f`, ... without a parameter.
+    pub step: f32,
+    /// Initial line width (the tube diameter).
+    pub width: f32,
+}
+
+/// The default angle when neither the file nor the command line gives one.
+pub const DEFAULT_ANGLE: f64 = 90.0;
+/// The default line width: a tenth of the default step.
+pub const DEFAULT_WIDTH: f64 = 0.1;
+/// Curve segments between two control points of a generalized cylinder.
+const DEFAULT_GC_SEGMENTS: usize = 8;
+
+impl TurtleOptions {
+    /// The file's headers, each overridden by the command line when given.
+    pub fn new(
+        file: &TurtleSettings,
+        angle: Option<f64>,
+        step: Option<f64>,
+        width: Option<f64>,
+    ) -> Self {
+        TurtleOptions {
+            dialect: file.dialect,
+            angle: angle.or(file.angle).unwrap_or(DEFAULT_ANGLE) as f32,
+            step: step.or(file.step).unwrap_or(1.0) as f32,
+            width: width.or(file.width).unwrap_or(DEFAULT_WIDTH) as f32,
+        }
+    }
+}
+
+/// What one symbol does.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Act {
+    Nothing,
+    /// `F` `f` `G` `g`: move; `draw` a tube; `vertex` adds a polygon vertex.
+    Move { draw: bool, vertex: bool },
+    Turn(f32),
+    Pitch(f32),
+    Roll(f32),
+    TurnAround,
+    RollAround,
+    PitchAround,
+    RollHorizontal,
+    HeadingUp,
+    Cut,
+    Push,
+    Pop,
+    SetWidth,
+    IncWidth,
+    SetColour,
+    DecColour,
+    IncColour,
+    PolyStart,
+    PolyVertex,
+    PolyEnd,
+    Shape(ShapeKind),
+    MoveTo,
+    SetHeading,
+    Elasticity,
+    Tropism,
+    CylStart,
+    CylPoint,
+    CylEnd,
+    ScaleSet,
+    ScaleMul,
+    ScaleDiv,
+    Place,
+}
+
+fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
+    use Act::*;
+    if kind == SymbolKind::Component {
+        return Place;
+    }
+    if kind != SymbolKind::Turtle && name != "[" && name != "]" {
+        return Nothing;
+    }
+    match (name, dialect) {
+        ("F", _) => Move {
+            draw: true,
+            vertex: true,
+        },
+        ("f", _) => Move {
+            draw: false,
+            vertex: true,
+        },
+        ("G", _) => Move {
+            draw: true,
+            vertex: false,
+        },
+        ("g", _) => Move {
+            draw: false,
+            vertex: false,
+        },
+        ("+", _) => Turn(1.0),
+        ("-", _) => Turn(-1.0),
+        ("&", _) => Pitch(1.0),
+        ("^", _) => Pitch(-1.0),
+        ("\\" | "<", _) => Roll(1.0),
+        ("/" | ">", _) => Roll(-1.0),
+        ("|", _) => TurnAround,
+        ("%", Dialect::Paper) => RollAround,
+        ("%", Dialect::Cpfg) => Cut,
+        ("$", Dialect::Paper) => PitchAround,
+        ("$", Dialect::Cpfg) | ("@v", _) => RollHorizontal,
+        ("@H", _) => HeadingUp,
+        ("[", _) => Push,
+        ("]", _) => Pop,
+        ("!", _) => SetWidth,
+        ("#", _) => IncWidth,
+        (";", _) => SetColour,
+        (",", _) => DecColour,
+        ("'", _) => IncColour,
+        ("{", _) => PolyStart,
+        (".", _) => PolyVertex,
+        ("}", _) => PolyEnd,
+        ("@O", _) => Shape(ShapeKind::Sphere),
+        ("@o", _) => Shape(ShapeKind::Disc),
+        ("@c", _) => Shape(ShapeKind::Circle),
+        ("@M" | "@m", _) => MoveTo,
+        ("@R", _) => SetHeading,
+        ("@Ts", _) => Elasticity,
+        ("@T", _) => Tropism,
+        ("@Gs", _) => CylStart,
+        ("@Gc", _) => CylPoint,
+        ("@Ge", _) => CylEnd,
+        ("@D", _) => ScaleSet,
+        ("@Di", _) => ScaleMul,
+        ("@Dd", _) => ScaleDiv,
+        // @L (labels), @Gr and @Gt (cylinder profile and tangents) draw
+        // nothing; docs/geometry.md says so.
+        _ => Nothing,
+    }
+}
+
+/// One control point of a generalized cylinder.
+#[derive(Clone, Copy, Debug)]
+struct CylPoint {
+    frame: Frame,
+    radius: f32,
+    segments: usize,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct State {
+    frame: Frame,
+    width: f32,
+    colour: u32,
+    scale: f32,
+    /// The chain the next drawn segment may extend.
+    chain: Option<usize>,
+    /// The open generalized cylinder, an index into `Turtle::cylinders`.
+    cylinder: Option<usize>,
+    tropism: Vec3,
+    elasticity: f32,
+}
+
+struct Turtle<'a> {
+    opts: &'a TurtleOptions,
+    symbols: &'a Symbols,
+    drawing: Drawing,
+    state: State,
+    stack: Vec<State>,
+    /// Open polygons: global, not per branch, so that a polygon can collect
+    /// vertices from several branches (ABOP's leaves).
+    polygons: Vec<(usize, Vec<Vec3>)>,
+    cylinders: Vec<Vec<CylPoint>>,
+}
+
+/// Interprets `store` (normally the string after the homomorphism).
+pub fn interpret(
+    program: &Program,
+    store: &ModuleStore,
+    opts: &TurtleOptions,
+) -> Result<Drawing, TurtleError> {
+    let acts: Vec<Act> = program
+        .symbols
+        .list
+        .iter()
+        .map(|s| act_of(&s.name, s.kind, opts.dialect))
+        .collect();
+    let mut t = Turtle {
+        opts,
+        symbols: &program.symbols,
+        drawing: Drawing::default(),
+        state: State {
+            frame: Frame::default(),
+            width: opts.width,
+            colour: 0,
+            scale: 1.0,
+            chain: None,
+            cylinder: None,
+            tropism: Vec3::NEG_Y,
+            elasticity: 0.0,
+        },
+        stack: Vec::new(),
+        polygons: Vec::new(),
+        cylinders: Vec::new(),
+    };
+    let heads = store.heads();
+    let params = store.params();
+    let mut offset = 0;
+    let mut i = 0;
+    while i < heads.len() {
+        let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
+        let args = &params[offset..offset + arity];
+        offset += arity;
+        let act = acts[sym as usize];
+        if act != Act::Nothing {
+            if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
+                return Err(TurtleError::NonFinite {
+                    index: i,
+                    text: module_text(&program.symbols, sym, args),
+                    symbol: program.symbols.name(sym).to_string(),
+                    value: bad,
+                });
+            }
+            if act == Act::Cut {
+                // Skip to the `]` that ends this branch (or the end), and
+                // let that `]` pop the branch as usual.
+                let mut depth = 0usize;
+                let mut j = i + 1;
+                while j < heads.len() {
+                    let s = head_sym(heads[j]);
+                    if s == crate::resolve::ir::OPEN_BRACKET {
+                        depth += 1;
+                    } else if s == crate::resolve::ir::CLOSE_BRACKET {
+                        if depth == 0 {
+                            break;
+                        }
+                        depth -= 1;
+                    }
+                    offset += head_arity(heads[j]);
+                    j += 1;
+                }
+                i = j;
+                continue;
+            }
+            t.apply(act, sym, args, i)?;
+        }
+        i += 1;
+    }
+    if let Some((first, _)) = t.polygons.first() {
+        return Err(TurtleError::UnclosedPolygon {
+            count: t.polygons.len(),
+            first: *first,
+        });
+    }
+    // Close generalized cylinders left open at the end of the string.
+    for k in 0..t.cylinders.len() {
+        if t.cylinders[k].len() > 1 {
+            t.finish_cylinder(k);
+        }
+    }
+    Ok(t.drawing)
+}
+
+fn module_text(symbols: &Symbols, sym: SymId, args: &[f64]) -> String {
+    let name = symbols.name(sym);
+    if args.is_empty() {
+        name.to_string()
+    } else {
+        let a: Vec<String> = args.iter().map(|x| x.to_string()).collect();
+        format!("{name}({})", a.join(","))
+    }
+}
+
+impl Turtle<'_> {
+    fn angle(&self, args: &[f64]) -> f32 {
+        args.first().map_or(self.opts.angle, |&a| a as f32)
+    }
+
+    fn apply(&mut self, act: Act, sym: SymId, args: &[f64], index: usize) -> Result<(), TurtleError> {
+        use Act::*;
+        let s = &mut self.state;
+        match act {
+            Nothing | Cut => {}
+            Move { draw, vertex } => {
+                let d = args.first().map_or(self.opts.step, |&a| a as f32) * s.scale;
+                self.forward(d, draw, vertex);
+            }
+            Turn(sign) => {
+                let a = self.angle(args);
+                self.state.frame.turn(sign * a)
+            }
+            Pitch(sign) => {
+                let a = self.angle(args);
+                self.state.frame.pitch(sign * a)
+            }
+            Roll(sign) => {
+                let a = self.angle(args);
+                self.state.frame.roll(sign * a)
+            }
+            TurnAround => s.frame.turn(180.0),
+            RollAround => s.frame.roll(180.0),
+            PitchAround => s.frame.pitch(180.0),
+            RollHorizontal => s.frame.roll_to_horizontal(),
+            HeadingUp => s.frame.rotate_heading_to(Vec3::Y),
+            Push => {
+                self.stack.push(self.state);
+                // A branch draws its own tubes; the parent's chain resumes
+                // after the matching `]`.
+                self.state.chain = None;
+                self.state.cylinder = None;
+            }
+            Pop => {
+                self.state = self.stack.pop().ok_or(TurtleError::UnbalancedBracket { index })?;
+            }
+            SetWidth => match args.first() {
+                Some(&w) => s.width = (w as f32).max(0.0),
+                None => s.width = (s.width - self.opts.width * 0.1).max(0.0),
+            },
+            IncWidth => match args.first() {
+                Some(&w) => s.width = (s.width + w as f32).max(0.0),
+                None => s.width += self.opts.width * 0.1,
+            },
+            SetColour => match args.first() {
+                Some(&c) => s.colour = colour_index(c),
+                None => s.colour = s.colour.saturating_add(1),
+            },
+            DecColour => match args.first() {
+                Some(&c) => s.colour = colour_index(c),
+                None => s.colour = s.colour.saturating_sub(1),
+            },
+            IncColour => match args.first() {
+                Some(&c) => s.colour = colour_index(c),
+                None => s.colour = s.colour.saturating_add(1),
+            },
+            PolyStart => {
+                let start = s.frame.pos;
+                self.polygons.push((index, vec![start]));
+            }
+            PolyVertex => {
+                let p = s.frame.pos;
+                if let Some((_, poly)) = self.polygons.last_mut() {
+                    push_vertex(poly, p);
+                }
+            }
+            PolyEnd => {
+                let (_, mut points) = self
+                    .polygons
+                    .pop()
+                    .ok_or(TurtleError::UnopenedPolygon { index })?;
+                if points.len() > 1 && points[0].distance(points[points.len() - 1]) < 1e-6 {
+                    points.pop();
+                }
+                if points.len() >= 3 {
+                    self.drawing.polygons.push(Polygon {
+                        colour: self.state.colour,
+                        points,
+                    });
+                }
+            }
+            Shape(kind) => {
+                let d = args.first().map_or(s.width, |&a| a as f32);
+                if d > 0.0 {
+                    self.drawing.shapes.push(super::drawing::Shape {
+                        kind,
+                        centre: s.frame.pos,
+                        normal: s.frame.h,
+                        radius: d * 0.5,
+                        colour: s.colour,
+                    });
+                }
+            }
+            MoveTo => {
+                s.frame.pos = Vec3::new(args[0] as f32, args[1] as f32, args[2] as f32);
+                s.chain = None;
+            }
+            SetHeading => {
+                let v = |k: usize| Vec3::new(args[k] as f32, args[k + 1] as f32, args[k + 2] as f32);
+                let up = (args.len() >= 6).then(|| v(3));
+                s.frame.set_heading(v(0), up);
+                s.chain = None;
+            }
+            Elasticity => s.elasticity = args.first().map_or(0.0, |&e| e as f32),
+            Tropism => {
+                if args.len() >= 3 {
+                    s.tropism = Vec3::new(args[0] as f32, args[1] as f32, args[2] as f32);
+                }
+                match args.len() {
+                    0 => s.elasticity = 0.0,
+                    1 => s.elasticity = args[0] as f32,
+                    4 => s.elasticity = args[3] as f32,
+                    _ => {}
+                }
+            }
+            CylStart => {
+                let point = self.cyl_point(args);
+                self.cylinders.push(vec![point]);
+                self.state.cylinder = Some(self.cylinders.len() - 1);
+                self.state.chain = None;
+            }
+            CylPoint | CylEnd => {
+                if let Some(k) = self.state.cylinder {
+                    let point = self.cyl_point(args);
+                    self.cylinders[k].push(point);
+                    if act == CylEnd {
+                        self.finish_cylinder(k);
+                        self.state.cylinder = None;
+                    }
+                }
+            }
+            ScaleSet => s.scale = args.first().map_or(1.0, |&a| a as f32),
+            ScaleMul => s.scale *= args.first().map_or(1.0, |&a| a as f32),
+            ScaleDiv => {
+                let d = args.first().map_or(1.0, |&a| a as f32);
+                if d == 0.0 {
+                    return Err(TurtleError::ZeroScale {
+                        index,
+                        text: module_text(self.symbols, sym, args),
+                    });
+                }
+                s.scale /= d;
+            }
+            Place => self.place(sym, args, index),
+        }
+        Ok(())
+    }
+
+    fn forward(&mut self, d: f32, draw: bool, vertex: bool) {
+        let s = &mut self.state;
+        let from = s.frame.pos;
+        s.frame.pos += s.frame.h * d;
+        let to = s.frame.pos;
+        if !self.polygons.is_empty() {
+            // Inside a polygon moves trace its outline instead of drawing.
+            if vertex {
+                if let Some((_, poly)) = self.polygons.last_mut() {
+                    push_vertex(poly, to);
+                }
+            }
+        } else if draw && s.cylinder.is_none() && s.width > 0.0 && d != 0.0 {
+            let radius = s.width * 0.5;
+            let point = TubePoint {
+                pos: to,
+                radius,
+                up: s.frame.u,
+            };
+            match s.chain {
+                Some(c)
+                    if self.drawing.chains[c].colour == s.colour
+                        && self.drawing.chains[c].points.last().map(|p| p.pos) == Some(from) =>
+                {
+                    self.drawing.chains[c].points.push(point);
+                }
+                _ => {
+                    self.drawing.chains.push(Chain {
+                        colour: s.colour,
+                        points: vec![
+                            TubePoint {
+                                pos: from,
+                                radius,
+                                up: s.frame.u,
+                            },
+                            point,
+                        ],
+                    });
+                    s.chain = Some(self.drawing.chains.len() - 1);
+                }
+            }
+        } else {
+            s.chain = None;
+        }
+        if s.elasticity != 0.0 {
+            s.frame.bend(s.tropism, s.elasticity);
+        }
+    }
+
+    fn cyl_point(&self, args: &[f64]) -> CylPoint {
+        CylPoint {
+            frame: self.state.frame,
+            radius: self.state.width * 0.5,
+            segments: args
+                .first()
+                .map_or(DEFAULT_GC_SEGMENTS, |&n| (n.max(1.0) as usize).min(1024)),
+        }
+    }
+
+    /// Samples the cubic Hermite curve through the cylinder's control points
+    /// (tangents along each point's heading, scaled by the distance to the
+    /// next point) into one tube chain.
+    fn finish_cylinder(&mut self, k: usize) {
+        let cps = std::mem::take(&mut self.cylinders[k]);
+        if cps.len() < 2 {
+            return;
+        }
+        let mut points = vec![TubePoint {
+            pos: cps[0].frame.pos,
+            radius: cps[0].radius,
+            up: cps[0].frame.u,
+        }];
+        for w in cps.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            let dist = a.frame.pos.distance(b.frame.pos);
+            let (m0, m1) = (a.frame.h * dist, b.frame.h * dist);
+            for step in 1..=b.segments {
+                let t = step as f32 / b.segments as f32;
+                let (t2, t3) = (t * t, t * t * t);
+                let pos = a.frame.pos * (2.0 * t3 - 3.0 * t2 + 1.0)
+                    + m0 * (t3 - 2.0 * t2 + t)
+                    + b.frame.pos * (-2.0 * t3 + 3.0 * t2)
+                    + m1 * (t3 - t2);
+                points.push(TubePoint {
+                    pos,
+                    radius: a.radius + (b.radius - a.radius) * t,
+                    up: a.frame.u.lerp(b.frame.u, t).normalize_or(a.frame.u),
+                });
+            }
+        }
+        points.dedup_by(|b, a| a.pos.distance(b.pos) < 1e-7);
+        if points.len() >= 2 && points.iter().any(|p| p.radius > 0.0) {
+            self.drawing.chains.push(Chain {
+                colour: self.state.colour,
+                points,
+            });
+        }
+    }
+
+    /// `~X`, `~X(s)`, `~X(sx,sy,sz)`: the unit box's width (x) along the
+    /// turtle's L, its height (y) along H and its front (−z) facing U, with
+    /// the middle of its bottom face at the turtle.
+    fn place(&mut self, sym: SymId, args: &[f64], index: usize) {
+        let s = match *args {
+            [] => Vec3::ONE,
+            [k] => Vec3::splat(k as f32),
+            [x, y, z, ..] => Vec3::new(x as f32, y as f32, z as f32),
+            [x, y] => Vec3::new(x as f32, y as f32, 1.0),
+        };
+        if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
+            // The paper switches decorations off by scaling them to 0.
+            return;
+        }
+        let f = &self.state.frame;
+        let transform = Mat4::from_cols(
+            (f.l * s.x).extend(0.0),
+            (f.h * s.y).extend(0.0),
+            (-f.u * s.z).extend(0.0),
+            Vec4::from((f.pos + f.h * (s.y * 0.5), 1.0)),
+        );
+        self.drawing.placements.push(Placement {
+            symbol: sym,
+            transform,
+            colour: self.state.colour,
+            module: index,
+        });
+    }
+}
+
+fn push_vertex(poly: &mut Vec<Vec3>, p: Vec3) {
+    if poly.last().is_none_or(|q| q.distance(p) > 1e-6) {
+        poly.push(p);
+    }
+}
+
+fn colour_index(c: f64) -> u32 {
+    c.clamp(0.0, u32::MAX as f64) as u32
+}
