@@ -11,6 +11,7 @@
 //!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
 
+pub mod build;
 pub mod bytecode;
 pub mod cli;
 pub mod derive;

@@ -23,3 +23,12 @@ pub fn get(name: &str) -> Option<&'static str> {
 pub fn names() -> Vec<&'static str> {
     FILES.iter().map(|(n, _)| *n).collect()
 }
+
+/// (name, OBJ text) of every built-in component model, from
+/// `grammar/std/components/` (written by `scripts/make_components.py`).
+pub const COMPONENTS: &[(&str, &str)] = &[];
+
+/// The OBJ text of the built-in component `name` (without `~`).
+pub fn component(name: &str) -> Option<&'static str> {
+    COMPONENTS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+}

@@ -193,6 +193,64 @@ fn derive() {
     });
 }
 
+/// Builds a fixture (derive, homomorphism, turtle, meshes) and prints what
+/// the turtle drew and the scene it became; `err` fixtures fail to build.
+/// Components come from `components/` beside the fixture.
+#[test]
+fn turtle() {
+    insta::glob!("fixtures/turtle/*/*.lsys", |path| {
+        let out = outcome_or_runtime(path, |c| {
+            let opts = lsys::build::BuildOptions {
+                components: lsys::mesh::ComponentSearch {
+                    grammar_dir: Some(Path::new(&rel(path)).parent().unwrap().to_path_buf()),
+                    dirs: Vec::new(),
+                },
+                ..Default::default()
+            };
+            lsys::build::build(c, &opts).map(|b| {
+                let mut out = b.drawing.dump(|s| c.program.symbols.name(s).to_string());
+                out.push_str("--\n");
+                out.push_str(&b.scene.summary());
+                out
+            })
+        });
+        insta::assert_snapshot!(out);
+    });
+}
+
+/// Like [`outcome`], but `ok` may also fail at run time: `ok/` fixtures
+/// must succeed and `err/` fixtures must fail, at compile or run time.
+fn outcome_or_runtime<E: miette::Diagnostic>(
+    path: &Path,
+    run: impl FnOnce(&pipeline::Compilation) -> Result<String, E>,
+) -> String {
+    match compile(path) {
+        Ok(c) => {
+            let mut out = warnings(&c);
+            match run(&c) {
+                Ok(s) => {
+                    assert!(expect_ok(path), "{}: expected an error", rel(path));
+                    out.push_str(&s);
+                }
+                Err(e) => {
+                    let text = lsys::diag::render_plain(&e);
+                    assert!(!expect_ok(path), "{}: unexpected error:\n{text}", rel(path));
+                    out.push_str(&text);
+                }
+            }
+            out
+        }
+        Err(diags) => {
+            assert!(
+                !expect_ok(path),
+                "{}: expected no errors, got:\n{diags}",
+                rel(path)
+            );
+            diags
+        }
+    }
+}
+
 /// The classic systems of ABOP chapter 1 derive to the strings the book
 /// gives, as computed independently by `scripts/abop_oracle.py`.
 #[test]

@@ -121,7 +121,7 @@ impl DeriveError {
 
 /// A decomposition or homomorphism production still applied at the
 /// maximum depth; the module was left as it was.
-#[derive(Debug, Error, Diagnostic)]
+#[derive(Clone, Debug, Error, Diagnostic)]
 #[error("{table} reached its maximum depth {depth} (first at step {step}, {count} time(s)); the modules were left unrewritten")]
 #[diagnostic(
     code(lsys::derive::depth_limit),

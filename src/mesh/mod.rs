@@ -1,6 +1,14 @@
 //! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
 //! spheres and discs, and components loaded once and placed by transform.
+pub mod build;
+pub mod components;
+pub mod error;
+pub mod palette;
 pub mod scene;
-pub use scene::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};
 pub mod shapes;
 pub mod tube;
+pub use build::{build_scene, MeshOptions};
+pub use components::ComponentSearch;
+pub use error::MeshError;
+pub use palette::Palette;
+pub use scene::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};

@@ -229,6 +229,64 @@ impl Scene {
         out
     }
 
+    /// A deterministic text summary (snapshot tests, the REPL's `:stats`):
+    /// materials, strokes, components, instance counts, totals and bounds
+    /// to three decimals.
+    pub fn summary(&self) -> String {
+        use std::fmt::Write;
+        let mut out = String::new();
+        for (i, m) in self.materials.iter().enumerate() {
+            let [r, g, b] = m.rgb.map(|c| (c * 255.0).round() as u8);
+            let _ = writeln!(out, "material {i} {} #{r:02x}{g:02x}{b:02x}", m.name);
+        }
+        for s in &self.strokes {
+            let _ = writeln!(
+                out,
+                "strokes material {}: {} vertices, {} triangles",
+                s.material,
+                s.mesh.vertex_count(),
+                s.mesh.triangle_count()
+            );
+        }
+        for c in &self.components {
+            let _ = writeln!(
+                out,
+                "component {} ({}): parts {}, {} triangles",
+                c.name,
+                c.origin,
+                c.parts.len(),
+                c.triangle_count()
+            );
+        }
+        for (name, n) in self.instance_counts() {
+            let _ = writeln!(out, "instances {name}: {n}");
+        }
+        let _ = writeln!(
+            out,
+            "total: {} vertices, {} triangles",
+            self.vertex_count(),
+            self.triangle_count()
+        );
+        match self.bounds() {
+            Some((lo, hi)) => {
+                let f = |v: Vec3| {
+                    let c = |x: f32| {
+                        let s = format!("{x:.3}");
+                        if s == "-0.000" {
+                            "0.000".to_string()
+                        } else {
+                            s
+                        }
+                    };
+                    format!("({},{},{})", c(v.x), c(v.y), c(v.z))
+                };
+                let _ = writeln!(out, "bounds: {} .. {}", f(lo), f(hi));
+            }
+            None => out.push_str("bounds: empty\n"),
+        }
+        out
+    }
+
     /// Calls `f(a, b, c, normals, material)` for every world-space triangle
     /// drawn, strokes first, then instances in placement order.
     pub fn for_each_triangle(&self, mut f: impl FnMut([Vec3; 3], [Vec3; 3], usize)) {

@@ -157,10 +157,15 @@ mod tests {
         assert_eq!(m.triangle_count(), 8);
         faces_agree_with_normals(&m);
         // area of one face = 3
-        let area: f32 = m.indices.chunks_exact(3).take(4).map(|t| {
-            let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
-            (b - a).cross(c - a).length() / 2.0
-        }).sum();
+        let area: f32 = m
+            .indices
+            .chunks_exact(3)
+            .take(4)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+                (b - a).cross(c - a).length() / 2.0
+            })
+            .sum();
         assert!((area - 3.0).abs() < 1e-5);
     }
 
@@ -174,7 +179,13 @@ mod tests {
     fn shapes_face_outward() {
         for kind in [ShapeKind::Sphere, ShapeKind::Disc, ShapeKind::Circle] {
             let mut m = TriMesh::default();
-            let s = Shape { kind, centre: Vec3::ONE, normal: Vec3::X, radius: 0.5, colour: 0 };
+            let s = Shape {
+                kind,
+                centre: Vec3::ONE,
+                normal: Vec3::X,
+                radius: 0.5,
+                colour: 0,
+            };
             shape(&s, 8, &mut m);
             assert!(!m.is_empty());
             faces_agree_with_normals(&m);

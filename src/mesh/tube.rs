@@ -81,11 +81,18 @@ fn piece(pts: &[TubePoint], sides: u32, mesh: &mut TriMesh) {
         }
     }
     // Flat caps, with their own vertices so that the rim shades sharply.
-    for (end, ring) in [(0usize, first_ring), (n - 1, first_ring + (n as u32 - 1) * sides)] {
+    for (end, ring) in [
+        (0usize, first_ring),
+        (n - 1, first_ring + (n as u32 - 1) * sides),
+    ] {
         if pts[end].radius <= 0.0 {
             continue;
         }
-        let normal = if end == 0 { -tangent(0) } else { tangent(n - 1) };
+        let normal = if end == 0 {
+            -tangent(0)
+        } else {
+            tangent(n - 1)
+        };
         let centre = mesh.vertex(pts[end].pos, normal);
         let rim = mesh.positions.len() as u32;
         for k in 0..sides {

@@ -1,6 +1,6 @@
 //! Turtle errors: a derived string the turtle cannot draw. Input: the
-//! offending module (its index in the string and its text); output: a
-//! diagnostic that says what to change.
+//! offending module (its 1-based position in the string and its text);
+//! output: a diagnostic that says what to change.
 
 use miette::Diagnostic;
 use thiserror::Error;
@@ -33,7 +33,7 @@ pub enum TurtleError {
     )]
     UnopenedPolygon { index: usize },
 
-    #[error("{count} polygon{} opened with `{{` never closed by `}}`", if *count == 1 { " is" } else { "s are" })]
+    #[error("{} opened with `{{` never closed by `}}`", if *count == 1 { "a polygon is".to_string() } else { format!("{count} polygons are") })]
     #[diagnostic(
         code(lsys::turtle::unclosed_polygon),
         help("close every polygon with `}}`; the first one was opened by module {first}")

@@ -53,7 +53,10 @@ impl TurtleOptions {
 enum Act {
     Nothing,
     /// `F` `f` `G` `g`: move; `draw` a tube; `vertex` adds a polygon vertex.
-    Move { draw: bool, vertex: bool },
+    Move {
+        draw: bool,
+        vertex: bool,
+    },
     Turn(f32),
     Pitch(f32),
     Roll(f32),
@@ -229,7 +232,7 @@ pub fn interpret(
         if act != Act::Nothing {
             if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
                 return Err(TurtleError::NonFinite {
-                    index: i,
+                    index: i + 1,
                     text: module_text(&program.symbols, sym, args),
                     symbol: program.symbols.name(sym).to_string(),
                     value: bad,
@@ -263,7 +266,7 @@ pub fn interpret(
     if let Some((first, _)) = t.polygons.first() {
         return Err(TurtleError::UnclosedPolygon {
             count: t.polygons.len(),
-            first: *first,
+            first: *first + 1,
         });
     }
     // Close generalized cylinders left open at the end of the string.
@@ -290,7 +293,13 @@ impl Turtle<'_> {
         args.first().map_or(self.opts.angle, |&a| a as f32)
     }
 
-    fn apply(&mut self, act: Act, sym: SymId, args: &[f64], index: usize) -> Result<(), TurtleError> {
+    fn apply(
+        &mut self,
+        act: Act,
+        sym: SymId,
+        args: &[f64],
+        index: usize,
+    ) -> Result<(), TurtleError> {
         use Act::*;
         let s = &mut self.state;
         match act {
@@ -324,7 +333,10 @@ impl Turtle<'_> {
                 self.state.cylinder = None;
             }
             Pop => {
-                self.state = self.stack.pop().ok_or(TurtleError::UnbalancedBracket { index })?;
+                self.state = self
+                    .stack
+                    .pop()
+                    .ok_or(TurtleError::UnbalancedBracket { index: index + 1 })?;
             }
             SetWidth => match args.first() {
                 Some(&w) => s.width = (w as f32).max(0.0),
@@ -360,7 +372,7 @@ impl Turtle<'_> {
                 let (_, mut points) = self
                     .polygons
                     .pop()
-                    .ok_or(TurtleError::UnopenedPolygon { index })?;
+                    .ok_or(TurtleError::UnopenedPolygon { index: index + 1 })?;
                 if points.len() > 1 && points[0].distance(points[points.len() - 1]) < 1e-6 {
                     points.pop();
                 }
@@ -388,7 +400,8 @@ impl Turtle<'_> {
                 s.chain = None;
             }
             SetHeading => {
-                let v = |k: usize| Vec3::new(args[k] as f32, args[k + 1] as f32, args[k + 2] as f32);
+                let v =
+                    |k: usize| Vec3::new(args[k] as f32, args[k + 1] as f32, args[k + 2] as f32);
                 let up = (args.len() >= 6).then(|| v(3));
                 s.frame.set_heading(v(0), up);
                 s.chain = None;
@@ -427,7 +440,7 @@ impl Turtle<'_> {
                 let d = args.first().map_or(1.0, |&a| a as f32);
                 if d == 0.0 {
                     return Err(TurtleError::ZeroScale {
-                        index,
+                        index: index + 1,
                         text: module_text(self.symbols, sym, args),
                     });
                 }
@@ -568,7 +581,7 @@ impl Turtle<'_> {
 }
 
 fn push_vertex(poly: &mut Vec<Vec3>, p: Vec3) {
-    if poly.last().is_none_or(|q| q.distance(p) > 1e-6) {
+    if poly.last().map_or(true, |q| q.distance(p) > 1e-6) {
         poly.push(p);
     }
 }

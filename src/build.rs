@@ -1,0 +1,98 @@
+//! The back half in one call: a compiled grammar -> derive -> homomorphism
+//! -> turtle -> meshes, timed per stage. The CLI's `build` and `render`,
+//! the tests and the REPL all go through here.
+
+use std::time::{Duration, Instant};
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::derive::{self, DepthWarning, DeriveError, DeriveOptions, ModuleStore};
+use crate::mesh::{self, ComponentSearch, MeshError, MeshOptions, Palette, Scene};
+use crate::pipeline::Compilation;
+use crate::turtle::{self, Drawing, TurtleError, TurtleOptions};
+
+/// Everything a build can be told besides the grammar.
+#[derive(Clone, Debug, Default)]
+pub struct BuildOptions {
+    /// Derivation steps; `None` takes the file's `derivation length:`.
+    pub steps: Option<u32>,
+    pub derive: DeriveOptions,
+    /// Command-line overrides of the file's `angle:`, `step:`, `width:`.
+    pub angle: Option<f64>,
+    pub step: Option<f64>,
+    pub width: Option<f64>,
+    pub components: ComponentSearch,
+    pub mesh: MeshOptions,
+}
+
+/// Wall-clock time per stage.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Timings {
+    pub derive: Duration,
+    pub interpret: Duration,
+    pub mesh: Duration,
+}
+
+/// A built model.
+pub struct Built {
+    pub scene: Scene,
+    /// The turtle's records, before meshing (tests print them).
+    pub drawing: Drawing,
+    /// Modules in the string the turtle read.
+    pub modules: usize,
+    pub timings: Timings,
+    /// Decomposition and homomorphism depth warnings.
+    pub warnings: Vec<DepthWarning>,
+}
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum BuildError {
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Derive(#[from] DeriveError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Turtle(#[from] TurtleError),
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Mesh(#[from] MeshError),
+}
+
+/// Derives, interprets and meshes `comp`.
+pub fn build(comp: &Compilation, opts: &BuildOptions) -> Result<Built, BuildError> {
+    let (program, compiled) = (&comp.program, &comp.compiled);
+    let t0 = Instant::now();
+    let steps = opts.steps.unwrap_or(program.derivation_length);
+    let mut d = derive::Derivation::new(program, compiled, opts.derive.clone())?;
+    for _ in 0..steps {
+        d.step()?;
+    }
+    let mut warnings = d.warnings().to_vec();
+    let interpreted: Option<ModuleStore> = if program.homomorphism.is_empty() {
+        None
+    } else {
+        let h = d.homomorphism()?;
+        warnings.extend(h.warnings);
+        Some(h.modules)
+    };
+    let string = interpreted.as_ref().unwrap_or(d.current());
+    let t1 = Instant::now();
+    let topts = TurtleOptions::new(&program.turtle, opts.angle, opts.step, opts.width);
+    let drawing = turtle::interpret(program, string, &topts)?;
+    let t2 = Instant::now();
+    let palette = Palette::new(&program.turtle.palette);
+    let scene = mesh::build_scene(program, &drawing, &palette, &opts.components, &opts.mesh)?;
+    let t3 = Instant::now();
+    Ok(Built {
+        scene,
+        drawing,
+        modules: string.len(),
+        timings: Timings {
+            derive: t1 - t0,
+            interpret: t2 - t1,
+            mesh: t3 - t2,
+        },
+        warnings,
+    })
+}

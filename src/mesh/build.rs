@@ -1,0 +1,182 @@
+//! Scene building: a turtle [`Drawing`] -> a [`Scene`]. Tubes, shapes and
+//! polygons are merged into one mesh per colour; each component is loaded
+//! once, on its first placement, and every placement becomes an instance.
+
+use std::collections::HashMap;
+
+use super::components::ComponentSearch;
+use super::error::MeshError;
+use super::palette::Palette;
+use super::scene::{Instance, Material, Scene, Stroke, TriMesh};
+use super::{shapes, tube};
+use crate::resolve::ir::{Program, SymId};
+use crate::turtle::Drawing;
+
+/// Meshing choices.
+#[derive(Clone, Debug)]
+pub struct MeshOptions {
+    /// Facets around tubes, spheres and discs.
+    pub sides: u32,
+    /// Refuse to build more triangles than this (as drawn, instances
+    /// counted in full).
+    pub max_triangles: usize,
+}
+
+impl Default for MeshOptions {
+    fn default() -> Self {
+        MeshOptions {
+            sides: 8,
+            max_triangles: 100_000_000,
+        }
+    }
+}
+
+struct Builder<'a> {
+    palette: &'a Palette,
+    scene: Scene,
+    /// Colour index -> material index.
+    colour_materials: HashMap<u32, usize>,
+    /// Material index -> index in `scene.strokes`.
+    stroke_of: HashMap<usize, usize>,
+}
+
+impl Builder<'_> {
+    fn material(&mut self, colour: u32) -> usize {
+        if let Some(&m) = self.colour_materials.get(&colour) {
+            return m;
+        }
+        let (name, rgb) = self.palette.colour(colour);
+        self.scene.materials.push(Material { name, rgb });
+        let m = self.scene.materials.len() - 1;
+        self.colour_materials.insert(colour, m);
+        m
+    }
+
+    fn stroke_mesh(&mut self, colour: u32) -> &mut TriMesh {
+        let material = self.material(colour);
+        let k = *self.stroke_of.entry(material).or_insert_with(|| {
+            self.scene.strokes.push(Stroke {
+                material,
+                mesh: TriMesh::default(),
+            });
+            self.scene.strokes.len() - 1
+        });
+        &mut self.scene.strokes[k].mesh
+    }
+}
+
+/// Builds the scene of `drawing`. Component symbols are named through
+/// `program` (for the file's spans in errors).
+pub fn build_scene(
+    program: &Program,
+    drawing: &Drawing,
+    palette: &Palette,
+    search: &ComponentSearch,
+    opts: &MeshOptions,
+) -> Result<Scene, MeshError> {
+    let mut b = Builder {
+        palette,
+        scene: Scene::default(),
+        colour_materials: HashMap::new(),
+        stroke_of: HashMap::new(),
+    };
+    let mut triangles = 0usize;
+    let mut check = |added: usize| {
+        triangles += added;
+        if triangles > opts.max_triangles {
+            Err(MeshError::TooManyTriangles {
+                limit: opts.max_triangles,
+                reached: triangles,
+            })
+        } else {
+            Ok(())
+        }
+    };
+    for c in &drawing.chains {
+        let mesh = b.stroke_mesh(c.colour);
+        let before = mesh.triangle_count();
+        tube::tube(c, opts.sides, mesh);
+        let added = mesh.triangle_count() - before;
+        check(added)?;
+    }
+    for s in &drawing.shapes {
+        let mesh = b.stroke_mesh(s.colour);
+        let before = mesh.triangle_count();
+        shapes::shape(s, opts.sides, mesh);
+        let added = mesh.triangle_count() - before;
+        check(added)?;
+    }
+    for p in &drawing.polygons {
+        let mesh = b.stroke_mesh(p.colour);
+        let before = mesh.triangle_count();
+        shapes::polygon(&p.points, mesh);
+        let added = mesh.triangle_count() - before;
+        check(added)?;
+    }
+    // Symbol -> component index, loaded on first placement.
+    let mut loaded: HashMap<SymId, usize> = HashMap::new();
+    let mut numbers: Vec<u32> = Vec::new();
+    for p in &drawing.placements {
+        let component = match loaded.get(&p.symbol) {
+            Some(&c) => c,
+            None => {
+                let symbol = &program.symbols.list[p.symbol as usize];
+                let name = symbol.name.trim_start_matches('~');
+                let c = match search.load(name, &mut b.scene.materials) {
+                    Ok(c) => c?,
+                    Err(searched) => {
+                        return Err(missing(program, p.symbol, name, &searched));
+                    }
+                };
+                b.scene.components.push(c);
+                numbers.push(0);
+                let index = b.scene.components.len() - 1;
+                loaded.insert(p.symbol, index);
+                index
+            }
+        };
+        check(b.scene.components[component].triangle_count())?;
+        let material = b.material(p.colour);
+        b.scene.instances.push(Instance {
+            component,
+            transform: p.transform,
+            material,
+            number: numbers[component],
+        });
+        numbers[component] += 1;
+    }
+    Ok(b.scene)
+}
+
+fn missing(
+    program: &Program,
+    sym: SymId,
+    name: &str,
+    searched: &[std::path::PathBuf],
+) -> MeshError {
+    let symbol = &program.symbols.list[sym as usize];
+    let mut places: Vec<String> = searched
+        .iter()
+        .map(|p| format!("  {}", p.display()))
+        .collect();
+    places.push("  the built-in components".to_string());
+    let builtin: Vec<&str> = crate::stdlib::COMPONENTS.iter().map(|(n, _)| *n).collect();
+    let (src, span) = match symbol.span {
+        Some(s) => (program.sources.named_source(s), Some(s.into())),
+        None => (
+            miette::NamedSource::new("", std::sync::Arc::new(String::new())),
+            None,
+        ),
+    };
+    MeshError::MissingComponent(Box::new(super::error::MissingComponent {
+        name: name.to_string(),
+        searched: places.join("\n"),
+        builtin: if builtin.is_empty() {
+            "none yet".to_string()
+        } else {
+            builtin.join(", ")
+        },
+        src,
+        span,
+    }))
+}

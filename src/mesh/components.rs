@@ -1,0 +1,286 @@
+//! Components: a `~X` symbol -> its model, found beside the grammar, in
+//! `--components` directories or in the built-in set, read with tobj and
+//! normalised to the unit box (1×1×1, centred at the origin), as the paper
+//! defines components.
+
+use std::io::BufReader;
+use std::path::{Path, PathBuf};
+
+use glam::Vec3;
+
+use super::error::MeshError;
+use super::scene::{Component, Material, Part, TriMesh};
+use crate::stdlib;
+
+/// Where components are looked for, in order.
+#[derive(Clone, Debug, Default)]
+pub struct ComponentSearch {
+    /// The grammar file's directory: `components/X.obj` beside it.
+    pub grammar_dir: Option<PathBuf>,
+    /// `--components DIR`, in the order given.
+    pub dirs: Vec<PathBuf>,
+}
+
+/// Where a component's OBJ text came from.
+enum Found {
+    File(PathBuf),
+    BuiltIn(&'static str),
+}
+
+impl ComponentSearch {
+    /// The files tried for `name`, in order.
+    fn candidates(&self, name: &str) -> Vec<PathBuf> {
+        let file = format!("{name}.obj");
+        self.grammar_dir
+            .iter()
+            .map(|d| d.join("components"))
+            .chain(self.dirs.iter().cloned())
+            .map(|d| d.join(&file))
+            .collect()
+    }
+
+    fn find(&self, name: &str) -> Result<Found, Vec<PathBuf>> {
+        let candidates = self.candidates(name);
+        if let Some(p) = candidates.iter().find(|p| p.is_file()) {
+            return Ok(Found::File(p.clone()));
+        }
+        stdlib::component(name)
+            .map(Found::BuiltIn)
+            .ok_or(candidates)
+    }
+
+    /// Loads component `name` (without the `~`). `Err(searched)` lists the
+    /// places tried when it is nowhere; materials of its `.mtl` are added
+    /// to `materials`.
+    pub fn load(
+        &self,
+        name: &str,
+        materials: &mut Vec<Material>,
+    ) -> Result<Result<Component, MeshError>, Vec<PathBuf>> {
+        Ok(match self.find(name)? {
+            Found::File(path) => match std::fs::read(&path) {
+                Ok(bytes) => parse_obj(
+                    name,
+                    &bytes,
+                    &path.display().to_string(),
+                    path.parent(),
+                    materials,
+                ),
+                Err(cause) => Err(MeshError::ComponentIo {
+                    name: name.to_string(),
+                    path: path.display().to_string(),
+                    cause,
+                }),
+            },
+            Found::BuiltIn(text) => parse_obj(name, text.as_bytes(), "built-in", None, materials),
+        })
+    }
+}
+
+/// Reads an OBJ model (and the `.mtl` files it names, from `dir`) into a
+/// component normalised to the unit box.
+pub fn parse_obj(
+    name: &str,
+    bytes: &[u8],
+    origin: &str,
+    dir: Option<&Path>,
+    materials: &mut Vec<Material>,
+) -> Result<Component, MeshError> {
+    let bad = |reason: String| MeshError::BadComponent {
+        name: name.to_string(),
+        path: origin.to_string(),
+        reason,
+    };
+    let opts = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let (models, mtl) = tobj::load_obj_buf(&mut BufReader::new(bytes), &opts, |mtl_path| {
+        let Some(dir) = dir else {
+            return Err(tobj::LoadError::OpenFileFailed);
+        };
+        let text =
+            std::fs::read(dir.join(mtl_path)).map_err(|_| tobj::LoadError::OpenFileFailed)?;
+        tobj::load_mtl_buf(&mut BufReader::new(text.as_slice()))
+    })
+    .map_err(|e| bad(locate_obj_error(bytes, e)))?;
+    // A missing or broken .mtl only loses colours: the parts then take the
+    // turtle's colour, which is what a model without materials gets anyway.
+    let mtl = mtl.unwrap_or_default();
+    let first_material = materials.len();
+    for m in &mtl {
+        let rgb = m.diffuse.unwrap_or([0.8, 0.8, 0.8]);
+        materials.push(Material {
+            name: format!("{name}/{}", m.name),
+            rgb: rgb.map(|c| c.clamp(0.0, 1.0)),
+        });
+    }
+    let mut parts = Vec::new();
+    for model in &models {
+        let m = &model.mesh;
+        if m.indices.is_empty() {
+            continue;
+        }
+        let pos: Vec<Vec3> = m
+            .positions
+            .chunks_exact(3)
+            .map(|p| Vec3::new(p[0], p[1], p[2]))
+            .collect();
+        if let Some(bad_pos) = pos.iter().find(|p| !p.is_finite()) {
+            return Err(bad(format!(
+                "a vertex has a coordinate that is not a number ({bad_pos})"
+            )));
+        }
+        let mut mesh = TriMesh::default();
+        if m.normals.len() == m.positions.len() {
+            mesh.positions = pos;
+            mesh.normals = m
+                .normals
+                .chunks_exact(3)
+                .map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or(Vec3::Y))
+                .collect();
+            mesh.indices = m.indices.clone();
+        } else {
+            // No normals in the file: give each triangle its own flat ones.
+            for t in m.indices.chunks_exact(3) {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| pos[i as usize]);
+                let n = (b - a).cross(c - a).normalize_or(Vec3::Y);
+                let i = mesh.vertex(a, n);
+                mesh.vertex(b, n);
+                mesh.vertex(c, n);
+                mesh.triangle(i, i + 1, i + 2);
+            }
+        }
+        parts.push(Part {
+            mesh,
+            material: m
+                .material_id
+                .filter(|&i| i < mtl.len())
+                .map(|i| first_material + i),
+        });
+    }
+    if parts.is_empty() {
+        return Err(bad("it has no faces (`f` lines)".to_string()));
+    }
+    normalise(&mut parts);
+    Ok(Component {
+        name: name.to_string(),
+        parts,
+        origin: origin.to_string(),
+    })
+}
+
+/// Centres the parts at the origin and scales each axis to extent 1. An
+/// axis with no extent (a flat model) stays flat.
+fn normalise(parts: &mut [Part]) {
+    let Some((lo, hi)) =
+        super::scene::bounds_of(parts.iter().flat_map(|p| p.mesh.positions.iter().copied()))
+    else {
+        return;
+    };
+    let extent = hi - lo;
+    let centre = (lo + hi) * 0.5;
+    let scale = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent.recip(), Vec3::ONE);
+    for p in parts {
+        for v in &mut p.mesh.positions {
+            *v = (*v - centre) * scale;
+        }
+        // Normals scale by the inverse: multiply by the extent.
+        let inv = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent, Vec3::ONE);
+        for n in &mut p.mesh.normals {
+            *n = (*n * inv).normalize_or(*n);
+        }
+    }
+}
+
+/// tobj's errors carry no position; find the offending line ourselves for
+/// the errors users meet (faces that point past the vertex list).
+fn locate_obj_error(bytes: &[u8], e: tobj::LoadError) -> String {
+    let text = String::from_utf8_lossy(bytes);
+    if e == tobj::LoadError::FaceVertexOutOfBounds {
+        let mut vertices = 0i64;
+        for (n, line) in text.lines().enumerate() {
+            let mut words = line.split_whitespace();
+            match words.next() {
+                Some("v") => vertices += 1,
+                Some("f") => {
+                    for w in words {
+                        let Some(Ok(i)) = w.split('/').next().map(str::parse::<i64>) else {
+                            continue;
+                        };
+                        let ok = if i > 0 {
+                            i <= vertices
+                        } else {
+                            i < 0 && -i <= vertices
+                        };
+                        if !ok {
+                            return format!(
+                                "line {}: face `{}` refers to vertex {i}, but only {vertices} vertices come before it",
+                                n + 1,
+                                line.trim()
+                            );
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    format!("{e}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TETRA: &str = "v 0 0 0\nv 2 0 0\nv 0 4 0\nv 0 0 8\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+
+    #[test]
+    fn obj_is_normalised_to_the_unit_box() {
+        let c = parse_obj("T", TETRA.as_bytes(), "t.obj", None, &mut Vec::new()).unwrap();
+        let (lo, hi) = c.parts[0].mesh.bounds().unwrap();
+        assert_eq!(lo, Vec3::splat(-0.5));
+        assert_eq!(hi, Vec3::splat(0.5));
+        assert_eq!(c.triangle_count(), 4);
+        // flat normals were computed: unit length
+        assert!(c.parts[0]
+            .mesh
+            .normals
+            .iter()
+            .all(|n| (n.length() - 1.0).abs() < 1e-5));
+    }
+
+    #[test]
+    fn broken_face_names_the_line() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
+        let e = parse_obj("B", text.as_bytes(), "b.obj", None, &mut Vec::new()).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.contains("line 5") && msg.contains("vertex 9"), "{msg}");
+    }
+
+    #[test]
+    fn model_without_faces_is_refused() {
+        let e = parse_obj("E", b"v 0 0 0\n", "e.obj", None, &mut Vec::new()).unwrap_err();
+        assert!(e.to_string().contains("no faces"));
+    }
+
+    #[test]
+    fn search_lists_every_place_tried() {
+        let s = ComponentSearch {
+            grammar_dir: Some(PathBuf::from("/nowhere/g")),
+            dirs: vec![PathBuf::from("/nowhere/extra")],
+        };
+        let Err(tried) = s.load("Nope", &mut Vec::new()) else {
+            panic!("found a component that does not exist");
+        };
+        assert_eq!(
+            tried,
+            vec![
+                PathBuf::from("/nowhere/g/components/Nope.obj"),
+                PathBuf::from("/nowhere/extra/Nope.obj")
+            ]
+        );
+    }
+}

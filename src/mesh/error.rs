@@ -1,0 +1,61 @@
+//! Mesh errors: components that cannot be found or read, and meshes too
+//! large to build. Input: a component symbol or file; output: a diagnostic
+//! naming the symbol, its span, and every place searched.
+
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
+use thiserror::Error;
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum MeshError {
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    MissingComponent(Box<MissingComponent>),
+
+    #[error("cannot read component `~{name}` from {path}: {cause}")]
+    #[diagnostic(
+        code(lsys::mesh::component_io),
+        help("check that the file is readable")
+    )]
+    ComponentIo {
+        name: String,
+        path: String,
+        cause: std::io::Error,
+    },
+
+    #[error("component `~{name}` in {path} is not a usable OBJ model: {reason}")]
+    #[diagnostic(
+        code(lsys::mesh::bad_component),
+        help("open the file in a modelling program and export it again as a triangulated Wavefront OBJ with faces (`f` lines) whose indices point at existing vertices")
+    )]
+    BadComponent {
+        name: String,
+        path: String,
+        reason: String,
+    },
+
+    #[error("the model would have more than {limit} triangles (reached {reached})")]
+    #[diagnostic(
+        code(lsys::mesh::too_many_triangles),
+        help("derive fewer steps, or raise the limit with `--max-triangles N`")
+    )]
+    TooManyTriangles { limit: usize, reached: usize },
+}
+
+/// A placed component that is nowhere to be found.
+#[derive(Debug, Error, Diagnostic)]
+#[error("component `~{name}` not found")]
+#[diagnostic(
+    code(lsys::mesh::missing_component),
+    help("looked in:\n{searched}\nput `{name}.obj` in one of these places, pass `--components DIR`, or use a built-in component ({builtin})")
+)]
+pub struct MissingComponent {
+    pub name: String,
+    pub searched: String,
+    pub builtin: String,
+    #[source_code]
+    pub src: NamedSource<Arc<String>>,
+    #[label("placed here")]
+    pub span: Option<SourceSpan>,
+}
