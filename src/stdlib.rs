@@ -26,7 +26,21 @@ pub fn names() -> Vec<&'static str> {
 
 /// (name, OBJ text) of every built-in component model, from
 /// `grammar/std/components/` (written by `scripts/make_components.py`).
-pub const COMPONENTS: &[(&str, &str)] = &[];
+pub const COMPONENTS: &[(&str, &str)] = &[
+    ("MAL", include_str!("../grammar/std/components/MAL.obj")),
+    ("MAO", include_str!("../grammar/std/components/MAO.obj")),
+    ("MAn", include_str!("../grammar/std/components/MAn.obj")),
+    ("MBP", include_str!("../grammar/std/components/MBP.obj")),
+    ("MCa", include_str!("../grammar/std/components/MCa.obj")),
+    ("MFB", include_str!("../grammar/std/components/MFB.obj")),
+    ("MIB", include_str!("../grammar/std/components/MIB.obj")),
+    ("ML", include_str!("../grammar/std/components/ML.obj")),
+    ("MNo", include_str!("../grammar/std/components/MNo.obj")),
+    ("MP", include_str!("../grammar/std/components/MP.obj")),
+    ("MPB", include_str!("../grammar/std/components/MPB.obj")),
+    ("MQ", include_str!("../grammar/std/components/MQ.obj")),
+    ("MY", include_str!("../grammar/std/components/MY.obj")),
+];
 
 /// The OBJ text of the built-in component `name` (without `~`).
 pub fn component(name: &str) -> Option<&'static str> {

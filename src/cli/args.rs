@@ -34,6 +34,10 @@ pub enum Command {
     Derive(DeriveArgs),
     /// Print the bytecode the grammar compiles to.
     Disasm(Common),
+    /// Build a model: derive, run the turtle, write .glb, .gltf, .obj or .png.
+    Build(BuildArgs),
+    /// Render a picture of the model to PNG (a software renderer; no GPU needed).
+    Render(RenderArgs),
 }
 
 #[derive(Args, Debug)]
@@ -45,31 +49,126 @@ pub struct Common {
     pub define: Vec<(String, String)>,
 }
 
+/// How far and how to derive (shared by `derive`, `build` and `render`).
 #[derive(Args, Debug)]
-pub struct DeriveArgs {
-    #[command(flatten)]
-    pub common: Common,
+pub struct DeriveRun {
     /// Derivation steps (default: the file's `derivation length:`).
     #[arg(short = 'n', long = "steps", value_name = "STEPS")]
     pub steps: Option<u32>,
     /// Seed of the random generator, 0 to 4294967295 (overrides the file's `seed:`).
     #[arg(long, value_parser = clap::value_parser!(u64).range(..=u32::MAX as u64))]
     pub seed: Option<u64>,
-    /// Print the string after every step, one line per step, from the axiom.
-    #[arg(long)]
-    pub every: bool,
-    /// Print the string after the homomorphism (what the turtle draws).
-    #[arg(long)]
-    pub homomorphism: bool,
     /// Stop with an error when a string would exceed this many modules.
     #[arg(long, value_name = "N", default_value_t = 50_000_000)]
     pub max_modules: usize,
     /// Stop with an error when a string would hold more parameter values than this.
     #[arg(long, value_name = "N", default_value_t = 200_000_000)]
     pub max_params: usize,
+}
+
+#[derive(Args, Debug)]
+pub struct DeriveArgs {
+    #[command(flatten)]
+    pub common: Common,
+    #[command(flatten)]
+    pub run: DeriveRun,
+    /// Print the string after every step, one line per step, from the axiom.
+    #[arg(long)]
+    pub every: bool,
+    /// Print the string after the homomorphism (what the turtle draws).
+    #[arg(long)]
+    pub homomorphism: bool,
     /// Write the string here instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,
+}
+
+/// What turns a derived string into a model (shared by `build` and `render`).
+#[derive(Args, Debug)]
+pub struct ModelArgs {
+    #[command(flatten)]
+    pub common: Common,
+    #[command(flatten)]
+    pub run: DeriveRun,
+    /// Default turning angle in degrees (overrides the file's `angle:`; default 90).
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    pub angle: Option<f64>,
+    /// Default step length (overrides the file's `step:`; default 1).
+    #[arg(long, value_name = "D")]
+    pub step: Option<f64>,
+    /// Initial line width, the tube diameter (overrides the file's `width:`; default 0.1).
+    #[arg(long, value_name = "W")]
+    pub width: Option<f64>,
+    /// Also look for components (NAME.obj) in this directory (repeatable; after `components/` beside the grammar).
+    #[arg(long = "components", value_name = "DIR")]
+    pub components: Vec<PathBuf>,
+    /// Facets around tubes, spheres and discs (3 to 64).
+    #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(3..=64))]
+    pub facets: u32,
+    /// Stop with an error when the model would have more triangles than this.
+    #[arg(long, value_name = "N", default_value_t = 100_000_000)]
+    pub max_triangles: usize,
+    /// Print statistics as JSON to standard output (modules, instances, vertices, triangles, bounds, timings).
+    #[arg(long)]
+    pub stats: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct BuildArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// The model to write; the extension picks the format: .glb, .gltf, .obj (+ .mtl beside it) or .png (a picture).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub model: ModelArgs,
+    /// The picture to write (.png).
+    #[arg(short = 'o', long = "output", value_name = "FILE.png")]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+/// How a picture is taken.
+#[derive(Args, Debug)]
+pub struct PictureArgs {
+    /// Where the camera looks from.
+    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
+    pub view: ViewArg,
+    /// Picture size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = parse_size)]
+    pub size: (u32, u32),
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum ViewArg {
+    /// From +z, looking at the front (x right, y up).
+    Front,
+    /// From +x.
+    Side,
+    /// From above.
+    Top,
+    /// From the front right, above.
+    Iso,
+}
+
+fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("`{s}` is not WIDTHxHEIGHT (e.g. 1024x768)");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (u32, u32) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(format!("`{s}`: each side must be 1 to 16384 pixels"));
+    }
+    Ok((w, h))
 }
 
 fn parse_define(s: &str) -> Result<(String, String), String> {

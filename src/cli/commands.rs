@@ -23,16 +23,18 @@ pub fn run(cmd: &Command, color: bool) -> i32 {
             }),
             Err(code) => code,
         },
+        Command::Build(b) => super::model::build_cmd(b, color),
+        Command::Render(r) => super::model::render_cmd(r, color),
     }
 }
 
-fn report(d: &dyn Diagnostic, color: bool) {
+pub(super) fn report(d: &dyn Diagnostic, color: bool) {
     eprint!("{}", crate::diag::render(d, color));
 }
 
 /// Compiles, printing warnings; on failure prints every diagnostic and
 /// returns the exit code.
-fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
+pub(super) fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
     let opts = Options {
         defines: c.define.clone(),
     };
@@ -95,11 +97,11 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
     };
     let (program, compiled) = (&comp.program, &comp.compiled);
     let opts = DeriveOptions {
-        seed: d.seed,
-        max_modules: d.max_modules,
-        max_params: d.max_params,
+        seed: d.run.seed,
+        max_modules: d.run.max_modules,
+        max_params: d.run.max_params,
     };
-    let steps = d.steps.unwrap_or(program.derivation_length);
+    let steps = d.run.steps.unwrap_or(program.derivation_length);
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {
         let line = |s: &ModuleStore, step: u32, mut out: &mut dyn Write| -> Result<(), Outcome> {
             let shown = if d.homomorphism {

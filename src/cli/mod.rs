@@ -4,6 +4,7 @@
 
 mod args;
 mod commands;
+mod model;
 
 use std::io::IsTerminal;
 

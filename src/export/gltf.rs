@@ -1,0 +1,651 @@
+//! glTF 2.0 export: a [`Scene`] -> the bytes of a binary `.glb` ([`to_glb`])
+//! or of a self-contained `.gltf` whose buffer is a base64 data URI
+//! ([`to_gltf`]). Each component becomes one glTF mesh shared by all its
+//! placements (one node each, named `<symbol>#<n>`, with its transform as a
+//! matrix); all strokes become one mesh with a primitive per material in a
+//! node named `strokes`.
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+
+use glam::{Mat3, Mat4, Vec3, Vec4};
+use gltf_json as json;
+use json::accessor::{ComponentType, GenericComponentType, Type};
+use json::buffer::Target;
+use json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};
+use json::mesh::{Mode, Primitive, Semantic};
+use json::validation::Checked::Valid;
+use json::{Accessor, Index};
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::mesh::{Instance, Scene, TriMesh};
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum ExportError {
+    #[error("the model is too large for {format}: {bytes} bytes, at most {limit} are possible")]
+    #[diagnostic(
+        code(lsys::export::too_large),
+        help("derive fewer steps, use coarser tubes, or export OBJ instead")
+    )]
+    TooLarge {
+        format: &'static str,
+        bytes: u64,
+        limit: u64,
+    },
+
+    #[error("cannot export {name}: {detail}")]
+    #[diagnostic(
+        code(lsys::export::invalid_geometry),
+        help("this is a bug in lsys: the scene it built is inconsistent; please report it")
+    )]
+    InvalidGeometry { name: String, detail: String },
+
+    #[error("cannot encode the glTF document: {0}")]
+    #[diagnostic(code(lsys::export::json))]
+    Json(#[from] serde_json::Error),
+
+    #[error("cannot write the model: {0}")]
+    #[diagnostic(code(lsys::export::io))]
+    Io(#[from] std::io::Error),
+}
+
+/// The scene as a binary glTF (`.glb`) file.
+pub fn to_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
+    let (root, bin) = build(scene)?;
+    let json = json::serialize::to_vec(&root)?;
+    // GLB lengths are u32: header 12, chunk headers 8 each, chunks padded to 4.
+    let length = 12 + 8 + padded(json.len()) + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    if length as u64 > u64::from(u32::MAX) {
+        return Err(ExportError::TooLarge {
+            format: "GLB",
+            bytes: length as u64,
+            limit: u32::MAX.into(),
+        });
+    }
+    let glb = gltf::binary::Glb {
+        header: gltf::binary::Header {
+            magic: *b"glTF",
+            version: 2,
+            length: length as u32,
+        },
+        json: Cow::Owned(json),
+        // An empty scene has no buffer, and then no BIN chunk either.
+        bin: (!bin.is_empty()).then_some(Cow::Owned(bin)),
+    };
+    glb.to_vec()
+        .map_err(|e| ExportError::Io(std::io::Error::other(e.to_string())))
+}
+
+/// The scene as one self-contained `.gltf` JSON file (buffer as data URI).
+pub fn to_gltf(scene: &Scene) -> Result<Vec<u8>, ExportError> {
+    let (mut root, bin) = build(scene)?;
+    if let Some(buffer) = root.buffers.first_mut() {
+        buffer.uri = Some(format!(
+            "data:application/octet-stream;base64,{}",
+            base64(&bin)
+        ));
+    }
+    Ok(json::serialize::to_vec_pretty(&root)?)
+}
+
+fn padded(n: usize) -> usize {
+    n.div_ceil(4) * 4
+}
+
+/// The document and its binary buffer (padded to 4 bytes; empty when the
+/// scene draws nothing, and then the document has no buffer).
+fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError> {
+    let mut b = Builder {
+        scene,
+        root: json::Root::default(),
+        bin: Vec::new(),
+        materials: vec![None; scene.materials.len()],
+        parts: HashMap::new(),
+        meshes: HashMap::new(),
+    };
+    let mut nodes = Vec::new();
+    nodes.extend(b.strokes()?);
+    for instance in &scene.instances {
+        nodes.push(b.instance(instance)?);
+    }
+    let mut root = b.root;
+    if nodes.is_empty() {
+        // glTF forbids an empty `nodes` list and lets a scene omit it, but
+        // readers built on gltf-json (the `gltf` crate, Bevy) require the
+        // field; one empty node keeps an empty model loadable everywhere.
+        nodes.push(root.push(json::Node {
+            name: Some("empty".into()),
+            ..Default::default()
+        }));
+    }
+    let mut bin = b.bin;
+    bin.resize(padded(bin.len()), 0);
+    if !bin.is_empty() {
+        root.push(json::Buffer {
+            byte_length: bin.len().into(),
+            name: None,
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+    }
+    root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        name: None,
+        nodes,
+    });
+    root.scene = Some(Index::new(0));
+    root.asset = json::Asset {
+        generator: Some(format!("lsys {}", env!("CARGO_PKG_VERSION"))),
+        ..Default::default()
+    };
+    Ok((root, bin))
+}
+
+/// The accessors of one triangle mesh written to the buffer.
+#[derive(Clone, Copy)]
+struct Geometry {
+    positions: Index<Accessor>,
+    normals: Index<Accessor>,
+    indices: Index<Accessor>,
+}
+
+struct Builder<'s> {
+    scene: &'s Scene,
+    root: json::Root,
+    bin: Vec<u8>,
+    /// glTF material per scene material, created on first use so that unused
+    /// colours do not clutter the file.
+    materials: Vec<Option<Index<json::Material>>>,
+    /// Per (component, part), its geometry (None: empty part), written once
+    /// however many meshes and placements use it.
+    parts: HashMap<(usize, usize), Option<Geometry>>,
+    /// Per (component, placement material when some part takes it), the
+    /// shared mesh (None: the component draws nothing).
+    meshes: HashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
+}
+
+impl Builder<'_> {
+    fn strokes(&mut self) -> Result<Option<Index<json::Node>>, ExportError> {
+        let scene = self.scene;
+        let mut primitives = Vec::new();
+        for stroke in &scene.strokes {
+            if let Some(g) = self.geometry("the strokes", &stroke.mesh, None)? {
+                primitives.push(self.primitive(g, stroke.material)?);
+            }
+        }
+        if primitives.is_empty() {
+            return Ok(None);
+        }
+        let mesh = self.mesh("strokes".into(), primitives);
+        Ok(Some(self.root.push(json::Node {
+            mesh: Some(mesh),
+            name: Some("strokes".into()),
+            ..Default::default()
+        })))
+    }
+
+    fn instance(&mut self, instance: &Instance) -> Result<Index<json::Node>, ExportError> {
+        let component = &self.scene.components[instance.component];
+        let name = format!("{}#{}", component.name, instance.number);
+        let (mesh, matrix) = match placement(instance.transform) {
+            Placement::Matrix(matrix) => (self.shared_mesh(instance)?, matrix),
+            Placement::Bake => {
+                let primitives = self.primitives(instance, Some(&name))?;
+                let mesh = (!primitives.is_empty()).then(|| self.mesh(name.clone(), primitives));
+                (mesh, None)
+            }
+            Placement::Invalid => {
+                return Err(ExportError::InvalidGeometry {
+                    name,
+                    detail: "the placement transform is not finite".into(),
+                })
+            }
+        };
+        Ok(self.root.push(json::Node {
+            matrix,
+            mesh,
+            name: Some(name),
+            ..Default::default()
+        }))
+    }
+
+    /// The mesh every placement of the component with this material shares.
+    fn shared_mesh(
+        &mut self,
+        instance: &Instance,
+    ) -> Result<Option<Index<json::Mesh>>, ExportError> {
+        // A copy of the reference, so that borrows of the scene do not hold `self`.
+        let scene = self.scene;
+        let component = &scene.components[instance.component];
+        let colour = component
+            .uses_placement_colour()
+            .then_some(instance.material);
+        let key = (instance.component, colour);
+        if let Some(&mesh) = self.meshes.get(&key) {
+            return Ok(mesh);
+        }
+        let primitives = self.primitives(instance, None)?;
+        let mesh = (!primitives.is_empty()).then(|| {
+            let name = match colour {
+                Some(m) => {
+                    let colour = scene.materials.get(m).map_or("?", |m| m.name.as_str());
+                    format!("{}/{colour}", component.name)
+                }
+                None => component.name.clone(),
+            };
+            self.mesh(name, primitives)
+        });
+        self.meshes.insert(key, mesh);
+        Ok(mesh)
+    }
+
+    /// One primitive per non-empty part of the placed component: with the
+    /// component's shared geometry, or, for a placement named `baked`, with
+    /// geometry of its own transformed here (glTF cannot hold its transform
+    /// as a node matrix).
+    fn primitives(
+        &mut self,
+        instance: &Instance,
+        baked: Option<&str>,
+    ) -> Result<Vec<Primitive>, ExportError> {
+        let scene = self.scene;
+        let component = &scene.components[instance.component];
+        let mut primitives = Vec::new();
+        for (i, part) in component.parts.iter().enumerate() {
+            let geometry = match baked {
+                Some(name) => self.geometry(name, &part.mesh, Some(instance.transform))?,
+                None => match self.parts.get(&(instance.component, i)) {
+                    Some(&done) => done,
+                    None => {
+                        let g = self.geometry(&component.name, &part.mesh, None)?;
+                        self.parts.insert((instance.component, i), g);
+                        g
+                    }
+                },
+            };
+            if let Some(g) = geometry {
+                let material = part.material.unwrap_or(instance.material);
+                primitives.push(self.primitive(g, material)?);
+            }
+        }
+        Ok(primitives)
+    }
+
+    fn mesh(&mut self, name: String, primitives: Vec<Primitive>) -> Index<json::Mesh> {
+        self.root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            name: Some(name),
+            primitives,
+            weights: None,
+        })
+    }
+
+    fn primitive(&mut self, g: Geometry, material: usize) -> Result<Primitive, ExportError> {
+        Ok(Primitive {
+            attributes: [
+                (Valid(Semantic::Positions), g.positions),
+                (Valid(Semantic::Normals), g.normals),
+            ]
+            .into(),
+            extensions: None,
+            extras: Default::default(),
+            indices: Some(g.indices),
+            material: Some(self.material(material)?),
+            mode: Valid(Mode::Triangles),
+            targets: None,
+        })
+    }
+
+    fn material(&mut self, index: usize) -> Result<Index<json::Material>, ExportError> {
+        let scene = self.scene;
+        let Some(m) = scene.materials.get(index) else {
+            return Err(ExportError::InvalidGeometry {
+                name: format!("material {index}"),
+                detail: format!("the scene has {} materials", scene.materials.len()),
+            });
+        };
+        if let Some(done) = self.materials[index] {
+            return Ok(done);
+        }
+        let [r, g, b] = m.rgb.map(srgb_to_linear);
+        let done = self.root.push(json::Material {
+            name: Some(m.name.clone()),
+            double_sided: false,
+            pbr_metallic_roughness: PbrMetallicRoughness {
+                base_color_factor: PbrBaseColorFactor([r, g, b, 1.0]),
+                metallic_factor: StrengthFactor(0.0),
+                roughness_factor: StrengthFactor(0.8),
+                ..Default::default()
+            },
+            ..Default::default()
+        });
+        self.materials[index] = Some(done);
+        Ok(done)
+    }
+
+    /// Writes positions, unit normals and indices of `mesh`, transformed by
+    /// `bake` if given; `None` for a mesh without triangles (glTF forbids
+    /// empty primitives).
+    fn geometry(
+        &mut self,
+        name: &str,
+        mesh: &TriMesh,
+        bake: Option<Mat4>,
+    ) -> Result<Option<Geometry>, ExportError> {
+        check(name, mesh)?;
+        if mesh.is_empty() {
+            return Ok(None);
+        }
+        let transform = bake.unwrap_or(Mat4::IDENTITY);
+        let n = mesh.positions.len();
+
+        let start = self.align();
+        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for &p in &mesh.positions {
+            let p = transform.transform_point3(p);
+            if !p.is_finite() {
+                return Err(ExportError::InvalidGeometry {
+                    name: name.into(),
+                    detail: "a vertex position is not finite".into(),
+                });
+            }
+            (lo, hi) = (lo.min(p), hi.max(p));
+            self.put_vec3(p);
+        }
+        let view = self.view(start, Target::ArrayBuffer);
+        let positions = self.accessor(view, n, ComponentType::F32, Type::Vec3, Some((lo, hi)));
+
+        let mut normals = Vec::new();
+        unit_normals(mesh, Mat3::from_mat4(transform), &mut normals);
+        let start = self.align();
+        for &v in &normals {
+            self.put_vec3(v);
+        }
+        let view = self.view(start, Target::ArrayBuffer);
+        let normals = self.accessor(view, n, ComponentType::F32, Type::Vec3, None);
+
+        // A mirroring transform turns counter-clockwise triangles clockwise;
+        // swap two corners to keep the front faces in front. (A node matrix
+        // needs no such care: glTF viewers flip the winding themselves.)
+        let flip = transform.determinant() < 0.0;
+        // u16 when it fits: 65535 is the primitive restart value, never an index.
+        let small = n <= usize::from(u16::MAX);
+        let start = self.align();
+        for t in mesh.indices.chunks_exact(3) {
+            let t = if flip {
+                [t[0], t[2], t[1]]
+            } else {
+                [t[0], t[1], t[2]]
+            };
+            for i in t {
+                if small {
+                    self.bin.extend_from_slice(&(i as u16).to_le_bytes());
+                } else {
+                    self.bin.extend_from_slice(&i.to_le_bytes());
+                }
+            }
+        }
+        let view = self.view(start, Target::ElementArrayBuffer);
+        let kind = if small {
+            ComponentType::U16
+        } else {
+            ComponentType::U32
+        };
+        let indices = self.accessor(view, mesh.indices.len(), kind, Type::Scalar, None);
+        Ok(Some(Geometry {
+            positions,
+            normals,
+            indices,
+        }))
+    }
+
+    /// Pads the buffer so that the next view starts 4-byte aligned (every
+    /// accessor's components must be aligned to their size).
+    fn align(&mut self) -> usize {
+        self.bin.resize(padded(self.bin.len()), 0);
+        self.bin.len()
+    }
+
+    fn put_vec3(&mut self, v: Vec3) {
+        for c in v.to_array() {
+            self.bin.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+
+    /// A view of the bytes written since `start`. Each accessor has a view of
+    /// its own, tightly packed, so no byteStride is needed.
+    fn view(&mut self, start: usize, target: Target) -> Index<json::buffer::View> {
+        self.root.push(json::buffer::View {
+            buffer: Index::new(0),
+            byte_length: (self.bin.len() - start).into(),
+            byte_offset: Some(start.into()),
+            byte_stride: None,
+            name: None,
+            target: Some(Valid(target)),
+            extensions: None,
+            extras: Default::default(),
+        })
+    }
+
+    fn accessor(
+        &mut self,
+        view: Index<json::buffer::View>,
+        count: usize,
+        component: ComponentType,
+        kind: Type,
+        bounds: Option<(Vec3, Vec3)>,
+    ) -> Index<Accessor> {
+        // POSITION must declare min and max (the exact stored values).
+        let (min, max) = match bounds {
+            Some((lo, hi)) => (
+                Some(serde_json::json!(lo.to_array())),
+                Some(serde_json::json!(hi.to_array())),
+            ),
+            None => (None, None),
+        };
+        self.root.push(Accessor {
+            buffer_view: Some(view),
+            byte_offset: None,
+            count: count.into(),
+            component_type: Valid(GenericComponentType(component)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Valid(kind),
+            min,
+            max,
+            name: None,
+            normalized: false,
+            sparse: None,
+        })
+    }
+}
+
+/// Rejects meshes the glTF file could not represent validly; the scene
+/// builder should never produce them.
+pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
+    let n = mesh.positions.len();
+    let detail = if mesh.normals.len() != n {
+        format!("{} normals for {n} vertices", mesh.normals.len())
+    } else if mesh.indices.len() % 3 != 0 {
+        format!("{} indices do not form triangles", mesh.indices.len())
+    } else if let Some(i) = mesh.indices.iter().find(|&&i| i as usize >= n) {
+        format!("index {i} refers past the {n} vertices")
+    } else {
+        return Ok(());
+    };
+    Err(ExportError::InvalidGeometry {
+        name: name.into(),
+        detail,
+    })
+}
+
+enum Placement {
+    /// A node matrix (`None` for the identity, which glTF wants omitted).
+    Matrix(Option<[f32; 16]>),
+    /// Not expressible as translation * rotation * scale, which glTF
+    /// requires of node matrices (shear, projection, zero scale).
+    Bake,
+    /// Not finite.
+    Invalid,
+}
+
+/// How a placement transform goes into the file.
+fn placement(m: Mat4) -> Placement {
+    if !m.is_finite() {
+        return Placement::Invalid;
+    }
+    let linear = Mat3::from_mat4(m);
+    let [a, b, c] = [linear.x_axis, linear.y_axis, linear.z_axis];
+    let (la, lb, lc) = (a.length(), b.length(), c.length());
+    if m.row(3) != Vec4::W || la * lb * lc == 0.0 || linear.determinant() == 0.0 {
+        return Placement::Bake;
+    }
+    // T * R * S has orthogonal columns; measure the worst cosine.
+    let skew = (a.dot(b) / (la * lb))
+        .abs()
+        .max((b.dot(c) / (lb * lc)).abs())
+        .max((a.dot(c) / (la * lc)).abs());
+    if skew > 1e-4 {
+        Placement::Bake
+    } else if m == Mat4::IDENTITY {
+        Placement::Matrix(None)
+    } else if skew > 1e-6 {
+        // Rounding drift from many turtle rotations: snap to the nearest TRS
+        // so that validators decomposing the matrix agree with it.
+        let (s, r, t) = m.to_scale_rotation_translation();
+        let snapped = Mat4::from_scale_rotation_translation(s, r.normalize(), t);
+        Placement::Matrix(Some(snapped.to_cols_array()))
+    } else {
+        Placement::Matrix(Some(m.to_cols_array()))
+    }
+}
+
+/// Unit normals of `mesh` after the vertices are mapped by `linear`, into
+/// `out`. Normals map by the inverse transpose and are renormalised; one
+/// that is zero, not finite, or collapses under the map is replaced by the
+/// average normal of the faces around its vertex (or +Y if those are
+/// degenerate too), since glTF requires unit length.
+pub(crate) fn unit_normals(mesh: &TriMesh, linear: Mat3, out: &mut Vec<Vec3>) {
+    let normal_matrix = linear.inverse().transpose();
+    out.clear();
+    out.extend(
+        mesh.normals
+            .iter()
+            .map(|&n| (normal_matrix * n).normalize_or_zero()),
+    );
+    if !out.contains(&Vec3::ZERO) {
+        return;
+    }
+    // Rare: only for broken input, so the extra pass costs nothing usually.
+    let mirror = if linear.determinant() < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let mut sums = vec![Vec3::ZERO; out.len()];
+    for t in mesh.indices.chunks_exact(3) {
+        let [p, q, r] = [0, 1, 2].map(|k| linear * mesh.positions[t[k] as usize]);
+        let face = (q - p).cross(r - p) * mirror;
+        for &i in t {
+            sums[i as usize] += face;
+        }
+    }
+    for (n, sum) in out.iter_mut().zip(sums) {
+        if *n == Vec3::ZERO {
+            *n = sum.try_normalize().unwrap_or(Vec3::Y);
+        }
+    }
+}
+
+/// glTF colour factors are linear; lsys colours are sRGB.
+fn srgb_to_linear(c: f32) -> f32 {
+    // glTF requires factors in 0..=1; NaN would make the file invalid.
+    let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// Standard base64 with padding (RFC 4648), for the `.gltf` data URI.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let byte = |i: usize| u32::from(chunk.get(i).copied().unwrap_or(0));
+        let n = byte(0) << 16 | byte(1) << 8 | byte(2);
+        for k in 0..4 {
+            out.push(if k <= chunk.len() {
+                ALPHABET[(n >> (18 - 6 * k) & 63) as usize] as char
+            } else {
+                '='
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn export_base64_matches_rfc_4648() {
+        let cases = [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ];
+        for (input, expected) in cases {
+            assert_eq!(base64(input.as_bytes()), expected);
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0x00]), "//4A");
+    }
+
+    #[test]
+    fn export_placement_keeps_trs_and_bakes_shear() {
+        let trs = Mat4::from_scale_rotation_translation(
+            Vec3::new(2.0, 0.5, 1.0),
+            glam::Quat::from_rotation_y(0.7),
+            Vec3::new(1.0, 2.0, 3.0),
+        );
+        assert!(matches!(placement(trs), Placement::Matrix(Some(m)) if m == trs.to_cols_array()));
+        assert!(matches!(placement(Mat4::IDENTITY), Placement::Matrix(None)));
+        let mirrored = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+        assert!(matches!(placement(mirrored), Placement::Matrix(Some(_))));
+        // rotate, then scale non-uniformly: a shear
+        let shear = Mat4::from_scale(Vec3::new(3.0, 1.0, 1.0)) * Mat4::from_rotation_z(0.5);
+        assert!(matches!(placement(shear), Placement::Bake));
+        assert!(matches!(
+            placement(Mat4::from_scale(Vec3::ZERO)),
+            Placement::Bake
+        ));
+        assert!(matches!(placement(Mat4::NAN), Placement::Invalid));
+        // A drifted rotation is snapped to an exact one.
+        let mut drifted = trs;
+        drifted.x_axis.y += 2e-5;
+        let Placement::Matrix(Some(snapped)) = placement(drifted) else {
+            panic!("drift is not shear")
+        };
+        let snapped = Mat4::from_cols_array(&snapped);
+        assert_ne!(snapped, drifted);
+        assert!(snapped.abs_diff_eq(drifted, 1e-4));
+        assert!(
+            snapped
+                .x_axis
+                .truncate()
+                .dot(snapped.y_axis.truncate())
+                .abs()
+                < 1e-6
+        );
+    }
+}

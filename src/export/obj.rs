@@ -1,0 +1,185 @@
+//! Wavefront OBJ export: a [`Scene`] -> an `.obj` file with all geometry in
+//! world space (one object per placement, named `<symbol>#<n>`, and one
+//! object `strokes`) plus the `.mtl` file with its materials. OBJ has no
+//! instancing, so each placement's copy of its component is written out.
+
+use std::collections::HashSet;
+use std::io::{self, BufWriter, Write};
+
+use glam::{Mat3, Mat4, Vec3};
+
+use super::gltf::{check, unit_normals};
+use crate::mesh::{Scene, TriMesh};
+
+/// Writes the scene as OBJ to `obj` and its materials to `mtl`;
+/// `mtl_file_name` is how the OBJ refers to the MTL file (its `mtllib`), so
+/// normally the bare file name when both lie in one directory.
+pub fn write_obj(
+    scene: &Scene,
+    mtl_file_name: &str,
+    obj: &mut dyn Write,
+    mtl: &mut dyn Write,
+) -> io::Result<()> {
+    let names = material_names(scene);
+    write_mtl(scene, &names, mtl)?;
+
+    let mut out = BufWriter::with_capacity(1 << 16, obj);
+    writeln!(out, "# lsys {}", env!("CARGO_PKG_VERSION"))?;
+    writeln!(out, "mtllib {mtl_file_name}")?;
+    let mut w = MeshWriter {
+        out: &mut out,
+        next: 1,
+        normals: Vec::new(),
+    };
+    if scene.strokes.iter().any(|s| !s.mesh.is_empty()) {
+        w.group("strokes")?;
+        for stroke in &scene.strokes {
+            if !stroke.mesh.is_empty() {
+                w.usemtl(&names, stroke.material)?;
+                w.mesh("strokes", &stroke.mesh, Mat4::IDENTITY)?;
+            }
+        }
+    }
+    for instance in &scene.instances {
+        let component = &scene.components[instance.component];
+        let name = format!("{}#{}", component.name, instance.number);
+        // Written even when the component draws nothing, so that every
+        // placement can be found by name.
+        w.group(&name)?;
+        for part in &component.parts {
+            if !part.mesh.is_empty() {
+                w.usemtl(&names, part.material.unwrap_or(instance.material))?;
+                w.mesh(&name, &part.mesh, instance.transform)?;
+            }
+        }
+    }
+    out.flush()
+}
+
+struct MeshWriter<'w> {
+    out: &'w mut dyn Write,
+    /// The 1-based number of the next vertex; positions and normals are
+    /// written in pairs, so one number serves both.
+    next: u64,
+    /// Scratch space for one mesh's normals, reused across meshes.
+    normals: Vec<Vec3>,
+}
+
+impl MeshWriter<'_> {
+    /// Starts an object. `o` and `g` both, since importers differ in which
+    /// one they split objects on.
+    fn group(&mut self, name: &str) -> io::Result<()> {
+        writeln!(self.out, "o {name}\ng {name}")
+    }
+
+    fn usemtl(&mut self, names: &[String], material: usize) -> io::Result<()> {
+        let Some(name) = names.get(material) else {
+            return Err(invalid(format!(
+                "material {material} does not exist; the scene has {}",
+                names.len()
+            )));
+        };
+        writeln!(self.out, "usemtl {name}")
+    }
+
+    /// Writes `mesh` mapped by `transform` to world space.
+    fn mesh(&mut self, name: &str, mesh: &TriMesh, transform: Mat4) -> io::Result<()> {
+        check(name, mesh).map_err(|e| invalid(e.to_string()))?;
+        for &p in &mesh.positions {
+            let p = transform.transform_point3(p);
+            if !p.is_finite() {
+                return Err(invalid(format!("{name}: a vertex position is not finite")));
+            }
+            // `{}` prints the shortest decimal that reads back as the same f32.
+            writeln!(self.out, "v {} {} {}", p.x, p.y, p.z)?;
+        }
+        let linear = Mat3::from_mat4(transform);
+        unit_normals(mesh, linear, &mut self.normals);
+        for n in &self.normals {
+            writeln!(self.out, "vn {} {} {}", n.x, n.y, n.z)?;
+        }
+        // A mirroring transform turns the triangles clockwise; swap two
+        // corners to keep their front faces in front.
+        let flip = linear.determinant() < 0.0;
+        for t in mesh.indices.chunks_exact(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| self.next + u64::from(i));
+            let (b, c) = if flip { (c, b) } else { (b, c) };
+            writeln!(self.out, "f {a}//{a} {b}//{b} {c}//{c}")?;
+        }
+        self.next += mesh.positions.len() as u64;
+        Ok(())
+    }
+}
+
+fn invalid(message: String) -> io::Error {
+    io::Error::new(io::ErrorKind::InvalidData, message)
+}
+
+/// OBJ-safe, unique material names: `usemtl` and `newmtl` take the rest of
+/// the line, which many readers split at whitespace, and `#` starts a
+/// comment in some of them.
+fn material_names(scene: &Scene) -> Vec<String> {
+    let mut taken = HashSet::new();
+    let mut names = Vec::with_capacity(scene.materials.len());
+    for (i, m) in scene.materials.iter().enumerate() {
+        let mut name: String = m
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_whitespace() || c.is_control() || c == '#' {
+                    '_'
+                } else {
+                    c
+                }
+            })
+            .collect();
+        if name.is_empty() {
+            name = format!("material_{i}");
+        }
+        // Two names that differ only in unsafe characters (or the same
+        // name with two colours) must stay two materials.
+        while !taken.insert(name.clone()) {
+            name = format!("{name}_{i}");
+        }
+        names.push(name);
+    }
+    names
+}
+
+fn write_mtl(scene: &Scene, names: &[String], mtl: &mut dyn Write) -> io::Result<()> {
+    let mut out = BufWriter::new(mtl);
+    writeln!(out, "# lsys {}", env!("CARGO_PKG_VERSION"))?;
+    for (m, name) in scene.materials.iter().zip(names) {
+        // In range and never NaN, which readers would reject.
+        let [r, g, b] = m
+            .rgb
+            .map(|c| if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) });
+        // Ka is black: Blender reads the average of Ka as metallic.
+        writeln!(
+            out,
+            "\nnewmtl {name}\nKa 0 0 0\nKd {r} {g} {b}\nKs 0 0 0\nd 1\nillum 1"
+        )?;
+    }
+    out.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Material;
+
+    #[test]
+    fn export_obj_material_names_are_safe_and_unique() {
+        let mut scene = Scene::default();
+        for name in ["dark red", "dark_red", "", "a#b", "dark red"] {
+            scene.materials.push(Material {
+                name: name.into(),
+                rgb: [0.5; 3],
+            });
+        }
+        assert_eq!(
+            material_names(&scene),
+            ["dark_red", "dark_red_1", "material_2", "a_b", "dark_red_4"]
+        );
+    }
+}

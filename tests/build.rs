@@ -1,0 +1,195 @@
+//! `lsys build` and `lsys render` end to end, through the binary: formats
+//! by extension, `--stats`, atomic outputs, and the geometry of real
+//! examples checked against what the derivation says it must be.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn lsys(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn path_str(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// Component placements per symbol, counted in the derived string itself.
+fn placements_in_string(args: &[&str]) -> BTreeMap<String, u64> {
+    let mut full = vec!["derive"];
+    full.extend_from_slice(args);
+    let o = lsys(&full);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut counts = BTreeMap::new();
+    for m in String::from_utf8_lossy(&o.stdout).split_whitespace() {
+        if let Some(rest) = m.strip_prefix('~') {
+            let name = rest.split('(').next().unwrap().to_string();
+            // A zero scale switches a component off: it is not placed.
+            if !m.contains("(0)") {
+                *counts.entry(name).or_insert(0) += 1;
+            }
+        }
+    }
+    counts
+}
+
+#[test]
+fn stats_count_every_placement_of_the_derived_string() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.glb");
+    let o = lsys(&[
+        "build",
+        "std:toukung_middle",
+        "-D",
+        "NTL=7",
+        "-o",
+        path_str(&out),
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let instances: BTreeMap<String, u64> =
+        serde_json::from_value(stats["instances"].clone()).unwrap();
+    let expected = placements_in_string(&["std:toukung_middle", "-D", "NTL=7"]);
+    assert_eq!(instances, expected);
+    assert!(instances.len() == 5, "{instances:?}");
+    let bytes = std::fs::metadata(&out).unwrap().len();
+    assert_eq!(stats["output"]["bytes"].as_u64(), Some(bytes));
+    for stage in ["parse", "derive", "interpret", "mesh", "write"] {
+        assert!(
+            stats["timings_ms"][stage].as_f64().unwrap() >= 0.0,
+            "{stage}"
+        );
+    }
+    let [lo, hi] = [0, 1].map(|i| stats["bounds"][i].as_array().unwrap().clone());
+    for k in 0..3 {
+        assert!(lo[k].as_f64().unwrap() <= hi[k].as_f64().unwrap());
+    }
+    // Instancing: the file holds each component once, far less than the
+    // triangles drawn would need as copies (12 bytes a vertex at least).
+    let drawn = stats["vertices"].as_u64().unwrap();
+    assert!(
+        bytes < drawn * 12,
+        "{bytes} bytes for {drawn} drawn vertices"
+    );
+}
+
+#[test]
+fn every_format_is_written_and_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let bush = "examples/abop/fig1_24d.lsys";
+    for ext in ["glb", "gltf", "obj", "png"] {
+        let out = dir.path().join(format!("bush.{ext}"));
+        let o = lsys(&["build", bush, "-o", path_str(&out)]);
+        assert!(o.status.success(), "{ext}: {}", stderr(&o));
+        let bytes = std::fs::read(&out).unwrap();
+        match ext {
+            "glb" | "gltf" => {
+                let doc = gltf::Gltf::from_slice(&bytes).unwrap();
+                let names: Vec<_> = doc
+                    .nodes()
+                    .filter_map(|n| n.name().map(String::from))
+                    .collect();
+                assert_eq!(names, ["strokes"]);
+            }
+            "obj" => {
+                let mtl = dir.path().join("bush.mtl");
+                assert!(mtl.is_file(), "no .mtl beside the .obj");
+                let (models, materials) = tobj::load_obj(&out, &tobj::GPU_LOAD_OPTIONS).unwrap();
+                assert!(!models.is_empty());
+                assert!(!materials.unwrap().is_empty());
+            }
+            _ => {
+                let decoder = png::Decoder::new(std::io::Cursor::new(bytes));
+                let reader = decoder.read_info().unwrap();
+                assert_eq!((reader.info().width, reader.info().height), (1024, 768));
+            }
+        }
+    }
+    // Nothing but the outputs: no temporary files left behind.
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["bush.glb", "bush.gltf", "bush.mtl", "bush.obj", "bush.png"]
+    );
+}
+
+#[test]
+fn a_failed_build_keeps_the_old_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let grammar = dir.path().join("g.lsys");
+    std::fs::write(&grammar, "Axiom: F ~Missing(2)\n").unwrap();
+    let out = dir.path().join("model.glb");
+    std::fs::write(&out, b"previous model").unwrap();
+    let o = lsys(&["build", path_str(&grammar), "-o", path_str(&out)]);
+    assert_eq!(o.status.code(), Some(65), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("component `~Missing` not found"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(&out).unwrap(), b"previous model");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+#[test]
+fn unknown_extension_and_render_to_a_model_are_usage_errors() {
+    let o = lsys(&["build", "examples/abop/fig1_24d.lsys", "-o", "bush.stl"]);
+    assert_eq!(o.status.code(), Some(64));
+    assert!(
+        stderr(&o).contains(".glb, .gltf, .obj or .png"),
+        "{}",
+        stderr(&o)
+    );
+    let o = lsys(&["render", "examples/abop/fig1_24d.lsys", "-o", "bush.glb"]);
+    assert_eq!(o.status.code(), Some(64));
+    assert!(!Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("bush.glb")
+        .exists());
+}
+
+#[test]
+fn components_are_found_in_components_dirs() {
+    let dir = tempfile::tempdir().unwrap();
+    let grammar = dir.path().join("g.lsys");
+    std::fs::write(&grammar, "Axiom: ~Tri(2) f(2) ~Tri\n").unwrap();
+    let extra: PathBuf = dir.path().join("parts");
+    std::fs::create_dir(&extra).unwrap();
+    std::fs::write(
+        extra.join("Tri.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let out = dir.path().join("m.glb");
+    // Without the directory: an error that lists where it looked.
+    let o = lsys(&["build", path_str(&grammar), "-o", path_str(&out)]);
+    assert_eq!(o.status.code(), Some(65));
+    assert!(stderr(&o).contains("components/Tri.obj"), "{}", stderr(&o));
+    let o = lsys(&[
+        "build",
+        path_str(&grammar),
+        "--components",
+        path_str(&extra),
+        "-o",
+        path_str(&out),
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(stats["instances"]["Tri"], 2);
+    assert_eq!(stats["triangles"], 8);
+    // The unit-high second tetrahedron stands on the first, 2 high.
+    assert_eq!(stats["bounds"][1][1], 3.0);
+}
