@@ -218,6 +218,45 @@ fn turtle() {
     });
 }
 
+/// Every example builds; its snapshot records what the turtle drew (record
+/// counts, and every record for small drawings) and the scene's summary.
+#[test]
+fn examples_build() {
+    insta::glob!(
+        concat!(env!("CARGO_MANIFEST_DIR"), "/examples"),
+        "**/*.lsys",
+        |path| {
+            let c =
+                compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
+            let opts = lsys::build::BuildOptions {
+                components: lsys::mesh::ComponentSearch {
+                    grammar_dir: Some(path.parent().unwrap().to_path_buf()),
+                    dirs: Vec::new(),
+                },
+                ..Default::default()
+            };
+            let b = lsys::build::build(&c, &opts)
+                .unwrap_or_else(|e| panic!("{}: {}", rel(path), lsys::diag::render_plain(&e)));
+            let d = &b.drawing;
+            let mut out = format!(
+                "modules {}: tubes {} (points {}), polygons {}, shapes {}, placements {}\n",
+                b.modules,
+                d.chains.len(),
+                d.chains.iter().map(|c| c.points.len()).sum::<usize>(),
+                d.polygons.len(),
+                d.shapes.len(),
+                d.placements.len()
+            );
+            if d.chains.len() + d.polygons.len() + d.shapes.len() + d.placements.len() <= 40 {
+                out.push_str(&d.dump(|s| c.program.symbols.name(s).to_string()));
+            }
+            out.push_str("--\n");
+            out.push_str(&b.scene.summary());
+            insta::assert_snapshot!(out);
+        }
+    );
+}
+
 /// Like [`outcome`], but `ok` may also fail at run time: `ok/` fixtures
 /// must succeed and `err/` fixtures must fail, at compile or run time.
 fn outcome_or_runtime<E: miette::Diagnostic>(

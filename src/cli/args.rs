@@ -38,6 +38,8 @@ pub enum Command {
     Build(BuildArgs),
     /// Render a picture of the model to PNG (a software renderer; no GPU needed).
     Render(RenderArgs),
+    /// List the turtle commands: symbol, parameters, default, meaning.
+    Commands,
 }
 
 #[derive(Args, Debug)]

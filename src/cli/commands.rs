@@ -25,6 +25,9 @@ pub fn run(cmd: &Command, color: bool) -> i32 {
         },
         Command::Build(b) => super::model::build_cmd(b, color),
         Command::Render(r) => super::model::render_cmd(r, color),
+        Command::Commands => {
+            emit_stdout(|out| out.write_all(crate::turtle::commands::help_text().as_bytes()))
+        }
     }
 }
 

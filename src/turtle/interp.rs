@@ -4,8 +4,9 @@
 
 use glam::{Mat4, Vec3, Vec4};
 
+use super::commands::{lookup, Action};
 use super::dialect::Dialect;
-use super::drawing::{Chain, Drawing, Placement, Polygon, ShapeKind, TubePoint};
+use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
 use crate::derive::store::{head_arity, head_sym};
@@ -48,111 +49,22 @@ impl TurtleOptions {
     }
 }
 
-/// What one symbol does.
+/// What one symbol does: a turtle command's action from the command
+/// table, a component placement, or nothing.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Act {
-    Nothing,
-    /// `F` `f` `G` `g`: move; `draw` a tube; `vertex` adds a polygon vertex.
-    Move {
-        draw: bool,
-        vertex: bool,
-    },
-    Turn(f32),
-    Pitch(f32),
-    Roll(f32),
-    TurnAround,
-    RollAround,
-    PitchAround,
-    RollHorizontal,
-    HeadingUp,
-    Cut,
-    Push,
-    Pop,
-    SetWidth,
-    IncWidth,
-    SetColour,
-    DecColour,
-    IncColour,
-    PolyStart,
-    PolyVertex,
-    PolyEnd,
-    Shape(ShapeKind),
-    MoveTo,
-    SetHeading,
-    Elasticity,
-    Tropism,
-    CylStart,
-    CylPoint,
-    CylEnd,
-    ScaleSet,
-    ScaleMul,
-    ScaleDiv,
+    Command(Action),
     Place,
 }
 
 fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
-    use Act::*;
-    if kind == SymbolKind::Component {
-        return Place;
-    }
-    if kind != SymbolKind::Turtle && name != "[" && name != "]" {
-        return Nothing;
-    }
-    match (name, dialect) {
-        ("F", _) => Move {
-            draw: true,
-            vertex: true,
-        },
-        ("f", _) => Move {
-            draw: false,
-            vertex: true,
-        },
-        ("G", _) => Move {
-            draw: true,
-            vertex: false,
-        },
-        ("g", _) => Move {
-            draw: false,
-            vertex: false,
-        },
-        ("+", _) => Turn(1.0),
-        ("-", _) => Turn(-1.0),
-        ("&", _) => Pitch(1.0),
-        ("^", _) => Pitch(-1.0),
-        ("\\" | "<", _) => Roll(1.0),
-        ("/" | ">", _) => Roll(-1.0),
-        ("|", _) => TurnAround,
-        ("%", Dialect::Paper) => RollAround,
-        ("%", Dialect::Cpfg) => Cut,
-        ("$", Dialect::Paper) => PitchAround,
-        ("$", Dialect::Cpfg) | ("@v", _) => RollHorizontal,
-        ("@H", _) => HeadingUp,
-        ("[", _) => Push,
-        ("]", _) => Pop,
-        ("!", _) => SetWidth,
-        ("#", _) => IncWidth,
-        (";", _) => SetColour,
-        (",", _) => DecColour,
-        ("'", _) => IncColour,
-        ("{", _) => PolyStart,
-        (".", _) => PolyVertex,
-        ("}", _) => PolyEnd,
-        ("@O", _) => Shape(ShapeKind::Sphere),
-        ("@o", _) => Shape(ShapeKind::Disc),
-        ("@c", _) => Shape(ShapeKind::Circle),
-        ("@M" | "@m", _) => MoveTo,
-        ("@R", _) => SetHeading,
-        ("@Ts", _) => Elasticity,
-        ("@T", _) => Tropism,
-        ("@Gs", _) => CylStart,
-        ("@Gc", _) => CylPoint,
-        ("@Ge", _) => CylEnd,
-        ("@D", _) => ScaleSet,
-        ("@Di", _) => ScaleMul,
-        ("@Dd", _) => ScaleDiv,
-        // @L (labels), @Gr and @Gt (cylinder profile and tangents) draw
-        // nothing; docs/geometry.md says so.
-        _ => Nothing,
+    match kind {
+        SymbolKind::Component => Act::Place,
+        _ => Act::Command(
+            lookup(name)
+                .filter(|_| kind == SymbolKind::Turtle || name == "[" || name == "]")
+                .map_or(Action::Nothing, |c| c.action(dialect)),
+        ),
     }
 }
 
@@ -229,7 +141,7 @@ pub fn interpret(
         let args = &params[offset..offset + arity];
         offset += arity;
         let act = acts[sym as usize];
-        if act != Act::Nothing {
+        if act != Act::Command(Action::Nothing) {
             if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
                 return Err(TurtleError::NonFinite {
                     index: i + 1,
@@ -238,7 +150,7 @@ pub fn interpret(
                     value: bad,
                 });
             }
-            if act == Act::Cut {
+            if act == Act::Command(Action::Cut) {
                 // Skip to the `]` that ends this branch (or the end), and
                 // let that `]` pop the branch as usual.
                 let mut depth = 0usize;
@@ -259,7 +171,10 @@ pub fn interpret(
                 i = j;
                 continue;
             }
-            t.apply(act, sym, args, i)?;
+            match act {
+                Act::Command(a) => t.apply(a, sym, args, i)?,
+                Act::Place => t.place(sym, args, i),
+            }
         }
         i += 1;
     }
@@ -295,12 +210,12 @@ impl Turtle<'_> {
 
     fn apply(
         &mut self,
-        act: Act,
+        act: Action,
         sym: SymId,
         args: &[f64],
         index: usize,
     ) -> Result<(), TurtleError> {
-        use Act::*;
+        use Action::*;
         let s = &mut self.state;
         match act {
             Nothing | Cut => {}
@@ -446,7 +361,6 @@ impl Turtle<'_> {
                 }
                 s.scale /= d;
             }
-            Place => self.place(sym, args, index),
         }
         Ok(())
     }
