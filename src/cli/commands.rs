@@ -3,7 +3,6 @@
 
 use std::borrow::Cow;
 use std::io::{self, BufWriter, Write};
-use std::path::Path;
 
 use miette::Diagnostic;
 
@@ -147,7 +146,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
             let mut out = BufWriter::with_capacity(1 << 16, stdout.lock());
             write(&mut out).and_then(|_| out.flush().map_err(Outcome::Io))
         }
-        Some(path) => write_atomically(path, |f| write(f)),
+        Some(path) => crate::export::atomic::write_file(path, |f| write(f)),
     };
     match result {
         Ok(()) => EX_OK,
@@ -168,23 +167,10 @@ enum Outcome {
     Io(io::Error),
 }
 
-/// Runs `body` with a temporary file beside `path` and renames it over
-/// `path` only when everything succeeded, so a failed run never leaves a
-/// half-written file (nor clobbers an existing one).
-fn write_atomically(
-    path: &Path,
-    body: impl FnOnce(&mut dyn Write) -> Result<(), Outcome>,
-) -> Result<(), Outcome> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let tmp = tempfile::NamedTempFile::new_in(dir).map_err(Outcome::Io)?;
-    let mut out = BufWriter::new(tmp);
-    body(&mut out)?;
-    let tmp = out.into_inner().map_err(|e| Outcome::Io(e.into_error()))?;
-    tmp.persist(path).map_err(|e| Outcome::Io(e.error))?;
-    Ok(())
+impl From<io::Error> for Outcome {
+    fn from(e: io::Error) -> Self {
+        Outcome::Io(e)
+    }
 }
 
 fn emit_stdout(body: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> i32 {

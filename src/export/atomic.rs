@@ -33,7 +33,7 @@ impl AtomicFiles {
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        let tmp = NamedTempFile::new_in(dir)?;
+        let tmp = temporary_in(dir)?;
         let mut out = BufWriter::with_capacity(1 << 16, tmp);
         body(&mut out)?;
         let tmp = out.into_inner().map_err(|e| e.into_error())?;
@@ -50,6 +50,20 @@ impl AtomicFiles {
         }
         Ok(())
     }
+}
+
+/// A temporary file in `dir` with the permissions a new file would get
+/// (0o666 less the umask), not tempfile's private 0o600: the temporary
+/// file becomes the user's output.
+fn temporary_in(dir: &Path) -> io::Result<NamedTempFile> {
+    let mut b = tempfile::Builder::new();
+    b.prefix(".lsys-");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        b.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    b.tempfile_in(dir)
 }
 
 /// Writes one file atomically.
@@ -80,5 +94,12 @@ mod tests {
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
         write_file::<io::Error>(&path, |w| w.write_all(b"new")).unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            // readable by others, as any new file (umask 022 or 002)
+            let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+            assert_eq!(mode & 0o044, 0o044, "mode {mode:o}");
+        }
     }
 }

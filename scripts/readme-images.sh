@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Renders the pictures in README.md and docs/ with the release binary.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo build --release --quiet
+lsys=target/release/lsys
+$lsys render examples/plants/bush_3d.lsys -o docs/images/bush_3d.png --size 560x440
+$lsys render examples/architecture/gate.lsys -o docs/images/gate.png --size 560x440
+$lsys render examples/abop/fig1_24d.lsys -o docs/images/fig1_24d.png --view front --size 440x440 --width 0.8
