@@ -215,14 +215,8 @@ impl Resolver {
         });
     }
 
-    /// A constant whole number in `0..=max` (derivation length, seed, depth).
-    pub(super) fn const_count(
-        &mut self,
-        e: &ast::Expr,
-        scope: &Scope,
-        what: &str,
-        max: u64,
-    ) -> Option<u64> {
+    /// The value of a constant expression; reports one that is not.
+    pub(super) fn const_num(&mut self, e: &ast::Expr, scope: &Scope, what: &str) -> Option<f64> {
         let v = self.expr(e, scope)?;
         let ExprKind::Num(x) = v.kind else {
             self.error(ResolveError::NotConstant {
@@ -233,6 +227,18 @@ impl Resolver {
             });
             return None;
         };
+        Some(x)
+    }
+
+    /// A constant whole number in `0..=max` (derivation length, seed, depth).
+    pub(super) fn const_count(
+        &mut self,
+        e: &ast::Expr,
+        scope: &Scope,
+        what: &str,
+        max: u64,
+    ) -> Option<u64> {
+        let x = self.const_num(e, scope, what)?;
         if x < 0.0 || x.fract() != 0.0 || x > max as f64 {
             self.error(ResolveError::BadValue {
                 what: what.to_string(),

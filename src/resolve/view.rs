@@ -4,7 +4,7 @@
 
 use super::error::ResolveError;
 use super::expr::Scope;
-use super::ir::{ExprKind, TurtleSettings};
+use super::ir::TurtleSettings;
 use super::Resolver;
 use crate::parse::ast::{self, HeaderKind};
 use crate::source::Span;
@@ -115,16 +115,7 @@ impl Resolver {
         what: &str,
         range: std::ops::RangeInclusive<f64>,
     ) -> Option<f64> {
-        let v = self.expr(e, scope)?;
-        let ExprKind::Num(x) = v.kind else {
-            self.error(ResolveError::NotConstant {
-                what: format!("the {what}"),
-                src: self.sources.named_source(e.span),
-                span: e.span.into(),
-                help: "use numbers and #defines only".to_string(),
-            });
-            return None;
-        };
+        let x = self.const_num(e, scope, what)?;
         if !range.contains(&x) {
             self.error(ResolveError::BadValue {
                 what: what.to_string(),
