@@ -410,6 +410,7 @@ fn program(src: &str) -> Program {
         homomorphism_depth: 16,
         defines: Vec::new(),
         turtle: Default::default(),
+        tables: Vec::new(),
     };
     for line in text.lines() {
         let Some((key, rest)) = line.trim_start().split_once(':') else {

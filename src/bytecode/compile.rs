@@ -18,6 +18,7 @@ pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
         consts: Vec::new(),
         single: HashMap::new(),
         tuples: HashMap::new(),
+        tables: HashMap::new(),
     };
     let axiom = c.successor(&program.axiom)?;
     let main = c.table(&program.productions)?;
@@ -56,6 +57,8 @@ struct Compiler<'p> {
     single: HashMap<u64, u32>,
     /// Parameter runs of `EmitConst` by bit patterns.
     tuples: HashMap<Vec<u64>, u32>,
+    /// Where each table used so far starts in the pool.
+    tables: HashMap<u32, u32>,
 }
 
 /// Code being built, with the static stack depth.
@@ -216,6 +219,24 @@ impl Compiler<'_> {
         Ok(i)
     }
 
+    /// A table in the pool, once: `[dimensions, (first index, count)
+    /// per dimension..., values...]`, the layout `Op::Index` reads.
+    fn table_desc(&mut self, id: u32) -> Result<u32, BytecodeError> {
+        if let Some(&at) = self.tables.get(&id) {
+            return Ok(at);
+        }
+        let t = &self.program.tables[id as usize];
+        let mut desc = vec![t.dims.len() as f64];
+        for (lo, len) in t.bounds() {
+            desc.extend([lo, len]);
+        }
+        desc.extend_from_slice(&t.values);
+        let at = self.alloc(desc.len())?;
+        self.consts.extend_from_slice(&desc);
+        self.tables.insert(id, at);
+        Ok(at)
+    }
+
     fn alloc(&self, n: usize) -> Result<u32, BytecodeError> {
         if self.consts.len() + n > u32::MAX as usize {
             return Err(BytecodeError::TooManyConstants {
@@ -299,6 +320,17 @@ impl Compiler<'_> {
                     self.expr(b, a)?;
                 }
                 b.push(Op::Call(*f), span, 1 - args.len() as isize);
+            }
+            ExprKind::Index(id, args) => {
+                for a in args {
+                    self.expr(b, a)?;
+                }
+                let desc = self.table_desc(*id)?;
+                b.push(
+                    Op::Index { table: *id, desc },
+                    span,
+                    1 - args.len() as isize,
+                );
             }
         }
         Ok(())

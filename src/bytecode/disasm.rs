@@ -123,6 +123,10 @@ fn describe(
             (format!("-> {t:04}"), String::new())
         }
         Op::Call(f) => (f.name().to_string(), String::new()),
+        Op::Index { table, desc } => {
+            let t = &program.tables[table as usize];
+            (format!("{} @#{desc}", t.name), t.dims_text())
+        }
         Op::Emit { sym: s, arity, .. } => (
             format!("{}/{arity}", sym(s)),
             one_line(program.sources.slice(ch.spans[pc])),

@@ -62,6 +62,13 @@ pub enum Op {
     /// in degrees), `log` is natural, `sign` gives -1, 0 or 1. Never
     /// [`Func::Ran`], which has its own instruction.
     Call(Func),
+    /// Pop one index per dimension of table `table` (the first index
+    /// deepest) and push the element. `desc` is where the table sits in
+    /// the constant pool: the number of dimensions n, then (first index,
+    /// count) for each dimension, then the values in row-major order.
+    /// Faults `table index` when an index is outside its range or not a
+    /// whole number.
+    Index { table: u32, desc: u32 },
     /// `ran(x)`: pop `x`, push `x * u` with `u` uniform in `[0, 1)` drawn
     /// from the derivation's generator (one draw).
     Ran,
@@ -101,6 +108,7 @@ impl Op {
             Op::JumpIfFalse(_) => "jump_if_false",
             Op::JumpIfTrue(_) => "jump_if_true",
             Op::Call(_) => "call",
+            Op::Index { .. } => "index",
             Op::Ran => "ran",
             Op::Emit { .. } => "emit",
             Op::EmitConst { .. } => "emit_const",

@@ -31,6 +31,8 @@ pub enum FaultKind {
     RemainderByZero,
     /// A module parameter that is NaN or infinite.
     NotFinite(f64),
+    /// Index `dim` (0-based) of table `table` is `value`, outside its range.
+    TableIndex { table: u32, dim: u8, value: f64 },
 }
 
 /// A runtime fault at `span`.
@@ -81,6 +83,24 @@ pub fn call(f: Func, a: f64, b: f64) -> f64 {
         Func::Max => a.max(b),
         Func::Ran => unreachable!("ran has its own instruction"),
     }
+}
+
+/// Row-major offset of the element at `idx` in a table whose dimensions
+/// are `(first index, count)`. `Err(k)`: index k is outside its range or
+/// not a whole number. Constant folding and the VM both use it, so both
+/// agree on every lookup.
+#[inline]
+pub fn table_offset(bounds: impl Iterator<Item = (f64, f64)>, idx: &[f64]) -> Result<usize, usize> {
+    let mut flat = 0usize;
+    for (k, ((lo, len), &v)) in bounds.zip(idx).enumerate() {
+        let off = v - lo;
+        // `off < len` is false for NaN, so NaN indices fail too.
+        if !(off >= 0.0 && off < len && off.fract() == 0.0) {
+            return Err(k);
+        }
+        flat = flat * len as usize + off as usize;
+    }
+    Ok(flat)
 }
 
 /// Run `chunk`. `stack` must hold at least `chunk.max_stack` values and
@@ -165,6 +185,28 @@ pub fn run<S: Sink>(
                     bin!(|a, b| call(f, a, b));
                 } else {
                     stack[sp - 1] = call(f, stack[sp - 1], 0.0);
+                }
+            }
+            Op::Index { table, desc } => {
+                let d = desc as usize;
+                let n = consts[d] as usize;
+                sp -= n;
+                let bounds = (0..n).map(|k| (consts[d + 1 + 2 * k], consts[d + 2 + 2 * k]));
+                match table_offset(bounds, &stack[sp..sp + n]) {
+                    Ok(at) => {
+                        stack[sp] = consts[d + 1 + 2 * n + at];
+                        sp += 1;
+                    }
+                    Err(k) => {
+                        return Err(Fault {
+                            kind: FaultKind::TableIndex {
+                                table,
+                                dim: k as u8,
+                                value: stack[sp + k],
+                            },
+                            span: chunk.spans[pc - 1],
+                        })
+                    }
                 }
             }
             Op::Ran => stack[sp - 1] *= rng.next_f64(),

@@ -45,6 +45,24 @@ pub enum DeriveError {
         production: Option<SourceSpan>,
     },
 
+    #[error("{context} at step {step}: {what}")]
+    #[diagnostic(
+        code(lsys::derive::table_index),
+        help("table indices are whole numbers within the ranges of the table's #define; guard the production with a condition on the index, or enlarge the table")
+    )]
+    TableIndex {
+        /// e.g. "index 4 of table `dec` is outside 1..3".
+        what: String,
+        context: String,
+        step: u32,
+        #[source_code]
+        src: Src,
+        #[label("this lookup")]
+        span: SourceSpan,
+        #[label("in this production")]
+        production: Option<SourceSpan>,
+    },
+
     #[error("{context} at step {step}: {what} by zero")]
     #[diagnostic(
         code(lsys::derive::division_by_zero),
@@ -112,6 +130,7 @@ impl DeriveError {
             DeriveError::ModuleLimit { step, .. }
             | DeriveError::ParamLimit { step, .. }
             | DeriveError::DivisionByZero { step, .. }
+            | DeriveError::TableIndex { step, .. }
             | DeriveError::NotFinite { step, .. }
             | DeriveError::BadProbability { step, .. } => Some(*step),
             DeriveError::TooManySymbols { .. } => None,

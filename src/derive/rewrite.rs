@@ -173,6 +173,18 @@ pub(crate) fn fault_error(tab: &Tables, fault: Fault, site: Site, step: u32) -> 
             span,
             production,
         },
+        FaultKind::TableIndex { table, dim, value } => {
+            let t = &tab.program.tables[table as usize];
+            let (lo, hi) = t.dims[dim as usize];
+            DeriveError::TableIndex {
+                what: format!("index {value} of table `{}` is outside {lo}..{hi}", t.name),
+                context,
+                step,
+                src,
+                span,
+                production,
+            }
+        }
         FaultKind::NotFinite(value) => DeriveError::NotFinite {
             value,
             context,

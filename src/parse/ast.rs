@@ -39,6 +39,11 @@ pub struct Define {
     pub params: Option<Vec<Ident>>,
     /// `None` for a declared parameter without a value (`#define NTL`).
     pub value: Option<Expr>,
+    /// `NAME[lo..hi, ...]`: a table, with each dimension's index range.
+    pub dims: Option<Vec<(i64, i64)>>,
+    /// A table's braced values, flattened in row-major order, with the
+    /// span of the braces.
+    pub elems: Option<(Vec<Expr>, Span)>,
     pub span: Span,
 }
 
@@ -333,11 +338,19 @@ fn dump_item(out: &mut String, item: &Item) {
                     let names: Vec<_> = ps.iter().map(|p| p.name.as_str()).collect();
                     let _ = write!(out, "({})", names.join(","));
                 }
-                match &d.value {
-                    Some(v) => {
+                if let Some(dims) = &d.dims {
+                    let ds: Vec<_> = dims.iter().map(|(lo, hi)| format!("{lo}..{hi}")).collect();
+                    let _ = write!(out, "[{}]", ds.join(","));
+                }
+                match (&d.value, &d.elems) {
+                    (Some(v), _) => {
                         let _ = write!(out, " = {v}");
                     }
-                    None => out.push_str(" = <none>"),
+                    (None, Some((es, _))) => {
+                        let vs: Vec<_> = es.iter().map(|e| e.to_string()).collect();
+                        let _ = write!(out, " = {{{}}}", vs.join(", "));
+                    }
+                    (None, None) => out.push_str(" = <none>"),
                 }
                 let _ = write!(out, " @{}..{};", d.span.start, d.span.end);
             }

@@ -57,6 +57,19 @@ pub enum ParseError {
         span: SourceSpan,
         offset: usize,
     },
+
+    #[error("bad table dimension")]
+    #[diagnostic(
+        code(lsys::parse::table_dimension),
+        help("write each dimension as `lo..hi` with lo <= hi (e.g. `1..3`) or as a count `n` meaning 0..n-1; a dimension has at most 1 000 000 indices")
+    )]
+    BadTableDim {
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this dimension")]
+        span: SourceSpan,
+        offset: usize,
+    },
 }
 
 impl ParseError {
@@ -65,12 +78,21 @@ impl ParseError {
         match self {
             ParseError::Syntax { offset, .. }
             | ParseError::UnclosedComment { offset, .. }
-            | ParseError::BadNumber { offset, .. } => *offset,
+            | ParseError::BadNumber { offset, .. }
+            | ParseError::BadTableDim { offset, .. } => *offset,
         }
     }
 
     pub(crate) fn unclosed_comment(file: &SourceFile, span: Span) -> ParseError {
         ParseError::UnclosedComment {
+            src: file.named_source(),
+            span: span.into(),
+            offset: span.start as usize,
+        }
+    }
+
+    pub(crate) fn bad_table_dim(file: &SourceFile, span: Span) -> ParseError {
+        ParseError::BadTableDim {
             src: file.named_source(),
             span: span.into(),
             offset: span.start as usize,
@@ -292,6 +314,9 @@ fn describe(rule: Rule) -> Option<&'static str> {
         statement => "a statement",
         define | include | other_directive => "a directive",
         define_item => "a define `NAME value`",
+        table_dims | table_dim | table_int => "table dimensions `[lo..hi, ...]`",
+        table_values | table_value => "table values `{...}`",
+        define_value => "a value",
         include_path => "a quoted file name",
         include_std => "a library name in `<...>`",
         include_list => "component names",

@@ -4,7 +4,7 @@ use pest::iterators::Pair;
 
 use super::ast::*;
 use super::error::PResult;
-use super::Rule;
+use super::{ParseError, Rule};
 use crate::source::{FileId, SourceFile, Span};
 
 /// Context for lowering one statement that was parsed from `file` starting
@@ -69,16 +69,71 @@ impl Lower<'_> {
         let mut inner = d.into_inner();
         let mut head = inner.next().expect("define head").into_inner();
         let name = self.ident(head.next().expect("define name"));
-        let params = head
-            .next()
-            .map(|ps| ps.into_inner().map(|i| self.ident(i)).collect());
-        let value = inner.next().map(|e| self.expr(e)).transpose()?;
+        let (mut params, mut dims) = (None, None);
+        if let Some(h) = head.next() {
+            if h.as_rule() == Rule::table_dims {
+                dims = Some(
+                    h.into_inner()
+                        .map(|d| self.table_dim(d))
+                        .collect::<PResult<Vec<_>>>()?,
+                );
+            } else {
+                params = Some(h.into_inner().map(|i| self.ident(i)).collect());
+            }
+        }
+        let (mut value, mut elems) = (None, None);
+        if let Some(v) = inner.next() {
+            if v.as_rule() == Rule::table_values {
+                let vspan = self.span(&v);
+                let mut out = Vec::new();
+                self.table_values(v, &mut out)?;
+                elems = Some((out, vspan));
+            } else {
+                value = Some(self.expr(v)?);
+            }
+        }
         Ok(Define {
             name,
             params,
             value,
+            dims,
+            elems,
             span,
         })
+    }
+
+    /// `lo..hi` or `n` (0..n-1).
+    fn table_dim(&self, d: Pair<Rule>) -> PResult<(i64, i64)> {
+        let span = self.span(&d);
+        let ints: Vec<i64> = d
+            .into_inner()
+            .map(|i| {
+                i.as_str()
+                    .replace('−', "-")
+                    .parse::<i64>()
+                    .unwrap_or(i64::MAX)
+            })
+            .collect();
+        let (lo, hi) = match ints[..] {
+            [n] => (0, n.saturating_sub(1)),
+            [lo, hi] => (lo, hi),
+            _ => unreachable!("a dimension has one or two bounds"),
+        };
+        if hi < lo || hi - lo >= 1_000_000 || lo.abs() > 1_000_000_000 || hi.abs() > 1_000_000_000 {
+            return Err(Box::new(ParseError::bad_table_dim(self.file, span)));
+        }
+        Ok((lo, hi))
+    }
+
+    pub(super) fn table_values(&self, v: Pair<Rule>, out: &mut Vec<Expr>) -> PResult<()> {
+        for item in v.into_inner() {
+            if item.as_rule() == Rule::table_values {
+                self.table_values(item, out)?;
+            } else {
+                out.push(self.expr(item)?);
+            }
+        }
+        Ok(())
     }
 
     fn header(&self, h: Pair<Rule>) -> PResult<Header> {

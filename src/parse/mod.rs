@@ -99,6 +99,35 @@ pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<P
     }
 }
 
+/// A `-D` value: an expression (`Err` side of the result's `Ok`) or the
+/// flattened elements of a braced table list (`Ok`).
+pub fn parse_define_value(
+    file_id: FileId,
+    file: &SourceFile,
+) -> Result<Result<Vec<ast::Expr>, ast::Expr>, Box<ParseError>> {
+    match LsysParser::parse(Rule::define_value, file.text.as_str()) {
+        Ok(mut pairs) => {
+            let v = pairs
+                .next()
+                .and_then(|p| p.into_inner().next())
+                .expect("define_value holds a value");
+            let lower = lower::Lower {
+                file_id,
+                base: 0,
+                file,
+            };
+            if v.as_rule() == Rule::table_values {
+                let mut out = Vec::new();
+                lower.table_values(v, &mut out)?;
+                Ok(Ok(out))
+            } else {
+                Ok(Err(lower.expr(v)?))
+            }
+        }
+        Err(e) => Err(Box::new(ParseError::from_pest(file, file_id, 0, &e))),
+    }
+}
+
 /// Skips white space, newlines and comments. `Err(start)` for a block
 /// comment that is never closed.
 fn skip_blank(text: &str, mut pos: usize) -> Result<usize, usize> {

@@ -132,6 +132,64 @@ pub enum ResolveError {
         help: Option<String>,
     },
 
+    #[error("table `{name}` has {found} values for {expected} elements {dims}")]
+    #[diagnostic(code(lsys::resolve::table_size))]
+    TableSize {
+        name: String,
+        found: usize,
+        expected: usize,
+        dims: String,
+        #[source_code]
+        src: Src,
+        #[label("{found} values")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what}")]
+    #[diagnostic(code(lsys::resolve::not_a_table))]
+    NotATable {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("indexed here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("`{name}` is a table {dims}; {problem}")]
+    #[diagnostic(code(lsys::resolve::table_use))]
+    TableUse {
+        name: String,
+        dims: String,
+        problem: String,
+        #[source_code]
+        src: Src,
+        #[label("here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
+    #[error("index {value} of `{name}` is outside {lo}..{hi}")]
+    #[diagnostic(
+        code(lsys::resolve::table_index),
+        help("table indices are whole numbers within the ranges of the table's #define {dims}")
+    )]
+    TableIndex {
+        name: String,
+        value: f64,
+        lo: i64,
+        hi: i64,
+        dims: String,
+        #[source_code]
+        src: Src,
+        #[label("this index")]
+        span: SourceSpan,
+    },
+
     #[error("`{name}` has no value")]
     #[diagnostic(code(lsys::resolve::define_without_value))]
     DefineWithoutValue {

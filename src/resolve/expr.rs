@@ -41,7 +41,7 @@ impl Resolver {
     /// Resolves and folds an expression; `None` when an error was recorded.
     pub(super) fn expr(&mut self, e: &ast::Expr, scope: &Scope) -> Option<Expr> {
         let r = self.expr_in(e, scope, &Expansion::default())?;
-        match super::fold::fold(r, &self.sources) {
+        match super::fold::fold(r, &self.sources, &self.tables) {
             Ok(f) => Some(f),
             Err(err) => {
                 self.errors.push(Report::new(*err));
@@ -75,17 +75,83 @@ impl Resolver {
                 ExprKind::Cond(Box::new(c?), Box::new(a?), Box::new(b?))
             }
             ast::ExprKind::Call(name, args) => return self.call(name, args, span, scope, exp),
-            ast::ExprKind::Index(name, _) => {
-                self.error(ResolveError::Unsupported {
-                    what: format!("indexing a table (`{}[...]`)", name.name),
-                    src: self.sources.named_source(span),
-                    span: span.into(),
-                    help: "tables are not part of the language yet; use a #define per value, or a function of the index such as `(i == 1) * a + (i == 2) * b`".to_string(),
-                });
-                return None;
+            ast::ExprKind::Index(name, args) => {
+                return self.index(name, args, span, scope, exp);
             }
         };
         Some(Expr { kind, span })
+    }
+
+    /// `NAME[i, j, ...]`: an element of a table.
+    fn index(
+        &mut self,
+        name: &ast::Ident,
+        args: &[ast::Expr],
+        span: crate::source::Span,
+        scope: &Scope,
+        exp: &Expansion,
+    ) -> Option<Expr> {
+        let n = &name.name;
+        let Some(&id) = self.table_ids.get(n) else {
+            let (what, help) = match self.defines.get(n) {
+                // Its #define failed and was reported; say nothing more.
+                Some(d) if d.dims.is_some() => return None,
+                Some(_) => (
+                    format!("`{n}` is not a table, so it cannot be indexed"),
+                    format!("`{n}` is a plain #define; declare a table with dimensions instead, e.g. `#define {n}[1..3] {{a, b, c}}`"),
+                ),
+                None => (
+                    format!("there is no table `{n}`"),
+                    format!("declare it above its first use, e.g. `#define {n}[1..3] {{a, b, c}}`"),
+                ),
+            };
+            self.error(ResolveError::NotATable {
+                what,
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help,
+            });
+            return None;
+        };
+        if let Some(def) = self.defines.get(n) {
+            if exp.stack.is_empty() && scope.order < def.order {
+                let def_span = def.span;
+                self.error(ResolveError::DefineAfterUse {
+                    name: n.clone(),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    def: (def_span.file == span.file).then(|| def_span.into()),
+                    help: format!("move `#define {n}[...]` above its first use"),
+                });
+                return None;
+            }
+        }
+        let ndims = self.tables[id as usize].dims.len();
+        if args.len() != ndims {
+            let t = &self.tables[id as usize];
+            let dims = t.dims_text();
+            self.error(ResolveError::TableUse {
+                name: n.clone(),
+                dims: dims.clone(),
+                problem: format!("it takes {ndims} indices, found {}", args.len()),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: format!("write one index per dimension of {dims}"),
+            });
+            return None;
+        }
+        let mut out = Vec::new();
+        let mut ok = true;
+        for a in args {
+            match self.expr_in(a, scope, exp) {
+                Some(e) => out.push(e),
+                None => ok = false,
+            }
+        }
+        ok.then_some(Expr {
+            kind: ExprKind::Index(id, out),
+            span,
+        })
     }
 
     fn name(
@@ -105,6 +171,22 @@ impl Resolver {
             });
         }
         if let Some(def) = self.defines.get(n).cloned() {
+            if def.dims.is_some() {
+                let dims = self
+                    .tables
+                    .iter()
+                    .find(|t| t.name == n)
+                    .map_or(String::new(), |t| t.dims_text());
+                self.error(ResolveError::TableUse {
+                    name: n.to_string(),
+                    dims,
+                    problem: "it needs an index".to_string(),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: format!("read one element, e.g. `{n}[i, j]`"),
+                });
+                return None;
+            }
             if def.params.is_some() {
                 self.error(ResolveError::CallArity {
                     name: n.to_string(),

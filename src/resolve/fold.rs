@@ -5,22 +5,22 @@
 //! table, `bytecode::vm::call`).
 
 use super::error::ResolveError;
-use super::ir::{BinOp, Expr, ExprKind, UnOp};
+use super::ir::{BinOp, Expr, ExprKind, TableDef, UnOp};
 use crate::source::SourceMap;
 
-pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
+pub fn fold(e: Expr, sources: &SourceMap, tables: &[TableDef]) -> Result<Expr, Box<ResolveError>> {
     let span = e.span;
     let kind = match e.kind {
         ExprKind::Unary(op, a) => {
-            let a = fold(*a, sources)?;
+            let a = fold(*a, sources, tables)?;
             match a.kind {
                 ExprKind::Num(v) => ExprKind::Num(apply_unary(op, v)),
                 _ => ExprKind::Unary(op, Box::new(a)),
             }
         }
         ExprKind::Binary(op, a, b) => {
-            let a = fold(*a, sources)?;
-            let b = fold(*b, sources)?;
+            let a = fold(*a, sources, tables)?;
+            let b = fold(*b, sources, tables)?;
             match (op, &a.kind, &b.kind) {
                 (BinOp::Div | BinOp::Rem, _, ExprKind::Num(z)) if *z == 0.0 => {
                     return Err(Box::new(ResolveError::DivisionByZero {
@@ -36,9 +36,9 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
             }
         }
         ExprKind::Cond(c, a, b) => {
-            let c = fold(*c, sources)?;
-            let a = fold(*a, sources)?;
-            let b = fold(*b, sources)?;
+            let c = fold(*c, sources, tables)?;
+            let a = fold(*a, sources, tables)?;
+            let b = fold(*b, sources, tables)?;
             match c.kind {
                 ExprKind::Num(v) => return Ok(if v != 0.0 { a } else { b }),
                 _ => ExprKind::Cond(Box::new(c), Box::new(a), Box::new(b)),
@@ -47,7 +47,7 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
         ExprKind::Call(f, args) => {
             let args = args
                 .into_iter()
-                .map(|a| fold(a, sources))
+                .map(|a| fold(a, sources, tables))
                 .collect::<Result<Vec<_>, _>>()?;
             let consts: Option<Vec<f64>> = args
                 .iter()
@@ -65,6 +65,37 @@ pub fn fold(e: Expr, sources: &SourceMap) -> Result<Expr, Box<ResolveError>> {
                     vals.get(1).copied().unwrap_or(0.0),
                 )),
                 _ => ExprKind::Call(f, args),
+            }
+        }
+        ExprKind::Index(id, args) => {
+            let args = args
+                .into_iter()
+                .map(|a| fold(a, sources, tables))
+                .collect::<Result<Vec<_>, _>>()?;
+            let t = &tables[id as usize];
+            let consts: Option<Vec<f64>> = args
+                .iter()
+                .map(|a| match a.kind {
+                    ExprKind::Num(v) => Some(v),
+                    _ => None,
+                })
+                .collect();
+            match consts {
+                Some(idx) => match crate::bytecode::vm::table_offset(t.bounds(), &idx) {
+                    Ok(at) => ExprKind::Num(t.values[at]),
+                    Err(k) => {
+                        return Err(Box::new(ResolveError::TableIndex {
+                            name: t.name.clone(),
+                            value: idx[k],
+                            lo: t.dims[k].0,
+                            hi: t.dims[k].1,
+                            dims: t.dims_text(),
+                            src: sources.named_source(args[k].span),
+                            span: args[k].span.into(),
+                        }))
+                    }
+                },
+                None => ExprKind::Index(id, args),
             }
         }
         k => k,

@@ -84,6 +84,8 @@ pub enum ExprKind {
     /// `c ? a : b` (cpfg's C heritage).
     Cond(Box<Expr>, Box<Expr>, Box<Expr>),
     Call(Func, Vec<Expr>),
+    /// `NAME[i, j, ...]`: an element of table [`Program::tables`]`[id]`.
+    Index(u32, Vec<Expr>),
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -305,6 +307,47 @@ pub struct Program {
     pub defines: Vec<DefineInfo>,
     /// The turtle headers (`angle:`, `dialect:`, ...).
     pub turtle: TurtleSettings,
+    /// Tables (`#define NAME[dims] {...}`), indexed by [`ExprKind::Index`].
+    pub tables: Vec<TableDef>,
+}
+
+/// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableDef {
+    pub name: String,
+    /// Each dimension's first and last index.
+    pub dims: Vec<(i64, i64)>,
+    /// Row-major: the last index varies fastest.
+    pub values: Vec<f64>,
+    pub span: Span,
+    /// Some element was set with `-D NAME[...]=v` or `-D NAME={...}`.
+    pub overridden: bool,
+}
+
+impl TableDef {
+    /// (first index, count) per dimension, as the VM reads them.
+    pub fn bounds(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.dims
+            .iter()
+            .map(|&(lo, hi)| (lo as f64, (hi - lo + 1) as f64))
+    }
+
+    /// The number of elements.
+    pub fn size(dims: &[(i64, i64)]) -> usize {
+        dims.iter()
+            .map(|&(lo, hi)| (hi - lo + 1) as usize)
+            .product()
+    }
+
+    /// `dims` as text, e.g. `[1..3, 0..7]`.
+    pub fn dims_text(&self) -> String {
+        let d: Vec<String> = self
+            .dims
+            .iter()
+            .map(|(lo, hi)| format!("{lo}..{hi}"))
+            .collect();
+        format!("[{}]", d.join(", "))
+    }
 }
 
 /// What the file's turtle headers say; `None` where a header is absent, so

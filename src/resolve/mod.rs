@@ -11,6 +11,7 @@ pub mod ir;
 mod load;
 mod modules;
 mod statements;
+mod tables;
 mod view;
 
 use std::collections::HashMap;
@@ -55,6 +56,8 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         symbols: Symbols::default(),
         alphabet: alphabet::Alphabet::new(),
         arities: HashMap::new(),
+        tables: Vec::new(),
+        table_ids: HashMap::new(),
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -75,6 +78,9 @@ pub(crate) struct DefineEntry {
     pub name: String,
     pub params: Option<Vec<String>>,
     pub value: Option<ast::Expr>,
+    /// A table's dimensions and braced values (see [`ir::TableDef`]).
+    pub dims: Option<Vec<(i64, i64)>>,
+    pub elems: Option<(Vec<ast::Expr>, Span)>,
     pub span: Span,
     /// Position in the flattened statement list.
     pub order: usize,
@@ -98,6 +104,9 @@ pub(crate) struct Resolver {
     pub symbols: Symbols,
     pub alphabet: alphabet::Alphabet,
     pub arities: HashMap<SymId, ArityInfo>,
+    /// Evaluated tables and their ids by name.
+    pub tables: Vec<ir::TableDef>,
+    pub table_ids: HashMap<String, u32>,
 }
 
 impl Resolver {
@@ -111,7 +120,8 @@ impl Resolver {
 
     fn run(&mut self, items: Vec<(u32, ast::Item)>, opts: &Options) -> Option<Program> {
         self.collect_defines(&items);
-        self.apply_overrides(opts);
+        let element_overrides = self.apply_overrides(opts);
+        self.evaluate_tables(&element_overrides);
         self.build_alphabet(&items);
         let program = self.statements(&items);
         if !self.errors.is_empty() {
@@ -146,6 +156,8 @@ impl Resolver {
                             .as_ref()
                             .map(|ps| ps.iter().map(|p| p.name.clone()).collect()),
                         value: d.value.clone(),
+                        dims: d.dims.clone(),
+                        elems: d.elems.clone(),
                         span: d.name.span,
                         order,
                         overridden: false,
@@ -155,11 +167,18 @@ impl Resolver {
         }
     }
 
-    fn apply_overrides(&mut self, opts: &Options) {
+    /// Applies `-D NAME=VALUE` to the defines. Element overrides of tables
+    /// (`-D dec[1,2,3]=0`) are returned, to apply once tables are evaluated.
+    fn apply_overrides(&mut self, opts: &Options) -> Vec<tables::ElementOverride> {
+        let mut elements = Vec::new();
         for (name, value) in &opts.defines {
-            let Some(entry) = self.defines.get(name) else {
+            let (base, index) = match name.split_once('[') {
+                Some((b, rest)) => (b.trim(), Some(rest)),
+                None => (name.as_str(), None),
+            };
+            let Some(entry) = self.defines.get(base) else {
                 let known: Vec<&str> = self.define_order.iter().map(String::as_str).collect();
-                let help = match expr::suggest(name, known.iter().copied()) {
+                let help = match expr::suggest(base, known.iter().copied()) {
                     Some(s) => format!(
                         "did you mean `{s}`? the grammar defines: {}",
                         known.join(", ")
@@ -170,7 +189,7 @@ impl Resolver {
                     None => format!("the grammar defines: {}", known.join(", ")),
                 };
                 self.error(ResolveError::UnknownOverride {
-                    name: name.clone(),
+                    name: base.to_string(),
                     help,
                 });
                 continue;
@@ -183,17 +202,68 @@ impl Resolver {
                 });
                 continue;
             }
+            let is_table = entry.dims.is_some();
+            if index.is_some() && !is_table {
+                self.error(ResolveError::BadOverride {
+                    name: name.clone(),
+                    why: format!("`{base}` is not a table"),
+                    help: Some(format!("write `-D {base}=VALUE`")),
+                });
+                continue;
+            }
             let file = SourceFile::new(format!("-D {name}"), Origin::Memory, value.clone());
             let id = self.sources.add(file);
-            match crate::parse::parse_expr(id, self.sources.get(id)) {
-                Ok(e) => {
-                    let entry = self.defines.get_mut(name).expect("checked above");
-                    entry.value = Some(e);
+            let parsed = match crate::parse::parse_define_value(id, self.sources.get(id)) {
+                Ok(v) => v,
+                Err(e) => {
+                    self.errors.push(Report::new(*e));
+                    continue;
+                }
+            };
+            let span = Span::new(id, 0, value.len());
+            match (index, parsed) {
+                (Some(idx), Err(e)) => match tables::parse_index(idx) {
+                    Some(at) => elements.push(tables::ElementOverride {
+                        name: base.to_string(),
+                        at,
+                        value: e,
+                        text: name.clone(),
+                    }),
+                    None => self.error(ResolveError::BadOverride {
+                        name: name.clone(),
+                        why: "its index is not a list of whole numbers".to_string(),
+                        help: Some(format!("write e.g. `-D '{base}[1,2,3]=0'`")),
+                    }),
+                },
+                (Some(_), Ok(_)) => self.error(ResolveError::BadOverride {
+                    name: name.clone(),
+                    why: "one element takes one value".to_string(),
+                    help: Some(format!(
+                        "to replace the whole table write `-D '{base}={{...}}'`"
+                    )),
+                }),
+                (None, Ok(elems)) if is_table => {
+                    let entry = self.defines.get_mut(base).expect("checked above");
+                    entry.elems = Some((elems, span));
+                    entry.value = None;
                     entry.overridden = true;
                 }
-                Err(e) => self.errors.push(Report::new(*e)),
+                (None, Ok(_)) => self.error(ResolveError::BadOverride {
+                    name: name.clone(),
+                    why: format!("`{base}` is not a table, so it takes one value, not a list"),
+                    help: None,
+                }),
+                (None, Err(e)) => {
+                    let entry = self.defines.get_mut(base).expect("checked above");
+                    entry.value = Some(e);
+                    if is_table {
+                        entry.elems = None;
+                    }
+                    entry.overridden = true;
+                }
             }
         }
+        elements
     }
 
     fn define_infos(&mut self) -> Vec<DefineInfo> {

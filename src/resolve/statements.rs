@@ -92,6 +92,7 @@ impl Resolver {
                 .map_or(DEFAULT_DEPTH, |d| d.0),
             defines,
             turtle,
+            tables: std::mem::take(&mut self.tables),
         })
     }
 
