@@ -46,3 +46,15 @@ pub const COMPONENTS: &[(&str, &str)] = &[
 pub fn component(name: &str) -> Option<&'static str> {
     COMPONENTS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
+
+/// Components that are standard library grammars: `~TM(s)` places the
+/// middle Toukung, `~TS(s)` the side one (paper, Fig 10), each derived once.
+pub const GRAMMAR_COMPONENTS: &[(&str, &str)] = &[("TM", "toukung_middle"), ("TS", "toukung_side")];
+
+/// The standard library grammar that component `name` stands for.
+pub fn grammar_component(name: &str) -> Option<&'static str> {
+    GRAMMAR_COMPONENTS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, g)| *g)
+}

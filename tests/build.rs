@@ -193,3 +193,41 @@ fn components_are_found_in_components_dirs() {
     // The unit-high second tetrahedron stands on the first, 2 high.
     assert_eq!(stats["bounds"][1][1], 3.0);
 }
+
+#[test]
+fn grammar_components_build_once_and_refuse_cycles() {
+    let dir = tempfile::tempdir().unwrap();
+    let parts = dir.path().join("parts");
+    std::fs::create_dir(&parts).unwrap();
+    std::fs::write(parts.join("Loop.lsys"), "Axiom: F ~Loop\n").unwrap();
+    let grammar = dir.path().join("g.lsys");
+    std::fs::write(&grammar, "Axiom: ~Loop\n").unwrap();
+    let out = dir.path().join("m.glb");
+    let o = lsys(&[
+        "build",
+        path_str(&grammar),
+        "--components",
+        path_str(&parts),
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(65));
+    assert!(stderr(&o).contains("~Loop -> ~Loop"), "{}", stderr(&o));
+    assert!(!out.exists());
+    // The standard library's Toukungs are components too: two middle
+    // Toukungs share one mesh of the whole bracket set.
+    std::fs::write(&grammar, "Axiom: ~TM(1) f(2) ~TM(2) ~TS\n").unwrap();
+    let o = lsys(&["build", path_str(&grammar), "-o", path_str(&out), "--stats"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(stats["instances"]["TM"], 2);
+    assert_eq!(stats["instances"]["TS"], 1);
+    let doc = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    let meshes: Vec<_> = doc
+        .nodes()
+        .filter(|n| n.name().is_some_and(|m| m.starts_with("TM#")))
+        .map(|n| n.mesh().unwrap().index())
+        .collect();
+    assert_eq!(meshes.len(), 2);
+    assert_eq!(meshes[0], meshes[1]);
+}

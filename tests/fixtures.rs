@@ -191,6 +191,7 @@ fn turtle() {
                 components: lsys::mesh::ComponentSearch {
                     grammar_dir: Some(Path::new(&rel(path)).parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
+                    within: Vec::new(),
                 },
                 ..Default::default()
             };
@@ -220,6 +221,7 @@ fn examples_build() {
                 components: lsys::mesh::ComponentSearch {
                     grammar_dir: Some(path.parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
+                    within: Vec::new(),
                 },
                 ..Default::default()
             };

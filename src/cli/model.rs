@@ -85,6 +85,7 @@ fn options(m: &ModelArgs) -> BuildOptions {
         components: ComponentSearch {
             grammar_dir,
             dirs: m.components.clone(),
+            within: Vec::new(),
         },
         mesh: MeshOptions {
             sides: m.facets,

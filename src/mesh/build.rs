@@ -46,8 +46,15 @@ impl Builder<'_> {
             return m;
         }
         let (name, rgb) = self.palette.colour(colour);
-        self.scene.materials.push(Material { name, rgb });
-        let m = self.scene.materials.len() - 1;
+        let wanted = Material { name, rgb };
+        // A grammar component may have brought the same colour already.
+        let m = match self.scene.materials.iter().position(|m| *m == wanted) {
+            Some(m) => m,
+            None => {
+                self.scene.materials.push(wanted);
+                self.scene.materials.len() - 1
+            }
+        };
         self.colour_materials.insert(colour, m);
         m
     }
@@ -160,7 +167,11 @@ fn missing(
         .map(|p| format!("  {}", p.display()))
         .collect();
     places.push("  the built-in components".to_string());
-    let builtin: Vec<&str> = crate::stdlib::COMPONENTS.iter().map(|(n, _)| *n).collect();
+    let builtin: Vec<&str> = crate::stdlib::COMPONENTS
+        .iter()
+        .chain(crate::stdlib::GRAMMAR_COMPONENTS)
+        .map(|(n, _)| *n)
+        .collect();
     let (src, span) = match symbol.span {
         Some(s) => (program.sources.named_source(s), Some(s.into())),
         None => (

@@ -19,33 +19,50 @@ pub struct ComponentSearch {
     pub grammar_dir: Option<PathBuf>,
     /// `--components DIR`, in the order given.
     pub dirs: Vec<PathBuf>,
+    /// The grammar components being built around this search, outermost
+    /// first (to refuse cycles).
+    pub within: Vec<String>,
 }
 
 /// Where a component's OBJ text came from.
 enum Found {
     File(PathBuf),
     BuiltIn(&'static str),
+    /// A grammar, derived and built once, then placed like any component.
+    Grammar(crate::resolve::Input),
 }
 
 impl ComponentSearch {
-    /// The files tried for `name`, in order.
+    /// The files tried for `name`, in order: in each directory the OBJ
+    /// model, then a grammar of that name.
     fn candidates(&self, name: &str) -> Vec<PathBuf> {
-        let file = format!("{name}.obj");
         self.grammar_dir
             .iter()
             .map(|d| d.join("components"))
             .chain(self.dirs.iter().cloned())
-            .map(|d| d.join(&file))
+            .flat_map(|d| {
+                [
+                    d.join(format!("{name}.obj")),
+                    d.join(format!("{name}.lsys")),
+                ]
+            })
             .collect()
     }
 
     fn find(&self, name: &str) -> Result<Found, Vec<PathBuf>> {
         let candidates = self.candidates(name);
         if let Some(p) = candidates.iter().find(|p| p.is_file()) {
-            return Ok(Found::File(p.clone()));
+            return Ok(if p.extension().is_some_and(|e| e == "lsys") {
+                Found::Grammar(crate::resolve::Input::Path(p.clone()))
+            } else {
+                Found::File(p.clone())
+            });
         }
-        stdlib::component(name)
-            .map(Found::BuiltIn)
+        if let Some(text) = stdlib::component(name) {
+            return Ok(Found::BuiltIn(text));
+        }
+        stdlib::grammar_component(name)
+            .map(|g| Found::Grammar(crate::resolve::Input::Std(g.to_string())))
             .ok_or(candidates)
     }
 
@@ -73,6 +90,9 @@ impl ComponentSearch {
                 }),
             },
             Found::BuiltIn(text) => parse_obj(name, text.as_bytes(), "built-in", None, materials),
+            Found::Grammar(input) => {
+                super::subgrammar::grammar_component(name, &input, self, materials)
+            }
         })
     }
 }
@@ -174,7 +194,7 @@ pub fn parse_obj(
 
 /// Centres the parts at the origin and scales each axis to extent 1. An
 /// axis with no extent (a flat model) stays flat.
-fn normalise(parts: &mut [Part]) {
+pub(super) fn normalise(parts: &mut [Part]) {
     let Some((lo, hi)) =
         super::scene::bounds_of(parts.iter().flat_map(|p| p.mesh.positions.iter().copied()))
     else {
@@ -271,6 +291,7 @@ mod tests {
         let s = ComponentSearch {
             grammar_dir: Some(PathBuf::from("/nowhere/g")),
             dirs: vec![PathBuf::from("/nowhere/extra")],
+            within: Vec::new(),
         };
         let Err(tried) = s.load("Nope", &mut Vec::new()) else {
             panic!("found a component that does not exist");
@@ -279,7 +300,9 @@ mod tests {
             tried,
             vec![
                 PathBuf::from("/nowhere/g/components/Nope.obj"),
-                PathBuf::from("/nowhere/extra/Nope.obj")
+                PathBuf::from("/nowhere/g/components/Nope.lsys"),
+                PathBuf::from("/nowhere/extra/Nope.obj"),
+                PathBuf::from("/nowhere/extra/Nope.lsys"),
             ]
         );
     }

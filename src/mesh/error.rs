@@ -35,6 +35,17 @@ pub enum MeshError {
         reason: String,
     },
 
+    #[error("component `~{name}` is the grammar {origin}, which does not build")]
+    #[diagnostic(
+        code(lsys::mesh::component_grammar),
+        help("{details}\nfix the grammar (`lsys check {origin}`), or put an OBJ model `{name}.obj` in a components directory instead")
+    )]
+    ComponentGrammar {
+        name: String,
+        origin: String,
+        details: String,
+    },
+
     #[error("the model would have more than {limit} triangles (reached {reached})")]
     #[diagnostic(
         code(lsys::mesh::too_many_triangles),

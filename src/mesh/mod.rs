@@ -6,6 +6,7 @@ pub mod error;
 pub mod palette;
 pub mod scene;
 pub mod shapes;
+pub mod subgrammar;
 pub mod tube;
 pub use build::{build_scene, MeshOptions};
 pub use components::ComponentSearch;

@@ -1,0 +1,140 @@
+//! Grammars as components: `~TM(s)` where TM is a grammar (a `.lsys` file
+//! found like an OBJ model, or a standard library grammar such as the
+//! Toukungs) -> one [`Component`]. The grammar is derived and built once; its
+//! strokes and placed components are merged per material into the
+//! component's parts, normalised to the unit box like any model, and then
+//! placed as instances however often the outer grammar asks.
+
+use std::collections::BTreeMap;
+
+use glam::Mat3;
+
+use super::components::{normalise, ComponentSearch};
+use super::error::MeshError;
+use super::scene::{Component, Material, Part, TriMesh};
+use crate::build::{self, BuildOptions};
+use crate::pipeline::{self, Failure};
+use crate::resolve::{Input, Options};
+
+/// Grammar components nested deeper than this are refused.
+pub const MAX_NESTING: usize = 8;
+
+pub fn grammar_component(
+    name: &str,
+    input: &Input,
+    search: &ComponentSearch,
+    materials: &mut Vec<Material>,
+) -> Result<Component, MeshError> {
+    let origin = match input {
+        Input::Path(p) => p.display().to_string(),
+        Input::Std(n) => format!("std:{n}"),
+        Input::Text { name, .. } => name.clone(),
+    };
+    let fail = |details: String| MeshError::ComponentGrammar {
+        name: name.to_string(),
+        origin: origin.clone(),
+        details,
+    };
+    if search.within.iter().any(|w| w == name) || search.within.len() >= MAX_NESTING {
+        let mut chain = search.within.clone();
+        chain.push(name.to_string());
+        return Err(fail(format!(
+            "components nest in a cycle or deeper than {MAX_NESTING}: ~{}",
+            chain.join(" -> ~")
+        )));
+    }
+    let comp = match pipeline::compile(input, &Options::default()) {
+        Ok(c) => c,
+        Err(Failure::Input(e)) => return Err(fail(crate::diag::render_plain(&e))),
+        Err(Failure::Diagnostics { diagnostics }) => {
+            return Err(fail(
+                diagnostics
+                    .iter()
+                    .map(|d| crate::diag::render_plain(d.as_ref()))
+                    .collect(),
+            ))
+        }
+    };
+    let mut within = search.within.clone();
+    within.push(name.to_string());
+    let opts = BuildOptions {
+        components: ComponentSearch {
+            grammar_dir: match input {
+                Input::Path(p) => p.parent().map(|d| d.to_path_buf()),
+                _ => None,
+            },
+            dirs: search.dirs.clone(),
+            within,
+        },
+        ..Default::default()
+    };
+    let built = build::build(&comp, &opts).map_err(|e| fail(crate::diag::render_plain(&e)))?;
+    let scene = built.scene;
+    // The grammar's own colours become materials of the outer scene (the
+    // same colour once).
+    let map: Vec<usize> = scene
+        .materials
+        .iter()
+        .map(|m| match materials.iter().position(|x| x == m) {
+            Some(i) => i,
+            None => {
+                materials.push(m.clone());
+                materials.len() - 1
+            }
+        })
+        .collect();
+    let mut merged: BTreeMap<usize, TriMesh> = BTreeMap::new();
+    for s in &scene.strokes {
+        merged.entry(map[s.material]).or_default().append(&s.mesh);
+    }
+    for inst in &scene.instances {
+        let t = inst.transform;
+        let normals = Mat3::from_mat4(t).inverse().transpose();
+        let mirrored = Mat3::from_mat4(t).determinant() < 0.0;
+        for p in &scene.components[inst.component].parts {
+            let mut m = TriMesh {
+                positions: p
+                    .mesh
+                    .positions
+                    .iter()
+                    .map(|&v| t.transform_point3(v))
+                    .collect(),
+                normals: p
+                    .mesh
+                    .normals
+                    .iter()
+                    .map(|&n| (normals * n).normalize_or(n))
+                    .collect(),
+                indices: p.mesh.indices.clone(),
+            };
+            if mirrored {
+                // A mirror turns faces inside out; keep them outward.
+                for tri in m.indices.chunks_exact_mut(3) {
+                    tri.swap(1, 2);
+                }
+            }
+            let material = map[p.material.unwrap_or(inst.material)];
+            merged.entry(material).or_default().append(&m);
+        }
+    }
+    let mut parts: Vec<Part> = merged
+        .into_iter()
+        .filter(|(_, m)| !m.is_empty())
+        .map(|(material, mesh)| Part {
+            mesh,
+            material: Some(material),
+        })
+        .collect();
+    if parts.is_empty() {
+        return Err(fail(format!(
+            "it draws nothing (its string of {} modules has no drawing command)",
+            built.modules
+        )));
+    }
+    normalise(&mut parts);
+    Ok(Component {
+        name: name.to_string(),
+        parts,
+        origin,
+    })
+}
