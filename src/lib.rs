@@ -18,6 +18,7 @@ pub mod derive;
 pub mod diag;
 pub mod export;
 pub mod mesh;
+pub mod pailou;
 pub mod parse;
 pub mod pipeline;
 pub mod resolve;

@@ -11,6 +11,7 @@ pub const FILES: &[(&str, &str)] = &[
         "toukung_side",
         include_str!("../grammar/std/toukung_side.lsys"),
     ),
+    ("pailou", include_str!("../grammar/std/pailou.lsys")),
 ];
 
 /// The text of the standard library file `name` (with or without `.lsys`).

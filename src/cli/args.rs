@@ -40,6 +40,8 @@ pub enum Command {
     Render(RenderArgs),
     /// List the turtle commands: symbol, parameters, default, meaning.
     Commands,
+    /// Build a Pailou from a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
+    Pailou(PailouArgs),
 }
 
 #[derive(Args, Debug)]
@@ -92,6 +94,14 @@ pub struct ModelArgs {
     pub common: Common,
     #[command(flatten)]
     pub run: DeriveRun,
+    #[command(flatten)]
+    pub look: LookArgs,
+}
+
+/// Turtle defaults, components and meshing (shared by `build`, `render`
+/// and `pailou`).
+#[derive(Args, Debug)]
+pub struct LookArgs {
     /// Default turning angle in degrees (overrides the file's `angle:`; default 90).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub angle: Option<f64>,
@@ -101,7 +111,7 @@ pub struct ModelArgs {
     /// Initial line width, the tube diameter (overrides the file's `width:`; default 0.1).
     #[arg(long, value_name = "W")]
     pub width: Option<f64>,
-    /// Also look for components (NAME.obj) in this directory (repeatable; after `components/` beside the grammar).
+    /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
     pub components: Vec<PathBuf>,
     /// Facets around tubes, spheres and discs (3 to 64).
@@ -113,6 +123,41 @@ pub struct ModelArgs {
     /// Print statistics as JSON to standard output (modules, instances, vertices, triangles, bounds, timings).
     #[arg(long)]
     pub stats: bool,
+}
+
+/// `lsys pailou`: a Pailou from a style.
+#[derive(Args, Debug)]
+pub struct PailouArgs {
+    /// The style NP-NE-NR: pillars and entrances on the ground, roofs in all (see docs/pailou.md).
+    #[arg(long, default_value = "4-3-7")]
+    pub style: String,
+    /// Ridge type (eaves roofs on Toukungs) or pillar type (clipped roofs, pillars rising above them).
+    #[arg(long = "type", value_enum, default_value_t = PailouTypeArg::Ridge)]
+    pub kind: PailouTypeArg,
+    /// Override a #define of the Pailou grammar: -D NAME=VALUE, -D 'dec[1,1,3]=0' (repeatable).
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    /// Print the layout chart (entrances per level).
+    #[arg(long)]
+    pub chart: bool,
+    /// Print the generated grammar (the library's Pailou with this style's tables), to continue by hand.
+    #[arg(long)]
+    pub emit_lsys: bool,
+    /// The model or picture to write: .glb, .gltf, .obj or .png.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    #[command(flatten)]
+    pub run: DeriveRun,
+    #[command(flatten)]
+    pub look: LookArgs,
+    #[command(flatten)]
+    pub picture: PictureArgs,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum PailouTypeArg {
+    Ridge,
+    Pillar,
 }
 
 #[derive(Args, Debug)]

@@ -24,6 +24,7 @@ pub fn run(cmd: &Command, color: bool) -> i32 {
         },
         Command::Build(b) => super::model::build_cmd(b, color),
         Command::Render(r) => super::model::render_cmd(r, color),
+        Command::Pailou(p) => super::model::pailou_cmd(p, color),
         Command::Commands => {
             emit_stdout(|out| out.write_all(crate::turtle::commands::help_text().as_bytes()))
         }
@@ -37,10 +38,20 @@ pub(super) fn report(d: &dyn Diagnostic, color: bool) {
 /// Compiles, printing warnings; on failure prints every diagnostic and
 /// returns the exit code.
 pub(super) fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
+    compile_input(&Input::from_arg(&c.file), &c.file, &c.define, color)
+}
+
+/// Compiles `input` (named `name` in the summary line) with `-D` overrides.
+pub(super) fn compile_input(
+    input: &Input,
+    name: &str,
+    defines: &[(String, String)],
+    color: bool,
+) -> Result<Compilation, i32> {
     let opts = Options {
-        defines: c.define.clone(),
+        defines: defines.to_vec(),
     };
-    match pipeline::compile(&Input::from_arg(&c.file), &opts) {
+    match pipeline::compile(input, &opts) {
         Ok(comp) => {
             for w in &comp.warnings {
                 report(w.as_ref(), color);
@@ -61,7 +72,7 @@ pub(super) fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
             }
             eprintln!(
                 "{}: {errors} error{}",
-                c.file,
+                name,
                 if errors == 1 { "" } else { "s" }
             );
             Err(EX_DATAERR)

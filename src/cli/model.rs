@@ -6,8 +6,11 @@ use std::io;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use super::args::{BuildArgs, ModelArgs, PictureArgs, RenderArgs, ViewArg};
-use super::commands::{compile, report};
+use super::args::{
+    BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
+    ViewArg,
+};
+use super::commands::{compile_input, report};
 use super::{EX_DATAERR, EX_IOERR, EX_OK, EX_USAGE};
 use crate::build::{self, BuildOptions, Built};
 use crate::derive::DeriveOptions;
@@ -39,7 +42,7 @@ impl Format {
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match Format::of(&b.output) {
-        Some(f) => run(&b.model, &b.output, &b.picture, f, color),
+        Some(f) => model_run(&b.model, &b.output, &b.picture, f, color),
         None => {
             eprintln!(
                 "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
@@ -58,12 +61,84 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
-    run(&r.model, &r.output, &r.picture, Format::Png, color)
+    model_run(&r.model, &r.output, &r.picture, Format::Png, color)
+}
+
+fn model_run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
+    let input = Input::from_arg(&m.common.file);
+    let job = Job {
+        input: &input,
+        name: &m.common.file,
+        defines: &m.common.define,
+        run: &m.run,
+        look: &m.look,
+    };
+    run(&job, out, pic, format, color)
+}
+
+pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
+    let kind = match p.kind {
+        PailouTypeArg::Ridge => crate::pailou::PailouType::Ridge,
+        PailouTypeArg::Pillar => crate::pailou::PailouType::Pillar,
+    };
+    let (input, layout) = match crate::pailou::input(&p.style, kind) {
+        Ok(x) => x,
+        Err(e) => {
+            eprintln!("lsys: cannot build the style {}: {e}", p.style);
+            return EX_USAGE;
+        }
+    };
+    if p.chart {
+        print!("{}", layout.chart());
+    }
+    if p.emit_lsys {
+        if let Input::Text { text, .. } = &input {
+            print!("{text}");
+        }
+    }
+    let Some(out) = &p.output else {
+        if p.chart || p.emit_lsys {
+            return EX_OK;
+        }
+        eprintln!(
+            "lsys: say what to write: -o FILE (.glb, .gltf, .obj, .png), --chart or --emit-lsys"
+        );
+        return EX_USAGE;
+    };
+    let Some(format) = Format::of(out) else {
+        eprintln!(
+            "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
+            out.display()
+        );
+        return EX_USAGE;
+    };
+    let name = match &input {
+        Input::Text { name, .. } => name.clone(),
+        _ => p.style.clone(),
+    };
+    let job = Job {
+        input: &input,
+        name: &name,
+        defines: &p.define,
+        run: &p.run,
+        look: &p.look,
+    };
+    run(&job, out, &p.picture, format, color)
+}
+
+/// One build: the grammar and the options that shape it.
+struct Job<'a> {
+    input: &'a Input,
+    /// How messages name the grammar.
+    name: &'a str,
+    defines: &'a [(String, String)],
+    run: &'a DeriveRun,
+    look: &'a LookArgs,
 }
 
 /// The options of a build from the command line.
-fn options(m: &ModelArgs) -> BuildOptions {
-    let grammar_dir = match Input::from_arg(&m.common.file) {
+fn options(m: &Job) -> BuildOptions {
+    let grammar_dir = match m.input {
         Input::Path(p) => Some(
             p.parent()
                 .filter(|d| !d.as_os_str().is_empty())
@@ -79,24 +154,24 @@ fn options(m: &ModelArgs) -> BuildOptions {
             max_modules: m.run.max_modules,
             max_params: m.run.max_params,
         },
-        angle: m.angle,
-        step: m.step,
-        width: m.width,
+        angle: m.look.angle,
+        step: m.look.step,
+        width: m.look.width,
         components: ComponentSearch {
             grammar_dir,
-            dirs: m.components.clone(),
+            dirs: m.look.components.clone(),
             within: Vec::new(),
         },
         mesh: MeshOptions {
-            sides: m.facets,
-            max_triangles: m.max_triangles,
+            sides: m.look.facets,
+            max_triangles: m.look.max_triangles,
         },
     }
 }
 
-fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
+fn run(m: &Job, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
     let t0 = Instant::now();
-    let comp = match compile(&m.common, color) {
+    let comp = match compile_input(m.input, m.name, m.defines, color) {
         Ok(c) => c,
         Err(code) => return code,
     };
@@ -114,7 +189,7 @@ fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool
     if built.scene.triangle_count() == 0 {
         eprintln!(
             "lsys: warning: {} draws nothing (its string of {} modules has no drawing command with a size); the output is empty",
-            m.common.file, built.modules
+            m.name, built.modules
         );
     }
     let t1 = Instant::now();
@@ -122,7 +197,7 @@ fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool
     let write_time = t1.elapsed();
     match written {
         Ok(bytes) => {
-            if m.stats {
+            if m.look.stats {
                 println!("{}", stats(&built, parse, write_time, out, bytes));
             }
             EX_OK

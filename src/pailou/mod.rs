@@ -1,0 +1,64 @@
+//! The Pailou front-end: a style (`4-3-7`, ridge or pillar type) -> the
+//! standard library's Pailou grammar with its layout tables filled in,
+//! ready to compile (or to print for an expert to continue by hand).
+pub mod style;
+
+pub use style::{layout, parse_style, Layout, PailouType, StyleError};
+
+use crate::resolve::Input;
+
+const BEGIN: &str = "// <layout>";
+const END: &str = "// </layout>";
+
+/// The standard library's Pailou grammar with `layout`'s tables in place
+/// of its default ones.
+pub fn source(layout: &Layout, title: &str) -> String {
+    let std = crate::stdlib::get("pailou").expect("the standard library has pailou.lsys");
+    let start = std.find(BEGIN).expect("pailou.lsys marks its layout");
+    let end = std.find(END).expect("pailou.lsys marks its layout's end");
+    // Keep the marker lines so that the output can be generated again.
+    let begin_line_end = start + std[start..].find('\n').map_or(0, |n| n + 1);
+    format!(
+        "{}{BEGIN} {title}, written by `lsys pailou`\n{}{}",
+        &std[..start],
+        layout.defines(),
+        &std[end..]
+    )
+    .replacen(&std[start..begin_line_end], "", 0)
+}
+
+/// The grammar for a style, as an input to compile.
+pub fn input(style: &str, kind: PailouType) -> Result<(Input, Layout), StyleError> {
+    let (np, ne, nr) = parse_style(style)?;
+    let l = layout(np, ne, nr, kind)?;
+    let kind_name = match kind {
+        PailouType::Ridge => "ridge",
+        PailouType::Pillar => "pillar",
+    };
+    let title = format!("style {style}, {kind_name} type");
+    let text = source(&l, &title);
+    Ok((
+        Input::Text {
+            name: format!("pailou-{style}-{kind_name}.lsys"),
+            text,
+        },
+        l,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The library's own tables are the generator's 4-3-7 ridge type, so
+    /// `std:pailou` and `lsys pailou --style 4-3-7` build the same Pailou.
+    #[test]
+    fn std_default_is_the_4_3_7_ridge_style() {
+        let l = layout(4, 3, 7, PailouType::Ridge).unwrap();
+        let std = crate::stdlib::get("pailou").unwrap();
+        let start = std.find(BEGIN).unwrap();
+        let block = &std[start..std.find(END).unwrap()];
+        let block = &block[block.find('\n').unwrap() + 1..];
+        assert_eq!(block, l.defines());
+    }
+}
