@@ -123,6 +123,9 @@ pub struct LookArgs {
     /// Print statistics as JSON to standard output (modules, instances, vertices, triangles, bounds, timings).
     #[arg(long)]
     pub stats: bool,
+    /// Warn about placed components whose boxes interpenetrate (always on for `lsys pailou`).
+    #[arg(long)]
+    pub collisions: bool,
 }
 
 /// `lsys pailou`: a Pailou from a style.

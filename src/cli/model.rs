@@ -72,6 +72,7 @@ fn model_run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color
         defines: &m.common.define,
         run: &m.run,
         look: &m.look,
+        collisions: m.look.collisions,
     };
     run(&job, out, pic, format, color)
 }
@@ -122,6 +123,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         defines: &p.define,
         run: &p.run,
         look: &p.look,
+        collisions: true,
     };
     run(&job, out, &p.picture, format, color)
 }
@@ -134,6 +136,8 @@ struct Job<'a> {
     defines: &'a [(String, String)],
     run: &'a DeriveRun,
     look: &'a LookArgs,
+    /// Report interpenetrating components.
+    collisions: bool,
 }
 
 /// The options of a build from the command line.
@@ -185,6 +189,23 @@ fn run(m: &Job, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i
     };
     for w in &built.warnings {
         report(w, color);
+    }
+    if m.collisions {
+        let found = crate::mesh::collide::collisions(&built.scene);
+        for c in found.iter().take(20) {
+            eprintln!(
+                "lsys: warning: components {} and {} collide ({:.0}% of the smaller one's box is inside the other)",
+                c.a,
+                c.b,
+                c.shared * 100.0
+            );
+        }
+        if found.len() > 20 {
+            eprintln!(
+                "lsys: warning: ... and {} more collisions",
+                found.len() - 20
+            );
+        }
     }
     if built.scene.triangle_count() == 0 {
         eprintln!(

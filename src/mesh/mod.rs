@@ -1,6 +1,7 @@
 //! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
 //! spheres and discs, and components loaded once and placed by transform.
 pub mod build;
+pub mod collide;
 pub mod components;
 pub mod error;
 pub mod palette;
