@@ -65,7 +65,7 @@ pub fn collisions(scene: &Scene) -> Vec<Collision> {
             }
         }
     }
-    out.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)));
+    out.sort_by_key(|x| (x.0, x.1));
     out.into_iter()
         .map(|(a, b, shared)| Collision {
             a: name(a),
