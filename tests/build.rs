@@ -231,3 +231,68 @@ fn grammar_components_build_once_and_refuse_cycles() {
     assert_eq!(meshes.len(), 2);
     assert_eq!(meshes[0], meshes[1]);
 }
+
+/// The 15 Pailous of the paper's Table 3 (`examples/pailou/*.toml`, named
+/// by figure and style) build through `lsys pailou GRAPH` with the pillars
+/// and roofs their names promise, without colliding components, and pass
+/// the glTF validator when it is installed.
+#[test]
+fn table_3_pailous_build_with_their_pillars_and_roofs() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut graphs: Vec<PathBuf> = std::fs::read_dir(root.join("examples/pailou"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    graphs.sort();
+    assert_eq!(graphs.len(), 15, "Table 3 has 15 Pailous");
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for graph in &graphs {
+        let stem = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        let style = stem.split('_').nth(1).unwrap();
+        let out = dir.path().join(format!("{stem}.glb"));
+        let o = lsys(&["pailou", path_str(graph), "-o", path_str(&out), "--stats"]);
+        assert!(o.status.success(), "{stem}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("collide"), "{stem}: {}", stderr(&o));
+        let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let n: Vec<u64> = style.split('-').map(|x| x.parse().unwrap()).collect();
+        let count = |c: &str| stats["instances"][c].as_u64().unwrap_or(0);
+        // Ground pillars stand on bases; upper entrances' pillars do not.
+        assert_eq!(count("MPB"), n[0], "{stem} pillar bases");
+        assert_eq!(count("RE") + count("RC"), n[2], "{stem} roofs");
+        if stem.starts_with("fig17") {
+            assert_eq!(count("RE"), 0, "{stem}: the pillar type has no eaves roofs");
+        }
+        files.push(out);
+    }
+    let npm = root.join("target/npm");
+    if npm.join("node_modules/gltf-validator").is_dir() {
+        let o = Command::new("node")
+            .arg(root.join("scripts/gltf-validate.mjs"))
+            .args(&files)
+            .env("GLTF_VALIDATOR_DIR", &npm)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
+    }
+}
+
+#[test]
+fn illegal_attachments_and_styles_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let graph = dir.path().join("g.toml");
+    std::fs::write(
+        &graph,
+        "centre = \"L11\"\n[components]\nL11 = \"lintel\"\nP1R = \"pillar\"\nP1L = \"pillar\"\nIB = \"inscribed_board\"\n[attach]\nL11 = [\"P1R\", \"P1L\"]\nIB = [\"P1R\"]\n",
+    )
+    .unwrap();
+    let o = lsys(&["pailou", path_str(&graph), "-o", "x.glb"]);
+    assert_eq!(o.status.code(), Some(65));
+    let e = stderr(&o);
+    assert!(e.contains("`IB` (inscribed_board) cannot attach to `P1R` (pillar)"), "{e}");
+    assert!(e.contains("g.toml:9:"), "the line of the attachment: {e}");
+    let o = lsys(&["pailou", "--style", "4-3-5", "-o", "x.glb"]);
+    assert_eq!(o.status.code(), Some(64));
+    assert!(stderr(&o).contains("2NE+1 (7)"), "{}", stderr(&o));
+}

@@ -128,14 +128,22 @@ pub struct LookArgs {
     pub collisions: bool,
 }
 
-/// `lsys pailou`: a Pailou from a style.
+/// `lsys pailou`: a Pailou from a component graph or a style.
 #[derive(Args, Debug)]
 pub struct PailouArgs {
+    /// A component graph (.toml, see docs/pailou.md); without it, --style.
+    pub graph: Option<PathBuf>,
     /// The style NP-NE-NR: pillars and entrances on the ground, roofs in all (see docs/pailou.md).
-    #[arg(long, default_value = "4-3-7")]
+    #[arg(long, default_value = "4-3-7", conflicts_with = "graph")]
     pub style: String,
-    /// Ridge type (eaves roofs on Toukungs) or pillar type (clipped roofs, pillars rising above them).
-    #[arg(long = "type", value_enum, default_value_t = PailouTypeArg::Ridge)]
+    /// The relation matrix that attachments are checked against (default: the library's).
+    #[arg(long, value_name = "FILE")]
+    pub relations: Option<PathBuf>,
+    /// Print the component graph (TOML) of the style, to edit and build with `lsys pailou GRAPH`.
+    #[arg(long)]
+    pub emit_graph: bool,
+    /// Ridge type (eaves roofs on Toukungs) or pillar type (clipped roofs, pillars rising above them); a graph says its own.
+    #[arg(long = "type", value_enum, default_value_t = PailouTypeArg::Ridge, conflicts_with = "graph")]
     pub kind: PailouTypeArg,
     /// Override a #define of the Pailou grammar: -D NAME=VALUE, -D 'dec[1,1,3]=0' (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]

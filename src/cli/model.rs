@@ -78,17 +78,62 @@ fn model_run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color
 }
 
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
-    let kind = match p.kind {
-        PailouTypeArg::Ridge => crate::pailou::PailouType::Ridge,
-        PailouTypeArg::Pillar => crate::pailou::PailouType::Pillar,
-    };
-    let (input, layout) = match crate::pailou::input(&p.style, kind) {
-        Ok(x) => x,
-        Err(e) => {
-            eprintln!("lsys: cannot build the style {}: {e}", p.style);
-            return EX_USAGE;
+    use crate::pailou::{self, graph, PailouType};
+    let mut defines = Vec::new();
+    let (layout, kind, title, name) = match &p.graph {
+        Some(path) => {
+            let text = match std::fs::read_to_string(path) {
+                Ok(t) => t,
+                Err(e) => {
+                    eprintln!("lsys: cannot read {}: {e}", path.display());
+                    return super::EX_NOINPUT;
+                }
+            };
+            let relations = match &p.relations {
+                Some(r) => match std::fs::read_to_string(r) {
+                    Ok(t) => t,
+                    Err(e) => {
+                        eprintln!("lsys: cannot read {}: {e}", r.display());
+                        return super::EX_NOINPUT;
+                    }
+                },
+                None => graph::RELATIONS.to_string(),
+            };
+            match graph::read(&path.display().to_string(), &text, &relations) {
+                Ok(g) => {
+                    defines = g.defines;
+                    let stem = path.file_stem().map_or("graph".into(), |s| s.to_string_lossy().into_owned());
+                    (g.layout, g.kind, format!("graph {}", path.display()), format!("{stem}.lsys"))
+                }
+                Err(e) => {
+                    report(&e, color);
+                    return EX_DATAERR;
+                }
+            }
+        }
+        None => {
+            let kind = match p.kind {
+                PailouTypeArg::Ridge => PailouType::Ridge,
+                PailouTypeArg::Pillar => PailouType::Pillar,
+            };
+            match pailou::style_layout(&p.style, kind) {
+                Ok(l) => {
+                    let k = if kind == PailouType::Ridge { "ridge" } else { "pillar" };
+                    (l, kind, format!("style {}, {k} type", p.style), format!("pailou-{}-{k}.lsys", p.style))
+                }
+                Err(e) => {
+                    eprintln!("lsys: cannot build the style {}: {e}", p.style);
+                    return EX_USAGE;
+                }
+            }
         }
     };
+    let input = pailou::input(&layout, kind, &title, &name);
+    // The command line's -D win over the graph's [defines].
+    defines.extend(p.define.iter().cloned());
+    if p.emit_graph {
+        print!("{}", graph::emit(&layout, kind, &title));
+    }
     if p.chart {
         print!("{}", layout.chart());
     }
@@ -98,11 +143,11 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         }
     }
     let Some(out) = &p.output else {
-        if p.chart || p.emit_lsys {
+        if p.chart || p.emit_lsys || p.emit_graph {
             return EX_OK;
         }
         eprintln!(
-            "lsys: say what to write: -o FILE (.glb, .gltf, .obj, .png), --chart or --emit-lsys"
+            "lsys: say what to write: -o FILE (.glb, .gltf, .obj, .png), --chart, --emit-lsys or --emit-graph"
         );
         return EX_USAGE;
     };
@@ -113,14 +158,10 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     };
-    let name = match &input {
-        Input::Text { name, .. } => name.clone(),
-        _ => p.style.clone(),
-    };
     let job = Job {
         input: &input,
         name: &name,
-        defines: &p.define,
+        defines: &defines,
         run: &p.run,
         look: &p.look,
         collisions: true,

@@ -1,6 +1,7 @@
 //! The Pailou front-end: a style (`4-3-7`, ridge or pillar type) -> the
 //! standard library's Pailou grammar with its layout tables filled in,
 //! ready to compile (or to print for an expert to continue by hand).
+pub mod graph;
 pub mod style;
 
 pub use style::{layout, parse_style, Layout, PailouType, StyleError};
@@ -27,23 +28,19 @@ pub fn source(layout: &Layout, title: &str) -> String {
     .replacen(&std[start..begin_line_end], "", 0)
 }
 
-/// The grammar for a style, as an input to compile.
-pub fn input(style: &str, kind: PailouType) -> Result<(Input, Layout), StyleError> {
+/// The grammar for a layout, as an input to compile, named `name`.
+pub fn input(layout: &Layout, kind: PailouType, title: &str, name: &str) -> Input {
+    let _ = kind; // the type is in the layout (dec[i,j,11] and the roofs)
+    Input::Text {
+        name: name.to_string(),
+        text: source(layout, title),
+    }
+}
+
+/// The layout of a style.
+pub fn style_layout(style: &str, kind: PailouType) -> Result<Layout, StyleError> {
     let (np, ne, nr) = parse_style(style)?;
-    let l = layout(np, ne, nr, kind)?;
-    let kind_name = match kind {
-        PailouType::Ridge => "ridge",
-        PailouType::Pillar => "pillar",
-    };
-    let title = format!("style {style}, {kind_name} type");
-    let text = source(&l, &title);
-    Ok((
-        Input::Text {
-            name: format!("pailou-{style}-{kind_name}.lsys"),
-            text,
-        },
-        l,
-    ))
+    layout(np, ne, nr, kind)
 }
 
 #[cfg(test)]

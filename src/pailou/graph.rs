@@ -1,0 +1,504 @@
+//! Component graphs: a TOML file of components and attachments (the
+//! paper's iconized graph, Sec. 4.1–4.2) -> every attachment checked against
+//! the relation matrix -> the layout chart, as a [`Layout`]. Also the
+//! reverse: the canonical graph of a style, written as TOML.
+//!
+//! ```toml
+//! type = "ridge"            # or "pillar"
+//! centre = "L11"            # the central entrance's lintel
+//! [components]              # id = kind
+//! L11 = "lintel"
+//! P1R = "pillar"
+//! [attach]                  # id = [what it attaches to]
+//! L11 = ["P1R", "P1L"]      # a lintel on two pillars: an entrance
+//! [defines]                 # optional: the grammar's #defines
+//! "ω" = 10
+//! ```
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
+use serde::Deserialize;
+use thiserror::Error;
+use toml::Spanned;
+
+use super::style::*;
+
+/// The library's relation matrix (`grammar/std/relations.toml`).
+pub const RELATIONS: &str = include_str!("../../grammar/std/relations.toml");
+
+/// Component kinds, as graph files name them.
+pub const KINDS_OF_COMPONENT: &[&str] = &[
+    "pillar",
+    "suspended_pillar",
+    "lintel",
+    "pillar_base",
+    "flower_board",
+    "queti",
+    "yundan",
+    "inscribed_board",
+    "middle_toukung",
+    "side_toukung",
+    "clipped_roof",
+    "eaves_roof",
+];
+
+#[derive(Debug, Error, Diagnostic)]
+pub enum GraphError {
+    #[error("{file} is not a component graph: {message}")]
+    #[diagnostic(
+        code(lsys::pailou::syntax),
+        help("a graph has `type`, `centre`, a [components] table (id = kind) and an [attach] table (id = [ids]); see docs/pailou.md")
+    )]
+    Syntax {
+        file: String,
+        message: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("here")]
+        span: Option<SourceSpan>,
+    },
+
+    #[error("{message}")]
+    #[diagnostic(code(lsys::pailou::graph))]
+    Graph {
+        message: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("{label}")]
+        span: SourceSpan,
+        label: String,
+        #[help]
+        help: String,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GraphFile {
+    #[serde(rename = "type")]
+    kind: Option<Spanned<String>>,
+    centre: Spanned<String>,
+    components: BTreeMap<String, Spanned<String>>,
+    #[serde(default)]
+    attach: BTreeMap<String, Spanned<Vec<Spanned<String>>>>,
+    /// Overrides of the Pailou grammar's #defines, e.g. `"ω" = 10`.
+    #[serde(default)]
+    defines: BTreeMap<String, toml::Value>,
+}
+
+/// A graph read and checked: the layout it describes and its type.
+#[derive(Debug)]
+pub struct Graph {
+    pub layout: Layout,
+    pub kind: PailouType,
+    /// `[defines]`: (name, value) as `-D` would give them.
+    pub defines: Vec<(String, String)>,
+}
+
+struct Reader<'a> {
+    src: NamedSource<Arc<String>>,
+    kinds: BTreeMap<&'a str, &'a str>,
+    /// id -> what it attaches to.
+    on: BTreeMap<&'a str, Vec<&'a str>>,
+    /// id -> what attaches to it.
+    under: BTreeMap<&'a str, Vec<&'a str>>,
+}
+
+impl Reader<'_> {
+    fn err(&self, span: std::ops::Range<usize>, message: String, label: &str, help: String) -> GraphError {
+        GraphError::Graph {
+            message,
+            src: self.src.clone(),
+            span: span.into(),
+            label: label.to_string(),
+            help,
+        }
+    }
+
+    fn kind(&self, id: &str) -> &str {
+        self.kinds.get(id).copied().unwrap_or("")
+    }
+
+    /// What of `kind` attaches to `id`.
+    fn attached(&self, id: &str, kind: &str) -> Vec<&str> {
+        self.under
+            .get(id)
+            .map(|v| v.iter().copied().filter(|x| self.kind(x) == kind).collect())
+            .unwrap_or_default()
+    }
+
+    /// The pillars (or suspended pillars) a lintel rests on.
+    fn supports(&self, lintel: &str) -> Vec<&str> {
+        self.on
+            .get(lintel)
+            .map(|v| {
+                v.iter()
+                    .copied()
+                    .filter(|x| matches!(self.kind(x), "pillar" | "suspended_pillar"))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+}
+
+/// Reads a graph file (`name` for messages) against a relation matrix.
+pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, GraphError> {
+    let src = NamedSource::new(name, Arc::new(text.to_string()));
+    let file: GraphFile = toml::from_str(text).map_err(|e| GraphError::Syntax {
+        file: name.to_string(),
+        message: e.message().to_string(),
+        src: src.clone(),
+        span: e.span().map(Into::into),
+    })?;
+    let matrix: BTreeMap<String, Vec<String>> =
+        toml::from_str(relations).map_err(|e| GraphError::Syntax {
+            file: "the relation matrix".to_string(),
+            message: e.message().to_string(),
+            src: NamedSource::new("relations.toml", Arc::new(relations.to_string())),
+            span: e.span().map(Into::into),
+        })?;
+    let mut r = Reader {
+        src: src.clone(),
+        kinds: BTreeMap::new(),
+        on: BTreeMap::new(),
+        under: BTreeMap::new(),
+    };
+    for (id, kind) in &file.components {
+        if !KINDS_OF_COMPONENT.contains(&kind.get_ref().as_str()) {
+            return Err(r.err(
+                kind.span(),
+                format!("`{id}` has the unknown kind `{}`", kind.get_ref()),
+                "this kind",
+                format!("the kinds are: {}", KINDS_OF_COMPONENT.join(", ")),
+            ));
+        }
+        r.kinds.insert(id, kind.get_ref());
+    }
+    for (id, targets) in &file.attach {
+        let Some(&kind) = r.kinds.get(id.as_str()) else {
+            return Err(r.err(
+                targets.span(),
+                format!("`{id}` attaches to something but is not in [components]"),
+                "its attachments",
+                format!("declare it: `{id} = \"lintel\"` (or another kind) under [components]"),
+            ));
+        };
+        for t in targets.get_ref() {
+            let Some(&tkind) = r.kinds.get(t.get_ref().as_str()) else {
+                return Err(r.err(
+                    t.span(),
+                    format!("`{id}` attaches to `{}`, which is not in [components]", t.get_ref()),
+                    "unknown component",
+                    "declare it under [components], or correct the name".to_string(),
+                ));
+            };
+            let legal = matrix.get(tkind).is_some_and(|v| v.iter().any(|k| k == kind));
+            if !legal {
+                let accepts = matrix.get(tkind).map(|v| v.join(", ")).unwrap_or_default();
+                return Err(r.err(
+                    t.span(),
+                    format!("`{id}` ({kind}) cannot attach to `{}` ({tkind})", t.get_ref()),
+                    "this attachment",
+                    format!(
+                        "by the relation matrix a {tkind} accepts: {}",
+                        if accepts.is_empty() { "nothing" } else { &accepts }
+                    ),
+                ));
+            }
+            r.on.entry(id).or_default().push(t.get_ref());
+            r.under.entry(t.get_ref()).or_default().push(id);
+        }
+    }
+    let kind = match file.kind.as_ref().map(|k| k.get_ref().as_str()) {
+        None | Some("ridge") => PailouType::Ridge,
+        Some("pillar") => PailouType::Pillar,
+        Some(other) => {
+            let span = file.kind.as_ref().expect("matched Some").span();
+            return Err(r.err(
+                span,
+                format!("`{other}` is not a Pailou type"),
+                "this type",
+                "write `type = \"ridge\"` or `type = \"pillar\"`".to_string(),
+            ));
+        }
+    };
+    let centre = file.centre.get_ref().as_str();
+    if r.kind(centre) != "lintel" {
+        return Err(r.err(
+            file.centre.span(),
+            format!("the centre `{centre}` is not a lintel"),
+            "the centre",
+            "name the central entrance's lintel".to_string(),
+        ));
+    }
+    let pillars = r.supports(centre);
+    if pillars.len() != 2 || pillars.iter().any(|p| r.kind(p) != "pillar") {
+        return Err(r.err(
+            file.centre.span(),
+            format!("the central lintel `{centre}` must rest on two ground pillars; it rests on {}", pillars.len()),
+            "the centre",
+            format!("attach it to its pillars: `{centre} = [\"P1R\", \"P1L\"]` under [attach]"),
+        ));
+    }
+    // Walk each half outward along the ground: an extra lintel on a pillar
+    // adds an entrance beside (Sec. 4.2).
+    let mut halves = Vec::new();
+    for &first in &pillars {
+        let mut chain = vec![(centre, first)];
+        let mut seen: BTreeSet<&str> = BTreeSet::from([centre]);
+        let mut pillar = first;
+        while let Some(next) = r
+            .attached(pillar, "lintel")
+            .into_iter()
+            .find(|l| !seen.contains(l) && r.supports(l).iter().all(|p| r.kind(p) == "pillar"))
+        {
+            seen.insert(next);
+            let Some(outer) = r.supports(next).into_iter().find(|&p| p != pillar) else {
+                break;
+            };
+            chain.push((next, outer));
+            pillar = outer;
+        }
+        halves.push(chain);
+    }
+    if halves[0].len() != halves[1].len() {
+        return Err(r.err(
+            file.centre.span(),
+            format!(
+                "the Pailou is not symmetric: {} entrances on one side of `{centre}`, {} on the other",
+                halves[0].len(),
+                halves[1].len()
+            ),
+            "the centre",
+            "the Pailou grammar mirrors one half; give both halves the same entrances".to_string(),
+        ));
+    }
+    if halves[0].len() > MAX_HALF {
+        return Err(r.err(
+            file.centre.span(),
+            format!("{} entrances per half: at most {MAX_HALF} are supported", halves[0].len()),
+            "the centre",
+            String::new(),
+        ));
+    }
+    let layouts: Vec<Layout> = halves.iter().map(|h| half_layout(&r, h, kind)).collect();
+    if layouts[0] != layouts[1] {
+        return Err(r.err(
+            file.centre.span(),
+            "the Pailou is not symmetric: the two halves carry different decorations".to_string(),
+            "the centre",
+            "the Pailou grammar mirrors one half; decorate both halves alike".to_string(),
+        ));
+    }
+    let defines = file
+        .defines
+        .iter()
+        .map(|(k, v)| (k.clone(), v.to_string().trim_matches('"').to_string()))
+        .collect();
+    Ok(Graph {
+        layout: layouts.into_iter().next().expect("two halves"),
+        kind,
+        defines,
+    })
+}
+
+/// One half's layout from its chain of (lintel, outer pillar) on the ground.
+fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
+    let mut l = Layout {
+        exists: [[false; MAX_LEVELS + 1]; MAX_HALF + 1],
+        dec: [[[false; KINDS]; MAX_LEVELS + 1]; MAX_HALF + 1],
+    };
+    for (i, &(lintel, outer)) in chain.iter().enumerate() {
+        let mut current = lintel;
+        for j in 0..MAX_LEVELS {
+            l.exists[i][j] = true;
+            let d = &mut l.dec[i][j];
+            decorate(r, current, d);
+            if j == 0 {
+                d[PILLAR_BASE] = !r.attached(outer, "pillar_base").is_empty();
+                d[PILLAR_TYPE] = kind == PailouType::Pillar;
+                d[PILLAR_ROOF] = !r.attached(outer, "clipped_roof").is_empty();
+            }
+            // An extra pillar on a lintel adds an entrance above.
+            let standing = r.attached(current, "suspended_pillar");
+            let above = r
+                .attached(standing.first().copied().unwrap_or(""), "lintel")
+                .into_iter()
+                .find(|u| r.supports(u).len() == 2);
+            d[SIDE_CLIPPED_ROOFS] = standing.iter().any(|s| !r.attached(s, "clipped_roof").is_empty());
+            match above {
+                Some(u) => current = u,
+                None => break,
+            }
+        }
+    }
+    l
+}
+
+fn decorate(r: &Reader, lintel: &str, d: &mut [bool; KINDS]) {
+    let has = |k: &str| !r.attached(lintel, k).is_empty();
+    let toukungs = r.attached(lintel, "middle_toukung");
+    let on_toukungs = |k: &str| toukungs.iter().any(|t| !r.attached(t, k).is_empty());
+    d[MIDDLE_TOUKUNGS] = !toukungs.is_empty();
+    d[SIDE_TOUKUNGS] = has("side_toukung");
+    d[EAVES_ROOF] = has("eaves_roof") || on_toukungs("eaves_roof");
+    d[CLIPPED_ROOF] = has("clipped_roof") || on_toukungs("clipped_roof");
+    let quetis = r.attached(lintel, "queti");
+    d[QUETI] = !quetis.is_empty();
+    d[YUNDAN] = quetis.iter().any(|q| !r.attached(q, "yundan").is_empty());
+    d[FLOWER_BOARD] = has("flower_board");
+    d[INSCRIBED_BOARD] = has("inscribed_board");
+}
+
+/// The canonical graph of a layout, as TOML (what `--emit-graph` prints).
+pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
+    let mut comps: Vec<(String, &str)> = Vec::new();
+    let mut attach: Vec<(String, Vec<String>)> = Vec::new();
+    let half = layout.exists.iter().filter(|e| e[0]).count();
+    for side in ["R", "L"] {
+        for i in 0..half {
+            let e = |j: usize| -> String {
+                if i == 0 {
+                    format!("{}{}", i + 1, j + 1)
+                } else {
+                    format!("{}{}{side}", i + 1, j + 1)
+                }
+            };
+            let outer = format!("P{}{side}", i + 1);
+            let inner = if i == 0 {
+                format!("P1{}", if side == "R" { "L" } else { "R" })
+            } else {
+                format!("P{i}{side}")
+            };
+            comps.push((outer.clone(), "pillar"));
+            let mut below: Option<String> = None;
+            for j in 0..=MAX_LEVELS {
+                if !layout.exists[i][j] {
+                    break;
+                }
+                let d = &layout.dec[i][j];
+                let lintel = format!("L{}", e(j));
+                // the central entrance's parts once, from the right half
+                let own = i > 0 || side == "R";
+                let supports = match &below {
+                    None => vec![inner.clone(), outer.clone()],
+                    Some(b) => {
+                        let (a, c) = (format!("S{}a", e(j)), format!("S{}b", e(j)));
+                        if own {
+                            comps.push((a.clone(), "suspended_pillar"));
+                            comps.push((c.clone(), "suspended_pillar"));
+                            attach.push((a.clone(), vec![b.clone()]));
+                            attach.push((c.clone(), vec![b.clone()]));
+                        }
+                        vec![a, c]
+                    }
+                };
+                if own {
+                    comps.push((lintel.clone(), "lintel"));
+                    attach.push((lintel.clone(), supports));
+                    let mut deco = |id: String, k: &'static str, to: String| {
+                        comps.push((id.clone(), k));
+                        attach.push((id, vec![to]));
+                    };
+                    if d[MIDDLE_TOUKUNGS] {
+                        deco(format!("TM{}", e(j)), "middle_toukung", lintel.clone());
+                    }
+                    if d[SIDE_TOUKUNGS] {
+                        deco(format!("TS{}", e(j)), "side_toukung", lintel.clone());
+                    }
+                    let roof_on = if d[MIDDLE_TOUKUNGS] { format!("TM{}", e(j)) } else { lintel.clone() };
+                    if d[EAVES_ROOF] {
+                        deco(format!("RE{}", e(j)), "eaves_roof", roof_on.clone());
+                    }
+                    if d[CLIPPED_ROOF] {
+                        deco(format!("RC{}", e(j)), "clipped_roof", roof_on);
+                    }
+                    if d[FLOWER_BOARD] {
+                        deco(format!("FB{}", e(j)), "flower_board", lintel.clone());
+                    }
+                    if d[INSCRIBED_BOARD] {
+                        deco(format!("IB{}", e(j)), "inscribed_board", lintel.clone());
+                    }
+                    if d[QUETI] {
+                        deco(format!("Q{}", e(j)), "queti", lintel.clone());
+                        if d[YUNDAN] {
+                            deco(format!("Y{}", e(j)), "yundan", format!("Q{}", e(j)));
+                        }
+                    }
+                }
+                if j == 0 {
+                    if d[PILLAR_BASE] {
+                        comps.push((format!("B{}{side}", i + 1), "pillar_base"));
+                        attach.push((format!("B{}{side}", i + 1), vec![outer.clone()]));
+                    }
+                    if d[PILLAR_ROOF] {
+                        comps.push((format!("RP{}{side}", i + 1), "clipped_roof"));
+                        attach.push((format!("RP{}{side}", i + 1), vec![outer.clone()]));
+                    }
+                }
+                below = Some(lintel);
+                let _ = d;
+            }
+        }
+    }
+    // Clipped roofs beside an entrance above stand on its suspended pillars.
+    for (i, levels) in layout.dec.iter().enumerate() {
+        if levels[0][SIDE_CLIPPED_ROOFS] && layout.exists[i][1] {
+            for side in ["R", "L"] {
+                if i == 0 && side == "L" {
+                    continue;
+                }
+                let e = if i == 0 { "12".to_string() } else { format!("{}2{side}", i + 1) };
+                for s in ["a", "b"] {
+                    comps.push((format!("RS{e}{s}"), "clipped_roof"));
+                    attach.push((format!("RS{e}{s}"), vec![format!("S{e}{s}")]));
+                }
+            }
+        }
+    }
+    let mut out = String::new();
+    let _ = writeln!(out, "# {title}: a Pailou as a component graph (docs/pailou.md).");
+    let _ = writeln!(out, "type = \"{}\"", if kind == PailouType::Ridge { "ridge" } else { "pillar" });
+    let _ = writeln!(out, "centre = \"L11\"\n\n[components]");
+    for (id, k) in &comps {
+        let _ = writeln!(out, "{id} = \"{k}\"");
+    }
+    let _ = writeln!(out, "\n[attach]");
+    for (id, targets) in &attach {
+        let t: Vec<String> = targets.iter().map(|t| format!("\"{t}\"")).collect();
+        let _ = writeln!(out, "{id} = [{}]", t.join(", "));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every style's canonical graph reads back to the same layout.
+    #[test]
+    fn emitted_graphs_read_back() {
+        for style in ["2-1-1", "2-1-2", "2-1-3", "2-1-4", "4-3-3", "4-3-4", "4-3-7", "6-5-11", "6-5-15", "8-7-7"] {
+            for kind in [PailouType::Ridge, PailouType::Pillar] {
+                let (np, ne, nr) = parse_style(style).unwrap();
+                let l = layout(np, ne, nr, kind).unwrap();
+                let text = emit(&l, kind, style);
+                let g = read("g.toml", &text, RELATIONS).unwrap_or_else(|e| panic!("{style}: {e:?}\n{text}"));
+                assert_eq!(g.layout, l, "{style} {kind:?}\n{text}");
+                assert_eq!(g.kind, kind);
+            }
+        }
+    }
+
+    #[test]
+    fn illegal_attachment_points_at_it() {
+        let text = "centre = \"L11\"\n[components]\nL11 = \"lintel\"\nP1R = \"pillar\"\nP1L = \"pillar\"\nIB = \"inscribed_board\"\n[attach]\nL11 = [\"P1R\", \"P1L\"]\nIB = [\"P1R\"]\n";
+        let e = read("g.toml", text, RELATIONS).unwrap_err();
+        let GraphError::Graph { message, span, .. } = &e else { panic!("{e:?}") };
+        assert!(message.contains("(inscribed_board) cannot attach to `P1R` (pillar)"), "{message}");
+        assert_eq!(&text[span.offset()..span.offset() + span.len()], "\"P1R\"");
+    }
+}
