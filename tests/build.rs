@@ -290,7 +290,10 @@ fn illegal_attachments_and_styles_are_reported() {
     let o = lsys(&["pailou", path_str(&graph), "-o", "x.glb"]);
     assert_eq!(o.status.code(), Some(65));
     let e = stderr(&o);
-    assert!(e.contains("`IB` (inscribed_board) cannot attach to `P1R` (pillar)"), "{e}");
+    assert!(
+        e.contains("`IB` (inscribed_board) cannot attach to `P1R` (pillar)"),
+        "{e}"
+    );
     assert!(e.contains("g.toml:9:"), "the line of the attachment: {e}");
     let o = lsys(&["pailou", "--style", "4-3-5", "-o", "x.glb"]);
     assert_eq!(o.status.code(), Some(64));

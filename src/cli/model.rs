@@ -102,11 +102,18 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
             match graph::read(&path.display().to_string(), &text, &relations) {
                 Ok(g) => {
                     defines = g.defines;
-                    let stem = path.file_stem().map_or("graph".into(), |s| s.to_string_lossy().into_owned());
-                    (g.layout, g.kind, format!("graph {}", path.display()), format!("{stem}.lsys"))
+                    let stem = path
+                        .file_stem()
+                        .map_or("graph".into(), |s| s.to_string_lossy().into_owned());
+                    (
+                        g.layout,
+                        g.kind,
+                        format!("graph {}", path.display()),
+                        format!("{stem}.lsys"),
+                    )
                 }
                 Err(e) => {
-                    report(&e, color);
+                    report(e.as_ref(), color);
                     return EX_DATAERR;
                 }
             }
@@ -118,8 +125,17 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
             };
             match pailou::style_layout(&p.style, kind) {
                 Ok(l) => {
-                    let k = if kind == PailouType::Ridge { "ridge" } else { "pillar" };
-                    (l, kind, format!("style {}, {k} type", p.style), format!("pailou-{}-{k}.lsys", p.style))
+                    let k = if kind == PailouType::Ridge {
+                        "ridge"
+                    } else {
+                        "pillar"
+                    };
+                    (
+                        l,
+                        kind,
+                        format!("style {}, {k} type", p.style),
+                        format!("pailou-{}-{k}.lsys", p.style),
+                    )
                 }
                 Err(e) => {
                     eprintln!("lsys: cannot build the style {}: {e}", p.style);

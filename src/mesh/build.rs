@@ -171,6 +171,7 @@ fn missing(
         .iter()
         .chain(crate::stdlib::GRAMMAR_COMPONENTS)
         .map(|(n, _)| *n)
+        .chain(["RC", "RE"])
         .collect();
     let (src, span) = match symbol.span {
         Some(s) => (program.sources.named_source(s), Some(s.into())),

@@ -30,6 +30,8 @@ enum Found {
     BuiltIn(&'static str),
     /// A grammar, derived and built once, then placed like any component.
     Grammar(crate::resolve::Input),
+    /// A roof built on the fly.
+    Roof(super::roof::RoofKind),
 }
 
 impl ComponentSearch {
@@ -57,6 +59,9 @@ impl ComponentSearch {
             } else {
                 Found::File(p.clone())
             });
+        }
+        if let Some(kind) = super::roof::RoofKind::from_name(name) {
+            return Ok(Found::Roof(kind));
         }
         if let Some(text) = stdlib::component(name) {
             return Ok(Found::BuiltIn(text));
@@ -90,6 +95,14 @@ impl ComponentSearch {
                 }),
             },
             Found::BuiltIn(text) => parse_obj(name, text.as_bytes(), "built-in", None, materials),
+            Found::Roof(kind) => Ok(Component {
+                name: name.to_string(),
+                parts: vec![Part {
+                    mesh: super::roof::roof(kind),
+                    material: None,
+                }],
+                origin: "built-in (procedural)".to_string(),
+            }),
             Found::Grammar(input) => {
                 super::subgrammar::grammar_component(name, &input, self, materials)
             }

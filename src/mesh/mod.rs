@@ -5,6 +5,7 @@ pub mod collide;
 pub mod components;
 pub mod error;
 pub mod palette;
+pub mod roof;
 pub mod scene;
 pub mod shapes;
 pub mod subgrammar;

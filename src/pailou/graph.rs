@@ -108,14 +108,20 @@ struct Reader<'a> {
 }
 
 impl Reader<'_> {
-    fn err(&self, span: std::ops::Range<usize>, message: String, label: &str, help: String) -> GraphError {
-        GraphError::Graph {
+    fn err(
+        &self,
+        span: std::ops::Range<usize>,
+        message: String,
+        label: &str,
+        help: String,
+    ) -> Box<GraphError> {
+        Box::new(GraphError::Graph {
             message,
             src: self.src.clone(),
             span: span.into(),
             label: label.to_string(),
             help,
-        }
+        })
     }
 
     fn kind(&self, id: &str) -> &str {
@@ -145,21 +151,24 @@ impl Reader<'_> {
 }
 
 /// Reads a graph file (`name` for messages) against a relation matrix.
-pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, GraphError> {
+pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphError>> {
     let src = NamedSource::new(name, Arc::new(text.to_string()));
-    let file: GraphFile = toml::from_str(text).map_err(|e| GraphError::Syntax {
-        file: name.to_string(),
-        message: e.message().to_string(),
-        src: src.clone(),
-        span: e.span().map(Into::into),
+    let file: GraphFile = toml::from_str(text).map_err(|e| {
+        Box::new(GraphError::Syntax {
+            file: name.to_string(),
+            message: e.message().to_string(),
+            src: src.clone(),
+            span: e.span().map(Into::into),
+        })
     })?;
-    let matrix: BTreeMap<String, Vec<String>> =
-        toml::from_str(relations).map_err(|e| GraphError::Syntax {
+    let matrix: BTreeMap<String, Vec<String>> = toml::from_str(relations).map_err(|e| {
+        Box::new(GraphError::Syntax {
             file: "the relation matrix".to_string(),
             message: e.message().to_string(),
             src: NamedSource::new("relations.toml", Arc::new(relations.to_string())),
             span: e.span().map(Into::into),
-        })?;
+        })
+    })?;
     let mut r = Reader {
         src: src.clone(),
         kinds: BTreeMap::new(),
@@ -190,21 +199,33 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, GraphError
             let Some(&tkind) = r.kinds.get(t.get_ref().as_str()) else {
                 return Err(r.err(
                     t.span(),
-                    format!("`{id}` attaches to `{}`, which is not in [components]", t.get_ref()),
+                    format!(
+                        "`{id}` attaches to `{}`, which is not in [components]",
+                        t.get_ref()
+                    ),
                     "unknown component",
                     "declare it under [components], or correct the name".to_string(),
                 ));
             };
-            let legal = matrix.get(tkind).is_some_and(|v| v.iter().any(|k| k == kind));
+            let legal = matrix
+                .get(tkind)
+                .is_some_and(|v| v.iter().any(|k| k == kind));
             if !legal {
                 let accepts = matrix.get(tkind).map(|v| v.join(", ")).unwrap_or_default();
                 return Err(r.err(
                     t.span(),
-                    format!("`{id}` ({kind}) cannot attach to `{}` ({tkind})", t.get_ref()),
+                    format!(
+                        "`{id}` ({kind}) cannot attach to `{}` ({tkind})",
+                        t.get_ref()
+                    ),
                     "this attachment",
                     format!(
                         "by the relation matrix a {tkind} accepts: {}",
-                        if accepts.is_empty() { "nothing" } else { &accepts }
+                        if accepts.is_empty() {
+                            "nothing"
+                        } else {
+                            &accepts
+                        }
                     ),
                 ));
             }
@@ -238,7 +259,10 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, GraphError
     if pillars.len() != 2 || pillars.iter().any(|p| r.kind(p) != "pillar") {
         return Err(r.err(
             file.centre.span(),
-            format!("the central lintel `{centre}` must rest on two ground pillars; it rests on {}", pillars.len()),
+            format!(
+                "the central lintel `{centre}` must rest on two ground pillars; it rests on {}",
+                pillars.len()
+            ),
             "the centre",
             format!("attach it to its pillars: `{centre} = [\"P1R\", \"P1L\"]` under [attach]"),
         ));
@@ -279,7 +303,10 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, GraphError
     if halves[0].len() > MAX_HALF {
         return Err(r.err(
             file.centre.span(),
-            format!("{} entrances per half: at most {MAX_HALF} are supported", halves[0].len()),
+            format!(
+                "{} entrances per half: at most {MAX_HALF} are supported",
+                halves[0].len()
+            ),
             "the centre",
             String::new(),
         ));
@@ -328,7 +355,9 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
                 .attached(standing.first().copied().unwrap_or(""), "lintel")
                 .into_iter()
                 .find(|u| r.supports(u).len() == 2);
-            d[SIDE_CLIPPED_ROOFS] = standing.iter().any(|s| !r.attached(s, "clipped_roof").is_empty());
+            d[SIDE_CLIPPED_ROOFS] = standing
+                .iter()
+                .any(|s| !r.attached(s, "clipped_roof").is_empty());
             match above {
                 Some(u) => current = u,
                 None => break,
@@ -409,7 +438,11 @@ pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
                     if d[SIDE_TOUKUNGS] {
                         deco(format!("TS{}", e(j)), "side_toukung", lintel.clone());
                     }
-                    let roof_on = if d[MIDDLE_TOUKUNGS] { format!("TM{}", e(j)) } else { lintel.clone() };
+                    let roof_on = if d[MIDDLE_TOUKUNGS] {
+                        format!("TM{}", e(j))
+                    } else {
+                        lintel.clone()
+                    };
                     if d[EAVES_ROOF] {
                         deco(format!("RE{}", e(j)), "eaves_roof", roof_on.clone());
                     }
@@ -451,7 +484,11 @@ pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
                 if i == 0 && side == "L" {
                     continue;
                 }
-                let e = if i == 0 { "12".to_string() } else { format!("{}2{side}", i + 1) };
+                let e = if i == 0 {
+                    "12".to_string()
+                } else {
+                    format!("{}2{side}", i + 1)
+                };
                 for s in ["a", "b"] {
                     comps.push((format!("RS{e}{s}"), "clipped_roof"));
                     attach.push((format!("RS{e}{s}"), vec![format!("S{e}{s}")]));
@@ -460,8 +497,19 @@ pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
         }
     }
     let mut out = String::new();
-    let _ = writeln!(out, "# {title}: a Pailou as a component graph (docs/pailou.md).");
-    let _ = writeln!(out, "type = \"{}\"", if kind == PailouType::Ridge { "ridge" } else { "pillar" });
+    let _ = writeln!(
+        out,
+        "# {title}: a Pailou as a component graph (docs/pailou.md)."
+    );
+    let _ = writeln!(
+        out,
+        "type = \"{}\"",
+        if kind == PailouType::Ridge {
+            "ridge"
+        } else {
+            "pillar"
+        }
+    );
     let _ = writeln!(out, "centre = \"L11\"\n\n[components]");
     for (id, k) in &comps {
         let _ = writeln!(out, "{id} = \"{k}\"");
@@ -481,12 +529,16 @@ mod tests {
     /// Every style's canonical graph reads back to the same layout.
     #[test]
     fn emitted_graphs_read_back() {
-        for style in ["2-1-1", "2-1-2", "2-1-3", "2-1-4", "4-3-3", "4-3-4", "4-3-7", "6-5-11", "6-5-15", "8-7-7"] {
+        for style in [
+            "2-1-1", "2-1-2", "2-1-3", "2-1-4", "4-3-3", "4-3-4", "4-3-7", "6-5-11", "6-5-15",
+            "8-7-7",
+        ] {
             for kind in [PailouType::Ridge, PailouType::Pillar] {
                 let (np, ne, nr) = parse_style(style).unwrap();
                 let l = layout(np, ne, nr, kind).unwrap();
                 let text = emit(&l, kind, style);
-                let g = read("g.toml", &text, RELATIONS).unwrap_or_else(|e| panic!("{style}: {e:?}\n{text}"));
+                let g = read("g.toml", &text, RELATIONS)
+                    .unwrap_or_else(|e| panic!("{style}: {e:?}\n{text}"));
                 assert_eq!(g.layout, l, "{style} {kind:?}\n{text}");
                 assert_eq!(g.kind, kind);
             }
@@ -497,8 +549,13 @@ mod tests {
     fn illegal_attachment_points_at_it() {
         let text = "centre = \"L11\"\n[components]\nL11 = \"lintel\"\nP1R = \"pillar\"\nP1L = \"pillar\"\nIB = \"inscribed_board\"\n[attach]\nL11 = [\"P1R\", \"P1L\"]\nIB = [\"P1R\"]\n";
         let e = read("g.toml", text, RELATIONS).unwrap_err();
-        let GraphError::Graph { message, span, .. } = &e else { panic!("{e:?}") };
-        assert!(message.contains("(inscribed_board) cannot attach to `P1R` (pillar)"), "{message}");
+        let GraphError::Graph { message, span, .. } = &*e else {
+            panic!("{e:?}")
+        };
+        assert!(
+            message.contains("(inscribed_board) cannot attach to `P1R` (pillar)"),
+            "{message}"
+        );
         assert_eq!(&text[span.offset()..span.offset() + span.len()], "\"P1R\"");
     }
 }
