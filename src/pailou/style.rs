@@ -298,6 +298,23 @@ mod tests {
     }
 
     #[test]
+    fn layout_charts() {
+        let mut out = String::new();
+        for (style, kind) in [
+            ("4-3-7", PailouType::Ridge),
+            ("6-5-15", PailouType::Ridge),
+            ("4-3-4", PailouType::Pillar),
+        ] {
+            let (np, ne, nr) = parse_style(style).unwrap();
+            out.push_str(&format!(
+                "{style} {kind:?}\n{}\n",
+                layout(np, ne, nr, kind).unwrap().chart()
+            ));
+        }
+        insta::assert_snapshot!(out);
+    }
+
+    #[test]
     fn impossible_styles_say_why() {
         assert!(layout(4, 2, 2, PailouType::Ridge)
             .unwrap_err()
