@@ -1,9 +1,9 @@
-//! `lsys build` and `lsys render`: a grammar -> a model file (.glb, .gltf,
-//! .obj + .mtl) or a picture (.png), written atomically, with `--stats` as
-//! JSON on standard output.
+//! `lsys build`, `lsys render` and each rebuild of `lsys watch`: a grammar
+//! -> a model file (.glb, .gltf, .obj + .mtl) or a picture (.png), written
+//! atomically, with `--stats` as JSON (or, for `watch`, a one-line summary)
+//! on standard output.
 
-use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::args::{BuildArgs, ModelArgs, PictureArgs, RenderArgs, ViewArg};
@@ -11,40 +11,18 @@ use super::commands::{compile, report};
 use super::{EX_DATAERR, EX_IOERR, EX_OK, EX_USAGE};
 use crate::build::{self, BuildOptions, Built};
 use crate::derive::DeriveOptions;
-use crate::export::atomic::AtomicFiles;
-use crate::export::{gltf, obj, render};
+use crate::export::output::{write_scene, Format, WriteError};
+use crate::export::render;
 use crate::mesh::{ComponentSearch, MeshOptions};
+use crate::progress::Progress;
 use crate::resolve::Input;
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Format {
-    Glb,
-    Gltf,
-    Obj,
-    Png,
-}
-
-impl Format {
-    fn of(path: &Path) -> Option<Format> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        Some(match ext.as_str() {
-            "glb" => Format::Glb,
-            "gltf" => Format::Gltf,
-            "obj" => Format::Obj,
-            "png" => Format::Png,
-            _ => return None,
-        })
-    }
-}
+use crate::source::Origin;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
-    match Format::of(&b.output) {
-        Some(f) => run(&b.model, &b.output, &b.picture, f, color),
-        None => {
-            eprintln!(
-                "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
-                b.output.display()
-            );
+    match format_of(&b.output) {
+        Ok(f) => build_once(&b.model, &b.output, &b.picture, f, color, Report::Stats).code,
+        Err(msg) => {
+            eprintln!("{msg}");
             EX_USAGE
         }
     }
@@ -58,7 +36,25 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
-    run(&r.model, &r.output, &r.picture, Format::Png, color)
+    build_once(
+        &r.model,
+        &r.output,
+        &r.picture,
+        Format::Png,
+        color,
+        Report::Stats,
+    )
+    .code
+}
+
+/// The format of `lsys build`'s output, or the usage error to print.
+pub(super) fn format_of(out: &Path) -> Result<Format, String> {
+    Format::of(out).ok_or_else(|| {
+        format!(
+            "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
+            out.display()
+        )
+    })
 }
 
 /// The options of a build from the command line.
@@ -93,16 +89,73 @@ fn options(m: &ModelArgs) -> BuildOptions {
     }
 }
 
-fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
+/// What a successful build prints on standard output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Report {
+    /// The `--stats` JSON when asked for, else nothing.
+    Stats,
+    /// The `--stats` JSON when asked for, else one summary line (`watch`).
+    Summary,
+}
+
+/// What one build did.
+pub(super) struct Outcome {
+    pub code: i32,
+    /// The files the grammar was read from (root and includes), when it
+    /// compiled.
+    pub sources: Option<Vec<PathBuf>>,
+}
+
+/// Compiles and builds `m`, writes `out`; prints diagnostics and the
+/// report.
+pub(super) fn build_once(
+    m: &ModelArgs,
+    out: &Path,
+    pic: &PictureArgs,
+    format: Format,
+    color: bool,
+    report_as: Report,
+) -> Outcome {
     let t0 = Instant::now();
     let comp = match compile(&m.common, color) {
         Ok(c) => c,
-        Err(code) => return code,
+        Err(code) => {
+            return Outcome {
+                code,
+                sources: None,
+            }
+        }
     };
+    let sources = Some(
+        comp.program
+            .sources
+            .files()
+            .iter()
+            .filter_map(|f| match &f.origin {
+                Origin::Disk(p) => Some(p.clone()),
+                _ => None,
+            })
+            .collect(),
+    );
+    let code = build_compiled(m, &comp, (out, pic, format), color, report_as, t0);
+    Outcome { code, sources }
+}
+
+/// Builds the compiled grammar and writes `out` as `format`; the exit code.
+fn build_compiled(
+    m: &ModelArgs,
+    comp: &crate::pipeline::Compilation,
+    (out, pic, format): (&Path, &PictureArgs, Format),
+    color: bool,
+    report_as: Report,
+    t0: Instant,
+) -> i32 {
     let parse = t0.elapsed();
-    let built = match build::build(&comp, &options(m)) {
+    let progress = Progress::new(true);
+    let built = match build::build_observed(comp, &options(m), &mut |s| progress.stage(s)) {
         Ok(b) => b,
         Err(e) => {
+            drop(progress);
             report(&e, color);
             return EX_DATAERR;
         }
@@ -117,12 +170,20 @@ fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool
         );
     }
     let t1 = Instant::now();
-    let written = write(&built, out, pic, format);
+    progress.message(if format == Format::Png {
+        "rendering"
+    } else {
+        "writing"
+    });
+    let written = write_scene(&built.scene, out, format, &picture(pic));
+    drop(progress);
     let write_time = t1.elapsed();
     match written {
         Ok(bytes) => {
             if m.stats {
                 println!("{}", stats(&built, parse, write_time, out, bytes));
+            } else if report_as == Report::Summary {
+                println!("{}", summary(&built, out, bytes, t0.elapsed()));
             }
             EX_OK
         }
@@ -137,71 +198,29 @@ fn run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool
     }
 }
 
-enum WriteError {
-    Export(Box<dyn miette::Diagnostic + Send + Sync>),
-    Io(io::Error),
-}
-
-impl From<io::Error> for WriteError {
-    fn from(e: io::Error) -> Self {
-        WriteError::Io(e)
+fn picture(pic: &PictureArgs) -> render::RenderOptions {
+    render::RenderOptions {
+        view: match pic.view {
+            ViewArg::Front => render::View::Front,
+            ViewArg::Side => render::View::Side,
+            ViewArg::Top => render::View::Top,
+            ViewArg::Iso => render::View::Iso,
+        },
+        width: pic.size.0,
+        height: pic.size.1,
+        ..Default::default()
     }
 }
 
-fn export_err<E: miette::Diagnostic + Send + Sync + 'static>(e: E) -> WriteError {
-    WriteError::Export(Box::new(e))
-}
-
-/// Writes the output file(s); returns the bytes written.
-fn write(built: &Built, out: &Path, pic: &PictureArgs, format: Format) -> Result<u64, WriteError> {
-    let scene = &built.scene;
-    let mut files = AtomicFiles::new();
-    let bytes: u64;
-    match format {
-        Format::Glb | Format::Gltf => {
-            let data = if format == Format::Glb {
-                gltf::to_glb(scene)
-            } else {
-                gltf::to_gltf(scene)
-            }
-            .map_err(export_err)?;
-            bytes = data.len() as u64;
-            files.write(out, |w| w.write_all(&data))?;
-        }
-        Format::Obj => {
-            let mtl_path = out.with_extension("mtl");
-            let mtl_name = mtl_path
-                .file_name()
-                .map_or("model.mtl".into(), |n| n.to_string_lossy().into_owned());
-            let mut mtl = Vec::new();
-            let mut obj = Vec::new();
-            obj::write_obj(scene, &mtl_name, &mut obj, &mut mtl)?;
-            bytes = (obj.len() + mtl.len()) as u64;
-            // The .mtl first: the .obj refers to it.
-            files.write(&mtl_path, |w| w.write_all(&mtl))?;
-            files.write(out, |w| w.write_all(&obj))?;
-        }
-        Format::Png => {
-            let opts = render::RenderOptions {
-                view: match pic.view {
-                    ViewArg::Front => render::View::Front,
-                    ViewArg::Side => render::View::Side,
-                    ViewArg::Top => render::View::Top,
-                    ViewArg::Iso => render::View::Iso,
-                },
-                width: pic.size.0,
-                height: pic.size.1,
-                ..Default::default()
-            };
-            let image = render::render(scene, &opts);
-            let mut png = Vec::new();
-            render::write_png(&image, &mut png).map_err(export_err)?;
-            bytes = png.len() as u64;
-            files.write(out, |w| w.write_all(&png))?;
-        }
-    }
-    files.commit()?;
-    Ok(bytes)
+/// One line for `watch`: what was written and how big the model is.
+fn summary(built: &Built, out: &Path, bytes: u64, took: Duration) -> String {
+    format!(
+        "wrote {}: {} modules, {} triangles, {bytes} bytes in {} ms",
+        out.display(),
+        built.modules,
+        built.scene.triangle_count(),
+        took.as_millis()
+    )
 }
 
 fn ms(d: Duration) -> f64 {
