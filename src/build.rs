@@ -59,28 +59,100 @@ pub enum BuildError {
     Mesh(#[from] MeshError),
 }
 
+/// What a build is doing, reported as it goes (the CLI's progress bar).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// About to derive step `done + 1` of `of`.
+    Derive { done: u32, of: u32 },
+    /// Applying the homomorphism.
+    Homomorphism,
+    /// Running the turtle.
+    Interpret,
+    /// Building the meshes.
+    Mesh,
+}
+
+impl Stage {
+    /// The stage's name as a progress bar shows it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Derive { .. } => "deriving",
+            Stage::Homomorphism => "homomorphism",
+            Stage::Interpret => "turtle",
+            Stage::Mesh => "meshing",
+        }
+    }
+}
+
 /// Derives, interprets and meshes `comp`.
 pub fn build(comp: &Compilation, opts: &BuildOptions) -> Result<Built, BuildError> {
+    build_observed(comp, opts, &mut |_| {})
+}
+
+/// [`build`], telling `observe` every stage and every derivation step as
+/// it starts (once per step, never per module).
+pub fn build_observed(
+    comp: &Compilation,
+    opts: &BuildOptions,
+    observe: &mut dyn FnMut(Stage),
+) -> Result<Built, BuildError> {
     let (program, compiled) = (&comp.program, &comp.compiled);
     let t0 = Instant::now();
     let steps = opts.steps.unwrap_or(program.derivation_length);
     let mut d = derive::Derivation::new(program, compiled, opts.derive.clone())?;
-    for _ in 0..steps {
+    for done in 0..steps {
+        observe(Stage::Derive { done, of: steps });
         d.step()?;
     }
-    let mut warnings = d.warnings().to_vec();
+    let warnings = d.warnings().to_vec();
+    let step = d.step_number();
+    let string = d.into_current();
+    let derived = t0.elapsed();
+    let mut built = model(comp, &string, step, opts, observe)?;
+    built.timings.derive += derived;
+    built.warnings.splice(0..0, warnings);
+    Ok(built)
+}
+
+/// The back half alone: `string`, step `step` of `comp`'s derivation ->
+/// homomorphism -> turtle -> meshes (the REPL's `:export` builds the
+/// string it shows), telling `observe` each stage. `opts.steps` is not
+/// used; `timings.derive` is the homomorphism's time.
+pub fn build_string(
+    comp: &Compilation,
+    string: &ModuleStore,
+    step: u32,
+    opts: &BuildOptions,
+    observe: &mut dyn FnMut(Stage),
+) -> Result<Built, BuildError> {
+    model(comp, string, step, opts, observe)
+}
+
+fn model(
+    comp: &Compilation,
+    string: &ModuleStore,
+    step: u32,
+    opts: &BuildOptions,
+    observe: &mut dyn FnMut(Stage),
+) -> Result<Built, BuildError> {
+    let program = &comp.program;
+    let t0 = Instant::now();
+    let mut warnings = Vec::new();
     let interpreted: Option<ModuleStore> = if program.homomorphism.is_empty() {
         None
     } else {
-        let h = d.homomorphism()?;
+        observe(Stage::Homomorphism);
+        let h = derive::homomorphism(program, &comp.compiled, string, &opts.derive, step)?;
         warnings.extend(h.warnings);
         Some(h.modules)
     };
-    let string = interpreted.as_ref().unwrap_or(d.current());
+    let string = interpreted.as_ref().unwrap_or(string);
     let t1 = Instant::now();
+    observe(Stage::Interpret);
     let topts = TurtleOptions::new(&program.turtle, opts.angle, opts.step, opts.width);
     let drawing = turtle::interpret(program, string, &topts)?;
     let t2 = Instant::now();
+    observe(Stage::Mesh);
     let palette = Palette::new(&program.turtle.palette);
     let scene = mesh::build_scene(program, &drawing, &palette, &opts.components, &opts.mesh)?;
     let t3 = Instant::now();

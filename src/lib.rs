@@ -10,6 +10,10 @@
 //!   -> mesh       tubes, polygons, components (OBJ via tobj) -> a Scene
 //!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
+//!
+//! Around the pipeline: [`cli`] (the binary's commands, `watch` among
+//! them), [`repl`] (`lsys repl`: step, edit, inspect a grammar
+//! interactively) and [`progress`] (progress bars on standard error).
 
 pub mod build;
 pub mod bytecode;
@@ -21,6 +25,8 @@ pub mod mesh;
 pub mod pailou;
 pub mod parse;
 pub mod pipeline;
+pub mod progress;
+pub mod repl;
 pub mod resolve;
 pub mod source;
 pub mod stdlib;

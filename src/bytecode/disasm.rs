@@ -40,6 +40,21 @@ pub fn disasm(program: &Program, compiled: &Compiled) -> String {
     out
 }
 
+/// The listing of one production: `index` in `table` (as numbered in
+/// [`disasm`]); `None` when there is no such production.
+pub fn disasm_production(
+    program: &Program,
+    compiled: &Compiled,
+    table: Table,
+    index: usize,
+) -> Option<String> {
+    let p = program.table(table).get(index)?;
+    let code = compiled.table(table).get(index)?;
+    let mut out = String::new();
+    production(&mut out, program, compiled, index, p, code);
+    Some(out.trim_start().to_string())
+}
+
 fn production(
     out: &mut String,
     program: &Program,

@@ -12,7 +12,7 @@ mod op;
 pub mod vm;
 
 pub use compile::compile;
-pub use disasm::{disasm, one_line};
+pub use disasm::{disasm, disasm_production, one_line};
 pub use error::BytecodeError;
 pub use op::{Chunk, Compiled, CondCode, Op, ProdCode};
 pub use vm::{Fault, FaultKind, NoSink, Sink};

@@ -40,8 +40,36 @@ pub enum Command {
     Render(RenderArgs),
     /// List the turtle commands: symbol, parameters, default, meaning.
     Commands,
-    /// Build a Pailou from a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
+    /// Build a Pailou from a component graph or a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
     Pailou(PailouArgs),
+    /// Explore a grammar step by step: step, go back, show, edit rules, set defines, export.
+    Repl(ReplArgs),
+    /// Rebuild the output whenever the grammar or a file it includes changes (Ctrl-C stops).
+    Watch(BuildArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ReplArgs {
+    /// A grammar to load at the start: a file, or std:NAME.
+    pub file: Option<String>,
+    /// Override a #define: -D NAME=VALUE (repeatable; `:set` changes it in the session).
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    /// Start at this derivation step.
+    #[arg(short = 'n', long = "step", value_name = "N", default_value_t = 0)]
+    pub step: u32,
+    /// Seed of the random generator, 0 to 4294967295 (overrides the file's `seed:`).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(..=u32::MAX as u64))]
+    pub seed: Option<u64>,
+    /// Stop with an error when a string would exceed this many modules.
+    #[arg(long, value_name = "N", default_value_t = 50_000_000)]
+    pub max_modules: usize,
+    /// Stop with an error when a string would hold more parameter values than this.
+    #[arg(long, value_name = "N", default_value_t = 200_000_000)]
+    pub max_params: usize,
+    /// When commands come from a pipe or file, print each one as `> COMMAND` before its output.
+    #[arg(long)]
+    pub echo: bool,
 }
 
 #[derive(Args, Debug)]

@@ -10,9 +10,12 @@ use super::args::{Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::derive::{self, DeriveOptions, ModuleStore};
 use crate::pipeline::{self, Compilation, Failure};
+use crate::progress::Progress;
 use crate::resolve::{Input, Options};
 
-pub fn run(cmd: &Command, color: bool) -> i32 {
+/// Runs `cmd`. `color` is for diagnostics on standard error; the REPL
+/// decides for standard output itself unless `repl_color` says.
+pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
     match cmd {
         Command::Check(c) => check(c, color),
         Command::Derive(d) => derive_cmd(d, color),
@@ -28,6 +31,19 @@ pub fn run(cmd: &Command, color: bool) -> i32 {
         Command::Commands => {
             emit_stdout(|out| out.write_all(crate::turtle::commands::help_text().as_bytes()))
         }
+        Command::Watch(b) => super::watch::watch_cmd(b, color),
+        Command::Repl(r) => crate::repl::run(crate::repl::Config {
+            file: r.file.clone(),
+            defines: r.define.clone(),
+            step: r.step,
+            derive: DeriveOptions {
+                seed: r.seed,
+                max_modules: r.max_modules,
+                max_params: r.max_params,
+            },
+            echo: r.echo,
+            color: repl_color,
+        }),
     }
 }
 
@@ -137,12 +153,15 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         if d.every {
             line(deriv.current(), 0, out)?;
         }
-        for _ in 0..steps {
+        let progress = Progress::new(true);
+        for done in 0..steps {
+            progress.step(done, steps);
             deriv.step().map_err(Outcome::Derive)?;
             if d.every {
                 line(deriv.current(), deriv.step_number(), out)?;
             }
         }
+        drop(progress);
         for w in deriv.warnings() {
             report(w, color);
         }

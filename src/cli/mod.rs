@@ -5,6 +5,7 @@
 mod args;
 mod commands;
 mod model;
+mod watch;
 
 use std::io::IsTerminal;
 
@@ -40,7 +41,12 @@ pub fn main() -> i32 {
     std::panic::set_hook(Box::new(|info| {
         eprintln!("lsys: internal error: {info}\nThis is a bug in lsys; please report it with the input that caused it.");
     }));
-    match std::panic::catch_unwind(|| commands::run(&cli.command, color)) {
+    let repl_color = match cli.color {
+        args::Color::Always => Some(true),
+        args::Color::Never => Some(false),
+        args::Color::Auto => None,
+    };
+    match std::panic::catch_unwind(|| commands::run(&cli.command, color, repl_color)) {
         Ok(code) => code,
         Err(_) => EX_SOFTWARE,
     }

@@ -1,9 +1,9 @@
-//! `lsys build` and `lsys render`: a grammar -> a model file (.glb, .gltf,
-//! .obj + .mtl) or a picture (.png), written atomically, with `--stats` as
-//! JSON on standard output.
+//! `lsys build`, `lsys render` and each rebuild of `lsys watch`: a grammar
+//! -> a model file (.glb, .gltf, .obj + .mtl) or a picture (.png), written
+//! atomically, with `--stats` as JSON (or, for `watch`, a one-line summary)
+//! on standard output.
 
-use std::io;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::args::{
@@ -11,43 +11,31 @@ use super::args::{
     ViewArg,
 };
 use super::commands::{compile_input, report};
-use super::{EX_DATAERR, EX_IOERR, EX_OK, EX_USAGE};
+use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
 use crate::build::{self, BuildOptions, Built};
 use crate::derive::DeriveOptions;
-use crate::export::atomic::AtomicFiles;
-use crate::export::{gltf, obj, render};
+use crate::export::output::{write_scene, Format, WriteError};
+use crate::export::render;
 use crate::mesh::{ComponentSearch, MeshOptions};
+use crate::progress::Progress;
 use crate::resolve::Input;
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Format {
-    Glb,
-    Gltf,
-    Obj,
-    Png,
-}
-
-impl Format {
-    fn of(path: &Path) -> Option<Format> {
-        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
-        Some(match ext.as_str() {
-            "glb" => Format::Glb,
-            "gltf" => Format::Gltf,
-            "obj" => Format::Obj,
-            "png" => Format::Png,
-            _ => return None,
-        })
-    }
-}
+use crate::source::Origin;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
-    match Format::of(&b.output) {
-        Some(f) => model_run(&b.model, &b.output, &b.picture, f, color),
-        None => {
-            eprintln!(
-                "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
-                b.output.display()
-            );
+    match format_of(&b.output) {
+        Ok(f) => {
+            build_once(
+                &model_job(&b.model),
+                &b.output,
+                &b.picture,
+                f,
+                color,
+                Report::Stats,
+            )
+            .code
+        }
+        Err(msg) => {
+            eprintln!("{msg}");
             EX_USAGE
         }
     }
@@ -61,20 +49,15 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
-    model_run(&r.model, &r.output, &r.picture, Format::Png, color)
-}
-
-fn model_run(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
-    let input = Input::from_arg(&m.common.file);
-    let job = Job {
-        input: &input,
-        name: &m.common.file,
-        defines: &m.common.define,
-        run: &m.run,
-        look: &m.look,
-        collisions: m.look.collisions,
-    };
-    run(&job, out, pic, format, color)
+    build_once(
+        &model_job(&r.model),
+        &r.output,
+        &r.picture,
+        Format::Png,
+        color,
+        Report::Stats,
+    )
+    .code
 }
 
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
@@ -86,7 +69,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
                 Ok(t) => t,
                 Err(e) => {
                     eprintln!("lsys: cannot read {}: {e}", path.display());
-                    return super::EX_NOINPUT;
+                    return EX_NOINPUT;
                 }
             };
             let relations = match &p.relations {
@@ -94,7 +77,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
                     Ok(t) => t,
                     Err(e) => {
                         eprintln!("lsys: cannot read {}: {e}", r.display());
-                        return super::EX_NOINPUT;
+                        return EX_NOINPUT;
                     }
                 },
                 None => graph::RELATIONS.to_string(),
@@ -167,27 +150,27 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     };
-    let Some(format) = Format::of(out) else {
-        eprintln!(
-            "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
-            out.display()
-        );
-        return EX_USAGE;
+    let format = match format_of(out) {
+        Ok(f) => f,
+        Err(msg) => {
+            eprintln!("{msg}");
+            return EX_USAGE;
+        }
     };
     let job = Job {
-        input: &input,
+        input,
         name: &name,
         defines: &defines,
         run: &p.run,
         look: &p.look,
         collisions: true,
     };
-    run(&job, out, &p.picture, format, color)
+    build_once(&job, out, &p.picture, format, color, Report::Stats).code
 }
 
 /// One build: the grammar and the options that shape it.
-struct Job<'a> {
-    input: &'a Input,
+pub(super) struct Job<'a> {
+    input: Input,
     /// How messages name the grammar.
     name: &'a str,
     defines: &'a [(String, String)],
@@ -197,9 +180,31 @@ struct Job<'a> {
     collisions: bool,
 }
 
+/// A build from `lsys build`, `render` or `watch`.
+pub(super) fn model_job(m: &ModelArgs) -> Job<'_> {
+    Job {
+        input: Input::from_arg(&m.common.file),
+        name: &m.common.file,
+        defines: &m.common.define,
+        run: &m.run,
+        look: &m.look,
+        collisions: m.look.collisions,
+    }
+}
+
+/// The format of `lsys build`'s output, or the usage error to print.
+pub(super) fn format_of(out: &Path) -> Result<Format, String> {
+    Format::of(out).ok_or_else(|| {
+        format!(
+            "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
+            out.display()
+        )
+    })
+}
+
 /// The options of a build from the command line.
 fn options(m: &Job) -> BuildOptions {
-    let grammar_dir = match m.input {
+    let grammar_dir = match &m.input {
         Input::Path(p) => Some(
             p.parent()
                 .filter(|d| !d.as_os_str().is_empty())
@@ -230,16 +235,73 @@ fn options(m: &Job) -> BuildOptions {
     }
 }
 
-fn run(m: &Job, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
+/// What a successful build prints on standard output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Report {
+    /// The `--stats` JSON when asked for, else nothing.
+    Stats,
+    /// The `--stats` JSON when asked for, else one summary line (`watch`).
+    Summary,
+}
+
+/// What one build did.
+pub(super) struct Outcome {
+    pub code: i32,
+    /// The files the grammar was read from (root and includes), when it
+    /// compiled.
+    pub sources: Option<Vec<PathBuf>>,
+}
+
+/// Compiles and builds `m`, writes `out`; prints diagnostics and the
+/// report.
+pub(super) fn build_once(
+    m: &Job,
+    out: &Path,
+    pic: &PictureArgs,
+    format: Format,
+    color: bool,
+    report_as: Report,
+) -> Outcome {
     let t0 = Instant::now();
-    let comp = match compile_input(m.input, m.name, m.defines, color) {
+    let comp = match compile_input(&m.input, m.name, m.defines, color) {
         Ok(c) => c,
-        Err(code) => return code,
+        Err(code) => {
+            return Outcome {
+                code,
+                sources: None,
+            }
+        }
     };
+    let sources = Some(
+        comp.program
+            .sources
+            .files()
+            .iter()
+            .filter_map(|f| match &f.origin {
+                Origin::Disk(p) => Some(p.clone()),
+                _ => None,
+            })
+            .collect(),
+    );
+    let code = build_compiled(m, &comp, (out, pic, format), color, report_as, t0);
+    Outcome { code, sources }
+}
+
+/// Builds the compiled grammar and writes `out` as `format`; the exit code.
+fn build_compiled(
+    m: &Job,
+    comp: &crate::pipeline::Compilation,
+    (out, pic, format): (&Path, &PictureArgs, Format),
+    color: bool,
+    report_as: Report,
+    t0: Instant,
+) -> i32 {
     let parse = t0.elapsed();
-    let built = match build::build(&comp, &options(m)) {
+    let progress = Progress::new(true);
+    let built = match build::build_observed(comp, &options(m), &mut |s| progress.stage(s)) {
         Ok(b) => b,
         Err(e) => {
+            drop(progress);
             report(&e, color);
             return EX_DATAERR;
         }
@@ -271,12 +333,20 @@ fn run(m: &Job, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i
         );
     }
     let t1 = Instant::now();
-    let written = write(&built, out, pic, format);
+    progress.message(if format == Format::Png {
+        "rendering"
+    } else {
+        "writing"
+    });
+    let written = write_scene(&built.scene, out, format, &picture(pic));
+    drop(progress);
     let write_time = t1.elapsed();
     match written {
         Ok(bytes) => {
             if m.look.stats {
                 println!("{}", stats(&built, parse, write_time, out, bytes));
+            } else if report_as == Report::Summary {
+                println!("{}", summary(&built, out, bytes, t0.elapsed()));
             }
             EX_OK
         }
@@ -291,71 +361,29 @@ fn run(m: &Job, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i
     }
 }
 
-enum WriteError {
-    Export(Box<dyn miette::Diagnostic + Send + Sync>),
-    Io(io::Error),
-}
-
-impl From<io::Error> for WriteError {
-    fn from(e: io::Error) -> Self {
-        WriteError::Io(e)
+fn picture(pic: &PictureArgs) -> render::RenderOptions {
+    render::RenderOptions {
+        view: match pic.view {
+            ViewArg::Front => render::View::Front,
+            ViewArg::Side => render::View::Side,
+            ViewArg::Top => render::View::Top,
+            ViewArg::Iso => render::View::Iso,
+        },
+        width: pic.size.0,
+        height: pic.size.1,
+        ..Default::default()
     }
 }
 
-fn export_err<E: miette::Diagnostic + Send + Sync + 'static>(e: E) -> WriteError {
-    WriteError::Export(Box::new(e))
-}
-
-/// Writes the output file(s); returns the bytes written.
-fn write(built: &Built, out: &Path, pic: &PictureArgs, format: Format) -> Result<u64, WriteError> {
-    let scene = &built.scene;
-    let mut files = AtomicFiles::new();
-    let bytes: u64;
-    match format {
-        Format::Glb | Format::Gltf => {
-            let data = if format == Format::Glb {
-                gltf::to_glb(scene)
-            } else {
-                gltf::to_gltf(scene)
-            }
-            .map_err(export_err)?;
-            bytes = data.len() as u64;
-            files.write(out, |w| w.write_all(&data))?;
-        }
-        Format::Obj => {
-            let mtl_path = out.with_extension("mtl");
-            let mtl_name = mtl_path
-                .file_name()
-                .map_or("model.mtl".into(), |n| n.to_string_lossy().into_owned());
-            let mut mtl = Vec::new();
-            let mut obj = Vec::new();
-            obj::write_obj(scene, &mtl_name, &mut obj, &mut mtl)?;
-            bytes = (obj.len() + mtl.len()) as u64;
-            // The .mtl first: the .obj refers to it.
-            files.write(&mtl_path, |w| w.write_all(&mtl))?;
-            files.write(out, |w| w.write_all(&obj))?;
-        }
-        Format::Png => {
-            let opts = render::RenderOptions {
-                view: match pic.view {
-                    ViewArg::Front => render::View::Front,
-                    ViewArg::Side => render::View::Side,
-                    ViewArg::Top => render::View::Top,
-                    ViewArg::Iso => render::View::Iso,
-                },
-                width: pic.size.0,
-                height: pic.size.1,
-                ..Default::default()
-            };
-            let image = render::render(scene, &opts);
-            let mut png = Vec::new();
-            render::write_png(&image, &mut png).map_err(export_err)?;
-            bytes = png.len() as u64;
-            files.write(out, |w| w.write_all(&png))?;
-        }
-    }
-    files.commit()?;
-    Ok(bytes)
+/// One line for `watch`: what was written and how big the model is.
+fn summary(built: &Built, out: &Path, bytes: u64, took: Duration) -> String {
+    format!(
+        "wrote {}: {} modules, {} triangles, {bytes} bytes in {} ms",
+        out.display(),
+        built.modules,
+        built.scene.triangle_count(),
+        took.as_millis()
+    )
 }
 
 fn ms(d: Duration) -> f64 {

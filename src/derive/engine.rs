@@ -7,7 +7,7 @@ use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
 use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
-use super::rng::DEFAULT_SEED;
+use super::rng::{Rand48, DEFAULT_SEED};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
 use crate::resolve::{Program, Table};
@@ -164,6 +164,45 @@ impl<'p> Derivation<'p> {
         &self.st.warnings
     }
 
+    /// The derivation as it stands, to [`resume`](Derivation::resume) later
+    /// (the REPL keeps one per step, so going back costs nothing and going
+    /// forward again continues with the same random numbers).
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            string: self.cur.clone(),
+            step: self.steps,
+            rng: self.st.rng.clone(),
+            warnings: self.st.warnings.clone(),
+        }
+    }
+
+    /// Continue a derivation from `cp`, which must come from a derivation
+    /// of the same program with the same options: stepping on gives exactly
+    /// the strings the original derivation would have given.
+    pub fn resume(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        cp: &Checkpoint,
+    ) -> Result<Derivation<'p>, DeriveError> {
+        let tab = Tables::new(program, compiled, &opts)?;
+        let seed = opts.effective_seed(program);
+        let mut st = State::new(&tab, seed);
+        st.rng = cp.rng.clone();
+        st.warnings = cp.warnings.clone();
+        st.step = cp.step;
+        Ok(Derivation {
+            tab,
+            st,
+            seed,
+            cur: cp.string.clone(),
+            next: ModuleStore::new(),
+            spare: ModuleStore::new(),
+            index: ContextIndex::default(),
+            steps: cp.step,
+        })
+    }
+
     /// The homomorphism of the current string (see [`homomorphism`]).
     pub fn homomorphism(&self) -> Result<Interpreted, DeriveError> {
         let opts = DeriveOptions {
@@ -178,6 +217,23 @@ impl<'p> Derivation<'p> {
             &opts,
             self.steps,
         )
+    }
+}
+
+/// A derivation frozen after a step ([`Derivation::checkpoint`]): the
+/// string, the step number and the generator's state.
+#[derive(Clone, Debug)]
+pub struct Checkpoint {
+    pub string: ModuleStore,
+    pub step: u32,
+    rng: Rand48,
+    warnings: Vec<DepthWarning>,
+}
+
+impl Checkpoint {
+    /// Depth-limit warnings of the decomposition up to this step.
+    pub fn warnings(&self) -> &[DepthWarning] {
+        &self.warnings
     }
 }
 

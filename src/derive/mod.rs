@@ -59,7 +59,9 @@ mod rewrite;
 pub mod rng;
 pub mod store;
 
-pub use engine::{derive, derive_each, homomorphism, Derivation, DeriveOptions, Interpreted};
+pub use engine::{
+    derive, derive_each, homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted,
+};
 pub use error::{DepthWarning, DeriveError};
 pub use rng::{Rand48, DEFAULT_SEED};
 pub use store::{ContextIndex, Module, ModuleStore};

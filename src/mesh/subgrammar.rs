@@ -26,7 +26,7 @@ pub fn grammar_component(
     materials: &mut Vec<Material>,
 ) -> Result<Component, MeshError> {
     let origin = match input {
-        Input::Path(p) => p.display().to_string(),
+        Input::Path(p) | Input::Edited { path: p, .. } => p.display().to_string(),
         Input::Std(n) => format!("std:{n}"),
         Input::Text { name, .. } => name.clone(),
     };
@@ -60,7 +60,9 @@ pub fn grammar_component(
     let opts = BuildOptions {
         components: ComponentSearch {
             grammar_dir: match input {
-                Input::Path(p) => p.parent().map(|d| d.to_path_buf()),
+                Input::Path(p) | Input::Edited { path: p, .. } => {
+                    p.parent().map(|d| d.to_path_buf())
+                }
                 _ => None,
             },
             dirs: search.dirs.clone(),

@@ -25,6 +25,9 @@ pub enum Input {
     Std(String),
     /// Text from memory (tests, the REPL).
     Text { name: String, text: String },
+    /// A file's text as edited in memory (the REPL): named like the file,
+    /// with its `#include "..."` resolved beside it.
+    Edited { path: PathBuf, text: String },
 }
 
 impl Input {
@@ -82,6 +85,11 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             SourceFile::new(format!("std:{name}"), Origin::Std(name.clone()), text)
         }
         Input::Text { name, text } => SourceFile::new(name.clone(), Origin::Memory, text.clone()),
+        Input::Edited { path, text } => SourceFile::new(
+            path.display().to_string(),
+            Origin::Disk(path.clone()),
+            text.clone(),
+        ),
     };
     let mut loader = Loader {
         loaded: Loaded {

@@ -1,0 +1,100 @@
+//! One output file from a scene: a path whose extension names the format
+//! ([`Format`]) -> the model (.glb, .gltf, .obj + .mtl) or a picture (.png)
+//! written atomically, and the number of bytes written. `lsys build`,
+//! `lsys render`, `lsys watch` and the REPL's `:export` / `:render` all
+//! write through [`write_scene`].
+
+use std::io;
+use std::path::Path;
+
+use super::atomic::AtomicFiles;
+use super::{gltf, obj, render};
+use crate::mesh::Scene;
+
+/// The output formats, chosen by extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Glb,
+    Gltf,
+    Obj,
+    Png,
+}
+
+impl Format {
+    /// The format `path`'s extension names (case-insensitive), if any.
+    pub fn of(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "glb" => Format::Glb,
+            "gltf" => Format::Gltf,
+            "obj" => Format::Obj,
+            "png" => Format::Png,
+            _ => return None,
+        })
+    }
+}
+
+/// Why an output was not written.
+#[derive(Debug)]
+pub enum WriteError {
+    /// The exporter refused the scene (too large for the format, ...).
+    Export(Box<dyn miette::Diagnostic + Send + Sync>),
+    Io(io::Error),
+}
+
+impl From<io::Error> for WriteError {
+    fn from(e: io::Error) -> Self {
+        WriteError::Io(e)
+    }
+}
+
+fn export_err<E: miette::Diagnostic + Send + Sync + 'static>(e: E) -> WriteError {
+    WriteError::Export(Box::new(e))
+}
+
+/// Writes `scene` to `out` in `format` (a picture with `picture`'s camera
+/// and size); all files appear at once or not at all. Returns the bytes
+/// written.
+pub fn write_scene(
+    scene: &Scene,
+    out: &Path,
+    format: Format,
+    picture: &render::RenderOptions,
+) -> Result<u64, WriteError> {
+    let mut files = AtomicFiles::new();
+    let bytes: u64;
+    match format {
+        Format::Glb | Format::Gltf => {
+            let data = if format == Format::Glb {
+                gltf::to_glb(scene)
+            } else {
+                gltf::to_gltf(scene)
+            }
+            .map_err(export_err)?;
+            bytes = data.len() as u64;
+            files.write(out, |w| w.write_all(&data))?;
+        }
+        Format::Obj => {
+            let mtl_path = out.with_extension("mtl");
+            let mtl_name = mtl_path
+                .file_name()
+                .map_or("model.mtl".into(), |n| n.to_string_lossy().into_owned());
+            let mut mtl = Vec::new();
+            let mut obj = Vec::new();
+            obj::write_obj(scene, &mtl_name, &mut obj, &mut mtl)?;
+            bytes = (obj.len() + mtl.len()) as u64;
+            // The .mtl first: the .obj refers to it.
+            files.write(&mtl_path, |w| w.write_all(&mtl))?;
+            files.write(out, |w| w.write_all(&obj))?;
+        }
+        Format::Png => {
+            let image = render::render(scene, picture);
+            let mut png = Vec::new();
+            render::write_png(&image, &mut png).map_err(export_err)?;
+            bytes = png.len() as u64;
+            files.write(out, |w| w.write_all(&png))?;
+        }
+    }
+    files.commit()?;
+    Ok(bytes)
+}

@@ -1,0 +1,332 @@
+//! `lsys repl` and `lsys watch` through the binary: scripted sessions
+//! (standard input piped, `--echo`) as insta transcripts, one of which
+//! uses every command; the session API for what a transcript cannot show
+//! (Ctrl-C, stochastic stepping, a file changing under `:reload`); and
+//! `watch` rebuilding when a grammar or its include changes.
+
+use std::io::{BufRead, BufReader, Write};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::atomic::Ordering;
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use lsys::repl::{Session, Settings};
+
+const TREE: &str = "\
+// A small parametric tree: the REPL transcripts' grammar.
+#include \"params.lsys\"
+derivation length: N
+angle: 30
+Axiom: A(1)
+A(s) : s < N --> F(1) [+A(s+1)] [-A(s+1)]
+A(s) : else  --> L
+F(x) --> F(x*R)
+homomorphism
+L --> [ +F(0.3) ]
+";
+
+const PARAMS: &str = "#define N 3, R 1.5\n";
+
+const BROKEN: &str = "Axiom: A(1)\nA(s) --> B(t)\n";
+
+/// A directory with the grammars of the transcripts.
+fn workdir() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("tree.lsys"), TREE).unwrap();
+    std::fs::write(dir.path().join("params.lsys"), PARAMS).unwrap();
+    std::fs::write(dir.path().join("broken.lsys"), BROKEN).unwrap();
+    dir
+}
+
+/// Runs `lsys repl ARGS --echo` in `dir` with `script` on standard input;
+/// the output with times replaced by `<t>`, and the exit code.
+fn session(dir: &Path, args: &[&str], script: &str) -> (String, i32) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .arg("repl")
+        .args(args)
+        .arg("--echo")
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(script.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.stderr.is_empty(),
+        "nothing goes to standard error: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    (redact_times(&text), out.status.code().unwrap_or(-1))
+}
+
+/// `12.5 ms` -> `<t> ms`: times differ from run to run.
+fn redact_times(text: &str) -> String {
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(i) = rest.find(" ms") {
+        let head = &rest[..i];
+        let num_start = head
+            .char_indices()
+            .rev()
+            .take_while(|&(_, c)| c.is_ascii_digit() || c == '.')
+            .last()
+            .map_or(i, |(k, _)| k);
+        out.push_str(&head[..num_start]);
+        if num_start < i {
+            out.push_str("<t>");
+        } else {
+            out.push_str(&head[num_start..]);
+        }
+        out.push_str(" ms");
+        rest = &rest[i + 3..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Every command, in the order a user might meet them.
+const TOUR: &str = "\
+// the tour: every command of the table
+:load tree.lsys
+:help
+:help goto
+:defines
+:rules
+:step
+:step 2
+:diff
+:count
+:show
+:show 2..6
+:show 3
+:show all
+:back
+:goto 3
+:reset
+:goto 2
+// a typed production goes before the catch-all of its predecessor
+A(s) : s == 2 --> F(2) A(s+1)
+// an indented line continues the production just typed (and replaces it)
+    [-A(s+1)]
+:rules
+:diff
+// a line that ends inside brackets continues too
+F(x) --> F(x*R) [ +
+  F(x/2) ]
+// the same predecessor and condition: replaced
+F(x) --> F(x*R)
+:rules
+// modules typed are rewritten once with the current rules
+A(1) F(2) L
+:drop 3
+:axiom A(1) F(1)
+:axiom
+:set N=2
+:defines
+:set N
+:seed 7
+:seed
+:disasm 2
+:disasm
+:export tree.glb
+:export tree.obj
+:render tree.png front
+:stats
+:reload
+:quit
+:step
+";
+
+#[test]
+fn tour_of_every_command() {
+    let dir = workdir();
+    let (text, code) = session(dir.path(), &[], TOUR);
+    insta::assert_snapshot!("tour", text);
+    assert_eq!(code, 0, "every input of the tour succeeds");
+    for f in ["tree.glb", "tree.obj", "tree.mtl", "tree.png"] {
+        let len = std::fs::metadata(dir.path().join(f)).unwrap().len();
+        assert!(len > 50, "{f} has {len} bytes");
+    }
+    // Every command of the table is in the tour.
+    for c in lsys::repl::COMMANDS {
+        assert!(
+            TOUR.lines().any(|l| l.starts_with(&format!(":{}", c.name))),
+            ":{} is not in the tour",
+            c.name
+        );
+    }
+}
+
+#[test]
+fn errors_never_end_the_session_nor_lose_its_state() {
+    let dir = workdir();
+    let script = "\
+:step 2
+:zz
+:s
+:goto x
+:drop 99
+A(s) --> F(s,)
+A(s) --> F(t)
+A
+:set Z=1
+:export tree.stl
+:render tree.glb
+:load missing.lsys
+:load broken.lsys
+:reload
+// still the tree, still at step 2
+:show
+// a production that fails at run time: kept, the derivation stops
+F(x) : x > 1.2 --> F(x/(x-x))
+:rules
+:step
+:drop 4
+:step
+";
+    let (text, code) = session(dir.path(), &["tree.lsys"], script);
+    insta::assert_snapshot!("errors", text);
+    assert_eq!(code, 65, "a scripted session with errors exits 65");
+}
+
+#[test]
+fn a_session_can_start_from_nothing() {
+    let dir = workdir();
+    let script = "\
+:step
+F --> F F
+:axiom F X
+X --> F [+X] [-X]
+:step 2
+:rules
+:count
+";
+    let (text, code) = session(dir.path(), &[], script);
+    insta::assert_snapshot!("from_nothing", text);
+    assert_eq!(code, 65, "the first `:step` has no grammar");
+}
+
+#[test]
+fn stochastic_steps_repeat_after_going_back() {
+    let mut s = Session::new(Settings::default());
+    s.start("examples/abop/stochastic_1_27.lsys", 0).unwrap();
+    let straight = s.goto(5).unwrap();
+    s.goto(2).unwrap();
+    s.execute(":step 3");
+    assert_eq!(s.goto(5).unwrap(), straight);
+    // Derived again from the axiom after an edit undone, still the same.
+    assert!(s.execute(":seed 1").ok);
+    assert_eq!(s.goto(5).unwrap(), straight);
+    assert!(s.execute(":seed 2").ok);
+    assert_ne!(s.goto(5).unwrap(), straight);
+}
+
+#[test]
+fn an_interrupt_stops_the_derivation_between_steps() {
+    let mut s = Session::new(Settings::default());
+    s.start("examples/abop/fig1_24d.lsys", 0).unwrap();
+    s.interrupt_flag().store(true, Ordering::SeqCst);
+    let e = s.goto(6).unwrap_err();
+    assert!(e.starts_with("interrupted: stopped at step 0"), "{e}");
+    assert_eq!(s.step(), 0);
+    // The flag is spent: the next command derives.
+    assert!(s.execute(":goto 6").ok);
+    assert_eq!(s.step(), 6);
+}
+
+#[test]
+fn reload_reads_the_changed_file_and_keeps_the_grammar_on_errors() {
+    let dir = workdir();
+    let tree = dir.path().join("tree.lsys");
+    let mut s = Session::new(Settings::default());
+    s.start(tree.to_str().unwrap(), 2).unwrap();
+    let before = s.execute(":show all").text;
+    std::fs::write(&tree, TREE.replace("[-A(s+1)]", "[-A(t)]")).unwrap();
+    let r = s.execute(":reload");
+    assert!(!r.ok, "t is unknown: {}", r.text);
+    assert!(
+        r.text.contains("keeping the previous grammar"),
+        "{}",
+        r.text
+    );
+    assert_eq!(s.execute(":show all").text, before);
+    std::fs::write(&tree, TREE.replace("F(1) [", "F(2) [")).unwrap();
+    let r = s.execute(":reload");
+    assert!(r.ok, "{}", r.text);
+    assert_eq!(s.step(), 2, "the step is kept");
+    assert!(s.execute(":show all").text.starts_with("F(3)"));
+}
+
+/// Lines of a child's standard output, as they come.
+fn lines_of(stdout: std::process::ChildStdout) -> mpsc::Receiver<String> {
+    let (tx, rx) = mpsc::channel();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stdout).lines().map_while(Result::ok) {
+            if tx.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    rx
+}
+
+/// The next line that starts with `prefix`, within a generous time.
+fn expect_line(rx: &mpsc::Receiver<String>, prefix: &str) -> String {
+    let deadline = Instant::now() + Duration::from_secs(60);
+    loop {
+        let left = deadline.saturating_duration_since(Instant::now());
+        match rx.recv_timeout(left) {
+            Ok(l) if l.starts_with(prefix) => return l,
+            Ok(_) => {}
+            Err(e) => panic!("no line starting with `{prefix}`: {e}"),
+        }
+    }
+}
+
+#[test]
+fn watch_rebuilds_when_the_grammar_or_an_include_changes() {
+    let dir = workdir();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["watch", "tree.lsys", "-o", "out.obj"])
+        .current_dir(dir.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let rx = lines_of(child.stdout.take().unwrap());
+    let modules = |line: &str| -> usize {
+        let after = line.split(": ").nth(1).unwrap();
+        after.split(' ').next().unwrap().parse().unwrap()
+    };
+    let first = expect_line(&rx, "wrote out.obj: ");
+    assert_eq!(modules(&first), 37, "{first}");
+    // The include changes: N 3 -> 4 makes a bigger tree.
+    std::thread::sleep(Duration::from_millis(300));
+    std::fs::write(dir.path().join("params.lsys"), "#define N 4, R 1.5\n").unwrap();
+    let second = expect_line(&rx, "wrote out.obj: ");
+    assert_eq!(modules(&second), 81, "{second}");
+    // The grammar itself changes, saved the way editors do: a new file
+    // renamed over the old one.
+    std::thread::sleep(Duration::from_millis(300));
+    let tmp = dir.path().join(".tree.lsys.swp");
+    std::fs::write(
+        &tmp,
+        TREE.replace("derivation length: N", "derivation length: 1"),
+    )
+    .unwrap();
+    std::fs::rename(&tmp, dir.path().join("tree.lsys")).unwrap();
+    let third = expect_line(&rx, "wrote out.obj: ");
+    assert_eq!(modules(&third), 9, "{third}");
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
