@@ -206,7 +206,18 @@ pub fn diff(
         .map(|m| rewritable.get(m.sym as usize).copied().unwrap_or(false))
         .collect();
     let c: Vec<String> = cur.iter().map(|m| token(symbols, m)).collect();
-    match align(&p, &r, &c) {
+    // An alignment is shown only when it is consistent: the same run of
+    // modules became the same thing everywhere. Otherwise it is one guess
+    // among several (conditions, stochastic rules, or plain ambiguity) and
+    // the positional comparison is the honest answer.
+    let consistent = |pairs: &Vec<(Range<usize>, Range<usize>)>| {
+        let mut seen: std::collections::HashMap<String, String> = Default::default();
+        pairs.iter().all(|(a, b)| {
+            let (old, new) = (p[a.clone()].join(" "), c[b.clone()].join(" "));
+            seen.entry(old).or_insert_with(|| new.clone()) == &new
+        })
+    };
+    match align(&p, &r, &c).filter(consistent) {
         Some(pairs) => {
             let mut rewrites: Vec<(String, String, usize)> = Vec::new();
             let mut parts = Vec::new();
