@@ -299,3 +299,28 @@ fn illegal_attachments_and_styles_are_reported() {
     assert_eq!(o.status.code(), Some(64));
     assert!(stderr(&o).contains("2NE+1 (7)"), "{}", stderr(&o));
 }
+
+/// Input deep enough to exhaust a stack is a diagnostic (exit 65), never
+/// an abort: parentheses nested 100 000 deep, and 100 000 unary minuses.
+#[test]
+fn deep_input_is_refused_with_a_diagnostic() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in [
+        (
+            "parens",
+            format!(
+                "Axiom: A({}1{})\n",
+                "(".repeat(100_000),
+                ")".repeat(100_000)
+            ),
+        ),
+        ("minus", format!("Axiom: A({}1)\n", "-".repeat(100_000))),
+    ] {
+        let path = dir.path().join(format!("{name}.lsys"));
+        std::fs::write(&path, text).unwrap();
+        let o = lsys(&["check", path_str(&path)]);
+        assert_eq!(o.status.code(), Some(65), "{name}: {}", stderr(&o));
+        assert!(stderr(&o).contains("lsys::parse::too_deep"), "{name}");
+        assert!(!stderr(&o).contains("no axiom"), "{name}: no echo errors");
+    }
+}

@@ -46,8 +46,19 @@ pub fn main() -> i32 {
         args::Color::Never => Some(false),
         args::Color::Auto => None,
     };
-    match std::panic::catch_unwind(|| commands::run(&cli.command, color, repl_color)) {
-        Ok(code) => code,
-        Err(_) => EX_SOFTWARE,
+    // The compiler's recursive parts (the PEG, the Pratt parser, resolve,
+    // folding) get a deep stack; the parser refuses input deeper than they
+    // can take with it (parse::MAX_NESTING, parse::MAX_OPERATORS).
+    let worker = std::thread::Builder::new()
+        .name("lsys".into())
+        .stack_size(256 << 20)
+        .spawn(move || commands::run(&cli.command, color, repl_color));
+    match worker.map(|w| w.join()) {
+        Ok(Ok(code)) => code,
+        Ok(Err(_)) => EX_SOFTWARE,
+        Err(e) => {
+            eprintln!("lsys: cannot start: {e}");
+            EX_SOFTWARE
+        }
     }
 }

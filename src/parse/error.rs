@@ -58,6 +58,21 @@ pub enum ParseError {
         offset: usize,
     },
 
+    #[error("{what} is more than {limit}")]
+    #[diagnostic(
+        code(lsys::parse::too_deep),
+        help("lsys refuses such input rather than risk running out of stack; split the expression with #defines or a production with fewer levels")
+    )]
+    TooDeep {
+        what: String,
+        limit: usize,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("here")]
+        span: SourceSpan,
+        offset: usize,
+    },
+
     #[error("bad table dimension")]
     #[diagnostic(
         code(lsys::parse::table_dimension),
@@ -79,7 +94,8 @@ impl ParseError {
             ParseError::Syntax { offset, .. }
             | ParseError::UnclosedComment { offset, .. }
             | ParseError::BadNumber { offset, .. }
-            | ParseError::BadTableDim { offset, .. } => *offset,
+            | ParseError::BadTableDim { offset, .. }
+            | ParseError::TooDeep { offset, .. } => *offset,
         }
     }
 

@@ -22,9 +22,93 @@ use crate::source::{FileId, SourceFile, Span};
 #[grammar = "../grammar/lsys.pest"]
 pub(crate) struct LsysParser;
 
+/// Deepest nesting of `(` and `{` a file may have.
+pub const MAX_NESTING: usize = 256;
+/// Most operators one expression (a parenthesised argument list or a
+/// `#define` line) may have.
+pub const MAX_OPERATORS: usize = 2000;
+
+/// Finds input deep enough to exhaust the stack of the recursive parts of
+/// the compiler (the PEG, the Pratt parser, resolve and folding), before
+/// any of them runs: nesting of `(` and `{` deeper than [`MAX_NESTING`],
+/// or an expression with more than [`MAX_OPERATORS`] operators.
+fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
+    let text = file.text.as_str();
+    let b = text.as_bytes();
+    let (mut depth, mut ops, mut in_define) = (0usize, 0usize, false);
+    let mut line_start = true;
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        let err = |what: &str, limit: usize| {
+            Some(ParseError::TooDeep {
+                what: what.to_string(),
+                limit,
+                src: file.named_source(),
+                span: Span::new(file_id, i, i + 1).into(),
+                offset: i,
+            })
+        };
+        if c == b'/' && b.get(i + 1) == Some(&b'/') {
+            while i < b.len() && b[i] != b'\n' {
+                i += 1;
+            }
+            continue;
+        }
+        if c == b'/' && b.get(i + 1) == Some(&b'*') {
+            i += 2;
+            while i + 1 < b.len() && !(b[i] == b'*' && b[i + 1] == b'/') {
+                i += 1;
+            }
+            i += 2;
+            continue;
+        }
+        if line_start && !c.is_ascii_whitespace() {
+            in_define = text[i..].starts_with("#define");
+            line_start = false;
+        }
+        match c {
+            b'\n' => {
+                line_start = true;
+                if depth == 0 {
+                    ops = 0;
+                    in_define = false;
+                }
+            }
+            b'(' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return err("nesting of parentheses and braces", MAX_NESTING);
+                }
+            }
+            b')' | b'}' => {
+                depth = depth.saturating_sub(1);
+                if depth == 0 && !in_define {
+                    ops = 0;
+                }
+            }
+            b'+' | b'-' | b'*' | b'/' | b'^' | b'%' | b'<' | b'>' | b'=' | b'!' | b'&' | b'|'
+            | b'?'
+                if depth > 0 || in_define =>
+            {
+                ops += 1;
+                if ops > MAX_OPERATORS {
+                    return err("the number of operators in one expression", MAX_OPERATORS);
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
 /// Parses one file. Always returns a tree (of the statements that parsed)
 /// together with the errors of those that did not.
 pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>) {
+    if let Some(e) = too_deep(file, file_id) {
+        return (ast::File { items: Vec::new() }, vec![e]);
+    }
     let text = file.text.as_str();
     let mut items = Vec::new();
     let mut errors = Vec::new();
@@ -80,6 +164,9 @@ pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>)
 
 /// Parses the value of a `-D NAME=VALUE` override or a REPL expression.
 pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<ParseError>> {
+    if let Some(e) = too_deep(file, file_id) {
+        return Err(Box::new(e));
+    }
     let text = file.text.as_str();
     match LsysParser::parse(Rule::expr_only, text) {
         Ok(mut pairs) => {
@@ -105,6 +192,9 @@ pub fn parse_define_value(
     file_id: FileId,
     file: &SourceFile,
 ) -> Result<Result<Vec<ast::Expr>, ast::Expr>, Box<ParseError>> {
+    if let Some(e) = too_deep(file, file_id) {
+        return Err(Box::new(e));
+    }
     match LsysParser::parse(Rule::define_value, file.text.as_str()) {
         Ok(mut pairs) => {
             let v = pairs
@@ -175,4 +265,46 @@ fn next_statement(text: &str, at: usize) -> usize {
         pos = text[pos..].find('\n').map_or(text.len(), |i| pos + i + 1);
     }
     pos
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::source::Origin;
+
+    fn errors(text: String) -> Vec<ParseError> {
+        let file = SourceFile::new("t.lsys", Origin::Memory, text);
+        parse(0, &file).1
+    }
+
+    /// Input that would exhaust the stack is refused before parsing; just
+    /// below the limits it parses (on a 64 MiB stack, as the binary runs
+    /// with 256 MiB: a debug build's frames are large).
+    #[test]
+    fn deep_or_long_expressions_are_refused_not_crashed_on() {
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn(limits)
+            .unwrap()
+            .join()
+            .unwrap();
+    }
+
+    fn limits() {
+        let parens = |n| format!("Axiom: A({}1{})\n", "(".repeat(n), ")".repeat(n));
+        let negs = |n| format!("Axiom: A({}1)\n", "-".repeat(n));
+        let sum = |n| format!("#define s {}\nAxiom: A(s)\n", vec!["1"; n].join("+"));
+        for (ok, bad) in [
+            (parens(MAX_NESTING - 1), parens(100_000)),
+            (negs(MAX_OPERATORS), negs(100_000)),
+            (sum(MAX_OPERATORS), sum(100_000)),
+        ] {
+            assert!(errors(ok).is_empty());
+            let e = errors(bad);
+            assert_eq!(e.len(), 1);
+            assert!(matches!(e[0], ParseError::TooDeep { .. }), "{:?}", e[0]);
+        }
+        // Long module strings are not expressions: no limit.
+        assert!(errors(format!("Axiom: {}\n", "F+".repeat(100_000))).is_empty());
+    }
 }

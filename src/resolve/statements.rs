@@ -60,10 +60,14 @@ impl Resolver {
         }
         let root = Span::new(0, 0, 0);
         let Some((axiom, _)) = s.axiom.take() else {
-            self.error(ResolveError::NoAxiom {
-                src: self.sources.named_source(root),
-                span: root.into(),
-            });
+            // After other errors (an axiom line that did not parse, a file
+            // refused as too deep) a missing axiom is their echo.
+            if self.errors.is_empty() {
+                self.error(ResolveError::NoAxiom {
+                    src: self.sources.named_source(root),
+                    span: root.into(),
+                });
+            }
             return None;
         };
         let defines = self.define_infos();
