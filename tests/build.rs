@@ -324,3 +324,30 @@ fn deep_input_is_refused_with_a_diagnostic() {
         assert!(!stderr(&o).contains("no axiom"), "{name}: no echo errors");
     }
 }
+
+/// An #include cannot leave the top-level grammar's folder, not even
+/// through a symbolic link; inside it (subfolders too) it works.
+#[cfg(unix)]
+#[test]
+fn includes_stay_inside_the_grammar_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let inner = dir.path().join("project");
+    std::fs::create_dir_all(inner.join("parts")).unwrap();
+    std::fs::write(dir.path().join("secret.lsys"), "#define s 1\n").unwrap();
+    std::fs::write(inner.join("parts/ok.lsys"), "#define k 2\n").unwrap();
+    std::os::unix::fs::symlink(dir.path().join("secret.lsys"), inner.join("link.lsys")).unwrap();
+    let grammar = inner.join("g.lsys");
+    std::fs::write(&grammar, "#include \"parts/ok.lsys\"\nAxiom: A(k)\n").unwrap();
+    let o = lsys(&["check", path_str(&grammar)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for target in ["../secret.lsys", "link.lsys"] {
+        std::fs::write(&grammar, format!("#include \"{target}\"\nAxiom: A(s)\n")).unwrap();
+        let o = lsys(&["check", path_str(&grammar)]);
+        assert_eq!(o.status.code(), Some(65), "{target}");
+        assert!(
+            stderr(&o).contains("lsys::resolve::include_outside"),
+            "{target}: {}",
+            stderr(&o)
+        );
+    }
+}

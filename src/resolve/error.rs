@@ -24,6 +24,18 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("cannot include \"{path}\": it is outside the folder of the top-level grammar")]
+    #[diagnostic(code(lsys::resolve::include_outside))]
+    IncludeOutside {
+        path: String,
+        #[source_code]
+        src: Src,
+        #[label("included here")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
     #[error("no standard library file <{name}>")]
     #[diagnostic(code(lsys::resolve::unknown_std))]
     UnknownStd {

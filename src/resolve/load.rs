@@ -91,6 +91,15 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             text.clone(),
         ),
     };
+    // Includes stay inside the top-level file's folder (or, for text and
+    // library grammars, the working folder): a grammar from someone else
+    // cannot read ../../etc/passwd, nor show its lines in a diagnostic.
+    let root_dir = match &root.origin {
+        Origin::Disk(p) => p.parent().map(Path::to_path_buf),
+        _ => None,
+    }
+    .filter(|d| !d.as_os_str().is_empty())
+    .unwrap_or_else(|| PathBuf::from("."));
     let mut loader = Loader {
         loaded: Loaded {
             sources: SourceMap::new(),
@@ -98,6 +107,8 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             errors: Vec::new(),
         },
         stack: Vec::new(),
+        root_dir: std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone()),
+        root_shown: root_dir,
     };
     let id = loader.loaded.sources.add(root);
     loader.file(id);
@@ -108,6 +119,10 @@ struct Loader {
     loaded: Loaded,
     /// The include chain being loaded: (file, its identity for cycles).
     stack: Vec<(FileId, String)>,
+    /// Every included file must resolve (links followed) inside this.
+    root_dir: PathBuf,
+    /// The same folder as the user named it, for messages.
+    root_shown: PathBuf,
 }
 
 impl Loader {
@@ -146,6 +161,25 @@ impl Loader {
     fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
         let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
         let full = base.join(path);
+        if let Ok(real) = std::fs::canonicalize(&full) {
+            // `real` is only compared, never shown: messages keep the
+            // user's own relative paths.
+            if !real.starts_with(&self.root_dir) {
+                self.loaded
+                    .errors
+                    .push(Report::new(ResolveError::IncludeOutside {
+                        path: path.to_string(),
+                        src: from.named_source(),
+                        span: span.into(),
+                        help: format!(
+                            "{} is not inside {} (links are followed); copy the file into that folder or below it",
+                            full.display(),
+                            self.root_shown.display()
+                        ),
+                    }));
+                return;
+            }
+        }
         let text = match std::fs::read(&full) {
             Ok(t) => String::from_utf8_lossy(&t).into_owned(),
             Err(e) => {
