@@ -73,6 +73,20 @@ pub enum ParseError {
         offset: usize,
     },
 
+    #[error("`//` starts a comment: the rest of this line is ignored")]
+    #[diagnostic(
+        code(lsys::parse::comment_in_successor),
+        severity(Warning),
+        help("if `//` means two rolls (ABOP writes `/////` for five), write them apart, `/ /`, or with an angle, `/(5*22.5)`; to silence this, put a space before the comment")
+    )]
+    SlashComment {
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("a comment begins here, right after a module")]
+        span: SourceSpan,
+        offset: usize,
+    },
+
     #[error("bad table dimension")]
     #[diagnostic(
         code(lsys::parse::table_dimension),
@@ -95,7 +109,8 @@ impl ParseError {
             | ParseError::UnclosedComment { offset, .. }
             | ParseError::BadNumber { offset, .. }
             | ParseError::BadTableDim { offset, .. }
-            | ParseError::TooDeep { offset, .. } => *offset,
+            | ParseError::TooDeep { offset, .. }
+            | ParseError::SlashComment { offset, .. } => *offset,
         }
     }
 

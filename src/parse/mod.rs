@@ -103,12 +103,48 @@ fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
     None
 }
 
+/// `//` glued to a module on a production or axiom line (`F/////[`):
+/// ABOP's run of rolls, silently cut off as a comment. Warnings.
+fn slash_comments(file: &SourceFile, file_id: FileId) -> Vec<ParseError> {
+    let text = file.text.as_str();
+    let mut out = Vec::new();
+    let mut start = 0;
+    for line in text.split_inclusive('\n') {
+        let code = line.trim_start();
+        let is_rule = ["-->", "->", "→", "⟶"].iter().any(|a| line.contains(a))
+            || code.starts_with("Axiom:")
+            || code.starts_with("axiom:");
+        if is_rule && !code.starts_with("//") && !code.starts_with('#') {
+            if let Some(at) = line.find("//") {
+                let before = line[..at].chars().next_back();
+                let in_block = line[..at].contains("/*");
+                if before.is_some_and(|c| !c.is_whitespace()) && !in_block {
+                    let i = start + at;
+                    out.push(ParseError::SlashComment {
+                        src: file.named_source(),
+                        span: Span::new(file_id, i, i + 2).into(),
+                        offset: i,
+                    });
+                }
+            }
+        }
+        start += line.len();
+    }
+    out
+}
+
 /// Parses one file. Always returns a tree (of the statements that parsed)
-/// together with the errors of those that did not.
+/// together with its errors and warnings (see [`crate::diag::is_error`]).
 pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>) {
     if let Some(e) = too_deep(file, file_id) {
         return (ast::File { items: Vec::new() }, vec![e]);
     }
+    let (file_ast, mut errors) = parse_statements(file_id, file);
+    errors.extend(slash_comments(file, file_id));
+    (file_ast, errors)
+}
+
+fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>) {
     let text = file.text.as_str();
     let mut items = Vec::new();
     let mut errors = Vec::new();

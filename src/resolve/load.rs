@@ -62,6 +62,7 @@ pub struct Loaded {
     pub sources: SourceMap,
     pub items: Vec<(FileId, Item)>,
     pub errors: Vec<Report>,
+    pub warnings: Vec<Report>,
 }
 
 pub fn load(input: &Input) -> Result<Loaded, InputError> {
@@ -105,6 +106,7 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             sources: SourceMap::new(),
             items: Vec::new(),
             errors: Vec::new(),
+            warnings: Vec::new(),
         },
         stack: Vec::new(),
         root_dir: std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone()),
@@ -141,9 +143,13 @@ impl Loader {
         let file = self.loaded.sources.get(id).clone();
         self.stack.push((id, Self::identity(&file)));
         let (ast, errors) = parse::parse(id, &file);
-        self.loaded
-            .errors
-            .extend(errors.into_iter().map(Report::new));
+        for e in errors {
+            if crate::diag::is_error(&e) {
+                self.loaded.errors.push(Report::new(e));
+            } else {
+                self.loaded.warnings.push(Report::new(e));
+            }
+        }
         for item in ast.items {
             match item {
                 Item::Include(Include::Path { ref path, span }) => {

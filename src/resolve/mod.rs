@@ -50,7 +50,7 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
     let mut r = Resolver {
         sources: loaded.sources,
         errors: loaded.errors,
-        warnings: Vec::new(),
+        warnings: loaded.warnings,
         defines: HashMap::new(),
         define_order: Vec::new(),
         symbols: Symbols::default(),
