@@ -166,6 +166,10 @@ impl ParseError {
                         "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
                             .to_string(),
                     ),
+                    Some('(') if empty_entry(&file.text[at..]) => Some(
+                        "a parameter list has no empty entries: remove the extra `,` (write `B(x)` or `B(x, y)`)"
+                            .to_string(),
+                    ),
                     Some('(') if !closes(&file.text[at..]) => Some(
                         "this `(` is never closed: end the parameter list with `)`".to_string(),
                     ),
@@ -241,6 +245,18 @@ impl ParseError {
     }
 }
 
+/// Whether the parameter list that starts `rest` has an empty entry
+/// (`(x,)`, `(,x)`, `(x,,y)`).
+fn empty_entry(rest: &str) -> bool {
+    let list: String = rest
+        .chars()
+        .take_while(|&c| c != '\n' && c != ')')
+        .filter(|c| !c.is_whitespace())
+        .collect();
+    let list = format!("{list})");
+    list.contains(",)") || list.contains("(,") || list.contains(",,")
+}
+
 /// Whether the `(` that starts `rest` is closed on its line.
 fn closes(rest: &str) -> bool {
     let mut depth = 0;
@@ -297,6 +313,30 @@ fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
 
 fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
     let before = &line[..col.min(line.len())];
+    let code = line.trim_start();
+    if line.contains("=>") {
+        return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
+    }
+    if let Some(kw) = HEADERS.iter().find(|k| {
+        code.len() > k.len()
+            && code[..k.len()].eq_ignore_ascii_case(k)
+            && !code[k.len()..].trim_start().starts_with(':')
+    }) {
+        let typed = &code[..kw.len()];
+        return Some(format!(
+            "a header needs a colon after its keyword: `{typed}: ...`"
+        ));
+    }
+    if code.starts_with(':') {
+        return Some(
+            "a probability or condition belongs on the production's own line, after the successor: `F --> F[+F]F : 0.5`".to_string(),
+        );
+    }
+    if single_equals(line) {
+        return Some(
+            "`=` is not a comparison: write `==` (e.g. `A(x) : x == 1 --> B`)".to_string(),
+        );
+    }
     if before.matches('(').count() > before.matches(')').count() {
         return Some(
             "a `(` before this point is not closed: close the parameter list with `)`".to_string(),
@@ -308,9 +348,6 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
             "a production needs an arrow between predecessor and successor: `A(x) --> B(x+1)`"
                 .to_string(),
         );
-    }
-    if line.contains("=>") {
-        return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
     }
     if expected.iter().any(|e| e.contains("`)`")) {
         return Some(
@@ -324,6 +361,36 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
         );
     }
     None
+}
+
+/// Header keywords, for "a header needs a colon".
+const HEADERS: &[&str] = &[
+    "axiom",
+    "derivation length",
+    "lsystem",
+    "ignore",
+    "consider",
+    "seed",
+    "angle",
+    "step",
+    "width",
+    "dialect",
+    "maximum depth",
+];
+
+/// A lone `=` (not `==`, `<=`, `>=`, `!=`) before the line's arrow.
+fn single_equals(line: &str) -> bool {
+    let head = ["-->", "->", "→"]
+        .iter()
+        .filter_map(|a| line.find(a))
+        .min()
+        .map_or(line, |i| &line[..i]);
+    let b = head.as_bytes();
+    (0..b.len()).any(|i| {
+        b[i] == b'='
+            && b.get(i + 1) != Some(&b'=')
+            && !(i > 0 && matches!(b[i - 1], b'=' | b'<' | b'>' | b'!'))
+    })
 }
 
 /// The language's name for a grammar rule in "expected ..." messages, or
