@@ -387,6 +387,8 @@ fn production(text: &str, line: &str, table: Table, syms: &mut Syms) -> Producti
         prob: prob.map(|p| expr(text, p, &names)),
         param_names: names,
         cond,
+        pre: Vec::new(),
+        post: Vec::new(),
     }
 }
 
@@ -411,6 +413,10 @@ fn program(src: &str) -> Program {
         defines: Vec::new(),
         turtle: Default::default(),
         tables: Vec::new(),
+        vars: Vec::new(),
+        var_init: Vec::new(),
+        arrays: Vec::new(),
+        hooks: Default::default(),
     };
     for line in text.lines() {
         let Some((key, rest)) = line.trim_start().split_once(':') else {

@@ -7,8 +7,10 @@
 use std::collections::HashMap;
 
 use super::error::BytecodeError;
-use super::op::{Chunk, Compiled, CondCode, Op, ProdCode};
-use crate::resolve::{BinOp, Cond, Expr, ExprKind, Func, Production, Program, SuccModule, UnOp};
+use super::op::{Chunk, Compiled, CondCode, HookCode, Op, ProdCode};
+use crate::resolve::{
+    BinOp, Cond, Expr, ExprKind, Func, Production, Program, Stmt, SuccModule, Target, UnOp,
+};
 use crate::source::Span;
 
 /// Compile every production of every table, and the axiom.
@@ -19,6 +21,14 @@ pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
         single: HashMap::new(),
         tuples: HashMap::new(),
         tables: HashMap::new(),
+        arrays: HashMap::new(),
+    };
+    let h = &program.hooks;
+    let hooks = HookCode {
+        start: c.hook(&h.start)?,
+        start_each: c.hook(&h.start_each)?,
+        end_each: c.hook(&h.end_each)?,
+        end: c.hook(&h.end)?,
     };
     let axiom = c.successor(&program.axiom)?;
     let main = c.table(&program.productions)?;
@@ -30,9 +40,13 @@ pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
         main,
         decomposition,
         homomorphism,
+        hooks,
         max_stack: 0,
     };
     let mut max = out.axiom.max_stack;
+    for (_, ch) in out.hooks.named() {
+        max = max.max(ch.map_or(0, |c| c.max_stack));
+    }
     for p in out
         .main
         .iter()
@@ -59,6 +73,8 @@ struct Compiler<'p> {
     tuples: HashMap<Vec<u64>, u32>,
     /// Where each table used so far starts in the pool.
     tables: HashMap<u32, u32>,
+    /// Where each array's layout starts in the pool.
+    arrays: HashMap<u32, u32>,
 }
 
 /// Code being built, with the static stack depth.
@@ -104,6 +120,13 @@ impl Compiler<'_> {
     }
 
     fn production(&mut self, p: &Production) -> Result<ProdCode, BytecodeError> {
+        if !p.pre.is_empty() || !p.post.is_empty() {
+            return Ok(ProdCode {
+                cond: CondCode::Code(self.block_condition(p)?),
+                prob: p.prob.as_ref().map(|e| self.expr_chunk(e)).transpose()?,
+                succ: self.successor(&p.succ)?,
+            });
+        }
         let cond = match &p.cond {
             Cond::Always | Cond::Else(_) => CondCode::Always,
             Cond::Expr(e) => match e.kind {
@@ -116,6 +139,124 @@ impl Compiler<'_> {
         let prob = p.prob.as_ref().map(|e| self.expr_chunk(e)).transpose()?;
         let succ = self.successor(&p.succ)?;
         Ok(ProdCode { cond, prob, succ })
+    }
+
+    /// A condition with cpfg statement blocks: the block before it, the
+    /// condition, and the block after it only when the condition holds.
+    fn block_condition(&mut self, p: &Production) -> Result<Chunk, BytecodeError> {
+        let mut b = Builder::new();
+        self.stmts(&mut b, &p.pre)?;
+        let span = match &p.cond {
+            Cond::Expr(e) => {
+                self.expr(&mut b, e)?;
+                e.span
+            }
+            Cond::Always | Cond::Else(_) => {
+                let one = self.constant(1.0)?;
+                b.push(Op::Const(one), p.head_span, 1);
+                p.head_span
+            }
+        };
+        if !p.post.is_empty() {
+            let skip = b.push(Op::JumpIfFalse(0), span, -1);
+            self.stmts(&mut b, &p.post)?;
+            let one = self.constant(1.0)?;
+            b.push(Op::Const(one), span, 1);
+            b.push(Op::Ret, span, 0);
+            b.patch(skip);
+            // The `Ret` above left the depth counted once; the false
+            // branch starts from the depth before it.
+            b.depth -= 1;
+            let zero = self.constant(0.0)?;
+            b.push(Op::Const(zero), span, 1);
+        }
+        b.push(Op::Ret, span, 0);
+        self.finish(b, span)
+    }
+
+    fn hook(&mut self, stmts: &[Stmt]) -> Result<Option<Chunk>, BytecodeError> {
+        if stmts.is_empty() {
+            return Ok(None);
+        }
+        let mut b = Builder::new();
+        self.stmts(&mut b, stmts)?;
+        b.push(Op::Ret, Span::default(), 0);
+        Ok(Some(self.finish(b, Span::default())?))
+    }
+
+    fn stmts(&mut self, b: &mut Builder, stmts: &[Stmt]) -> Result<(), BytecodeError> {
+        for s in stmts {
+            match s {
+                Stmt::Set { target, value } => match target {
+                    Target::Var(slot, span) => {
+                        self.expr(b, value)?;
+                        b.push(Op::Store(*slot), *span, -1);
+                    }
+                    Target::Elem(a, idx, span) => {
+                        for i in idx {
+                            self.expr(b, i)?;
+                        }
+                        self.expr(b, value)?;
+                        let desc = self.array_desc(*a)?;
+                        b.push(
+                            Op::StoreElem { array: *a, desc },
+                            *span,
+                            -(idx.len() as isize) - 1,
+                        );
+                    }
+                },
+                Stmt::Eval(e) => {
+                    self.expr(b, e)?;
+                    b.push(Op::Pop, e.span, -1);
+                }
+                Stmt::If(c, t, e) => {
+                    self.expr(b, c)?;
+                    let to_else = b.push(Op::JumpIfFalse(0), c.span, -1);
+                    self.stmts(b, t)?;
+                    if e.is_empty() {
+                        b.patch(to_else);
+                    } else {
+                        let to_end = b.push(Op::Jump(0), c.span, 0);
+                        b.patch(to_else);
+                        self.stmts(b, e)?;
+                        b.patch(to_end);
+                    }
+                }
+                Stmt::While(c, body) => {
+                    let top = b.here();
+                    self.expr(b, c)?;
+                    let exit = b.push(Op::JumpIfFalse(0), c.span, -1);
+                    self.stmts(b, body)?;
+                    b.push(Op::Jump(top), c.span, 0);
+                    b.patch(exit);
+                }
+                Stmt::DoWhile(body, c) => {
+                    let top = b.here();
+                    self.stmts(b, body)?;
+                    self.expr(b, c)?;
+                    b.push(Op::JumpIfTrue(top), c.span, -1);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// An array's layout in the pool, once: `[dimensions, (0, count) per
+    /// dimension..., first slot]`, the layout `Op::LoadElem` reads.
+    fn array_desc(&mut self, id: u32) -> Result<u32, BytecodeError> {
+        if let Some(&at) = self.arrays.get(&id) {
+            return Ok(at);
+        }
+        let a = &self.program.arrays[id as usize];
+        let mut desc = vec![a.dims.len() as f64];
+        for &d in &a.dims {
+            desc.extend([0.0, d as f64]);
+        }
+        desc.push(a.base as f64);
+        let at = self.alloc(desc.len())?;
+        self.consts.extend_from_slice(&desc);
+        self.arrays.insert(id, at);
+        Ok(at)
     }
 
     fn expr_chunk(&mut self, e: &Expr) -> Result<Chunk, BytecodeError> {
@@ -255,6 +396,29 @@ impl Compiler<'_> {
             }
             ExprKind::Param(slot) => {
                 b.push(Op::Param(*slot), span, 1);
+            }
+            ExprKind::Var(slot) => {
+                b.push(Op::Load(*slot), span, 1);
+            }
+            ExprKind::Elem(a, idx) => {
+                for i in idx {
+                    self.expr(b, i)?;
+                }
+                let desc = self.array_desc(*a)?;
+                b.push(
+                    Op::LoadElem { array: *a, desc },
+                    span,
+                    1 - idx.len() as isize,
+                );
+            }
+            ExprKind::Nran(m, sd) => {
+                self.expr(b, m)?;
+                self.expr(b, sd)?;
+                b.push(Op::Nran, span, -1);
+            }
+            ExprKind::Srand(seed) => {
+                self.expr(b, seed)?;
+                b.push(Op::Srand, span, 0);
             }
             ExprKind::Unary(op, a) => {
                 self.expr(b, a)?;

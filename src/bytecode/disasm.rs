@@ -20,6 +20,12 @@ pub fn disasm(program: &Program, compiled: &Compiled) -> String {
         compiled.consts.len(),
         compiled.max_stack
     );
+    for (name, ch) in compiled.hooks.named() {
+        if let Some(ch) = ch {
+            let _ = writeln!(out, "\n{name}:");
+            chunk(&mut out, program, compiled, ch, &[]);
+        }
+    }
     out.push_str("\naxiom\n");
     chunk(&mut out, program, compiled, &compiled.axiom, &[]);
     for (table, title) in [
@@ -138,6 +144,18 @@ fn describe(
             (format!("-> {t:04}"), String::new())
         }
         Op::Call(f) => (f.name().to_string(), String::new()),
+        Op::Load(v) | Op::Store(v) => (
+            v.to_string(),
+            program
+                .vars
+                .get(v as usize)
+                .map_or_else(|| "?".into(), |i| i.name.clone()),
+        ),
+        Op::LoadElem { array, desc } | Op::StoreElem { array, desc } => {
+            let a = &program.arrays[array as usize];
+            let shape: String = a.dims.iter().map(|d| format!("[{d}]")).collect();
+            (format!("{} @#{desc}", a.name), shape)
+        }
         Op::Index { table, desc } => {
             let t = &program.tables[table as usize];
             (format!("{} @#{desc}", t.name), t.dims_text())

@@ -80,6 +80,24 @@ pub enum Op {
     /// Write module `sym` whose `arity` parameters are the constants
     /// `consts[first..first + arity]` (all finite).
     EmitConst { sym: SymId, arity: u8, first: u32 },
+    /// Push variable `slot` (cpfg's C-like statements).
+    Load(u32),
+    /// Pop `a` into variable `slot`.
+    Store(u32),
+    /// Pop one index per dimension of array `array` (first index deepest)
+    /// and push the element. `desc` is where the array's layout sits in
+    /// the constant pool: n, then (0, count) per dimension, then the slot
+    /// of its first element. Faults `array index` outside its range.
+    LoadElem { array: u32, desc: u32 },
+    /// Pop the value, then the indices, and store the value in the element.
+    StoreElem { array: u32, desc: u32 },
+    /// Pop and discard (an expression statement).
+    Pop,
+    /// `nran(mean, sd)`: pop `sd`, pop `mean`, push a normal sample drawn
+    /// from the derivation's generator.
+    Nran,
+    /// `srand(seed)`: pop the seed, reseed the generator, push 0.
+    Srand,
     /// End of chunk; the value on top of the stack (0 if empty) is the result.
     Ret,
 }
@@ -112,6 +130,13 @@ impl Op {
             Op::Ran => "ran",
             Op::Emit { .. } => "emit",
             Op::EmitConst { .. } => "emit_const",
+            Op::Load(_) => "load",
+            Op::Store(_) => "store",
+            Op::LoadElem { .. } => "load_elem",
+            Op::StoreElem { .. } => "store_elem",
+            Op::Pop => "pop",
+            Op::Nran => "nran",
+            Op::Srand => "srand",
             Op::Ret => "ret",
         }
     }
@@ -175,8 +200,32 @@ pub struct Compiled {
     pub main: Vec<ProdCode>,
     pub decomposition: Vec<ProdCode>,
     pub homomorphism: Vec<ProdCode>,
+    /// cpfg's `Start:`, `StartEach:`, `EndEach:` and `End:` blocks (see
+    /// `resolve::Hooks`); `None` where the grammar has none.
+    pub hooks: HookCode,
     /// Deepest stack of any chunk: the VM's stack size.
     pub max_stack: usize,
+}
+
+/// The compiled statement blocks of the L-system.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct HookCode {
+    pub start: Option<Chunk>,
+    pub start_each: Option<Chunk>,
+    pub end_each: Option<Chunk>,
+    pub end: Option<Chunk>,
+}
+
+impl HookCode {
+    /// Each hook with its name as written in a grammar.
+    pub fn named(&self) -> [(&'static str, Option<&Chunk>); 4] {
+        [
+            ("Start", self.start.as_ref()),
+            ("StartEach", self.start_each.as_ref()),
+            ("EndEach", self.end_each.as_ref()),
+            ("End", self.end.as_ref()),
+        ]
+    }
 }
 
 impl Compiled {

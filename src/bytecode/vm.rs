@@ -33,7 +33,16 @@ pub enum FaultKind {
     NotFinite(f64),
     /// Index `dim` (0-based) of table `table` is `value`, outside its range.
     TableIndex { table: u32, dim: u8, value: f64 },
+    /// Index `dim` (0-based) of array `array` is `value`, outside its range.
+    ArrayIndex { array: u32, dim: u8, value: f64 },
+    /// A `while` / `do` loop went round more than [`MAX_LOOP_ITERATIONS`]
+    /// times in one run of a chunk.
+    LoopLimit,
 }
+
+/// Backward jumps one run of a chunk may take: a loop that has not ended
+/// after this many rounds is taken to be endless.
+pub const MAX_LOOP_ITERATIONS: u64 = 10_000_000;
 
 /// A runtime fault at `span`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -103,14 +112,16 @@ pub fn table_offset(bounds: impl Iterator<Item = (f64, f64)>, idx: &[f64]) -> Re
     Ok(flat)
 }
 
-/// Run `chunk`. `stack` must hold at least `chunk.max_stack` values and
-/// `binds` every slot the chunk reads. Returns the value on top of the
-/// stack at `Ret` (0 if the stack is empty).
+/// Run `chunk`. `stack` must hold at least `chunk.max_stack` values,
+/// `binds` every slot the chunk reads and `vars` every variable (cpfg's
+/// statement blocks). Returns the value on top of the stack at `Ret` (0 if
+/// the stack is empty).
 #[inline]
 pub fn run<S: Sink>(
     chunk: &Chunk,
     consts: &[f64],
     binds: &[f64],
+    vars: &mut [f64],
     stack: &mut [f64],
     rng: &mut Rand48,
     sink: &mut S,
@@ -118,6 +129,7 @@ pub fn run<S: Sink>(
     let code = &chunk.code[..];
     let mut pc = 0usize;
     let mut sp = 0usize;
+    let mut rounds = 0u64;
     macro_rules! bin {
         ($f:expr) => {{
             sp -= 1;
@@ -167,7 +179,18 @@ pub fn run<S: Sink>(
             Op::Ge => bin!(|a, b| b2f(a >= b)),
             Op::Eq => bin!(|a, b| b2f(a == b)),
             Op::Ne => bin!(|a, b| b2f(a != b)),
-            Op::Jump(t) => pc = t as usize,
+            Op::Jump(t) => {
+                if (t as usize) < pc {
+                    rounds += 1;
+                    if rounds > MAX_LOOP_ITERATIONS {
+                        return Err(Fault {
+                            kind: FaultKind::LoopLimit,
+                            span: chunk.spans[pc - 1],
+                        });
+                    }
+                }
+                pc = t as usize
+            }
             Op::JumpIfFalse(t) => {
                 sp -= 1;
                 if stack[sp] == 0.0 {
@@ -177,6 +200,15 @@ pub fn run<S: Sink>(
             Op::JumpIfTrue(t) => {
                 sp -= 1;
                 if stack[sp] != 0.0 {
+                    if (t as usize) < pc {
+                        rounds += 1;
+                        if rounds > MAX_LOOP_ITERATIONS {
+                            return Err(Fault {
+                                kind: FaultKind::LoopLimit,
+                                span: chunk.spans[pc - 1],
+                            });
+                        }
+                    }
                     pc = t as usize;
                 }
             }
@@ -225,6 +257,58 @@ pub fn run<S: Sink>(
             Op::EmitConst { sym, arity, first } => {
                 let f = first as usize;
                 sink.emit(sym, &consts[f..f + arity as usize]);
+            }
+            Op::Load(v) => {
+                stack[sp] = vars[v as usize];
+                sp += 1;
+            }
+            Op::Store(v) => {
+                sp -= 1;
+                vars[v as usize] = stack[sp];
+            }
+            Op::LoadElem { array, desc } | Op::StoreElem { array, desc } => {
+                let store = matches!(op, Op::StoreElem { .. });
+                let value = if store {
+                    sp -= 1;
+                    stack[sp]
+                } else {
+                    0.0
+                };
+                let d = desc as usize;
+                let n = consts[d] as usize;
+                sp -= n;
+                let bounds = (0..n).map(|k| (consts[d + 1 + 2 * k], consts[d + 2 + 2 * k]));
+                match table_offset(bounds, &stack[sp..sp + n]) {
+                    Ok(at) => {
+                        let slot = consts[d + 1 + 2 * n] as usize + at;
+                        if store {
+                            vars[slot] = value;
+                        } else {
+                            stack[sp] = vars[slot];
+                            sp += 1;
+                        }
+                    }
+                    Err(k) => {
+                        return Err(Fault {
+                            kind: FaultKind::ArrayIndex {
+                                array,
+                                dim: k as u8,
+                                value: stack[sp + k],
+                            },
+                            span: chunk.spans[pc - 1],
+                        })
+                    }
+                }
+            }
+            Op::Pop => sp -= 1,
+            Op::Nran => {
+                sp -= 1;
+                let sd = stack[sp];
+                stack[sp - 1] = rng.nran(stack[sp - 1], sd);
+            }
+            Op::Srand => {
+                rng.reseed(stack[sp - 1]);
+                stack[sp - 1] = 0.0;
             }
             Op::Ret => return Ok(if sp > 0 { stack[sp - 1] } else { 0.0 }),
         }

@@ -6,7 +6,9 @@
 use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
-use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
+use super::rewrite::{
+    check_limits, fault_error, rewrite, rewrite_recursive, run_hook, Site, State, Tables,
+};
 use super::rng::{Rand48, DEFAULT_SEED};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
@@ -66,10 +68,12 @@ impl<'p> Derivation<'p> {
         let seed = opts.effective_seed(program);
         let mut st = State::new(&tab, seed);
         let mut next = ModuleStore::new();
+        run_hook(&tab, &mut st, "Start", compiled.hooks.start.as_ref())?;
         vm::run(
             &compiled.axiom,
             &compiled.consts,
             &[],
+            &mut st.vars,
             &mut st.stack,
             &mut st.rng,
             &mut next,
@@ -112,6 +116,13 @@ impl<'p> Derivation<'p> {
     /// decomposition.
     pub fn step(&mut self) -> Result<(), DeriveError> {
         self.st.step = self.steps + 1;
+        let hooks = &self.tab.compiled.hooks;
+        run_hook(
+            &self.tab,
+            &mut self.st,
+            "StartEach",
+            hooks.start_each.as_ref(),
+        )?;
         let idx = if self.tab.rules[0].has_context {
             self.index.build(&self.cur);
             Some(&self.index)
@@ -131,6 +142,11 @@ impl<'p> Derivation<'p> {
         self.decompose()?;
         mem::swap(&mut self.cur, &mut self.next);
         self.steps += 1;
+        let hooks = &self.tab.compiled.hooks;
+        run_hook(&self.tab, &mut self.st, "EndEach", hooks.end_each.as_ref())?;
+        if self.steps == self.tab.program.derivation_length {
+            run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
+        }
         Ok(())
     }
 
@@ -172,6 +188,7 @@ impl<'p> Derivation<'p> {
             string: self.cur.clone(),
             step: self.steps,
             rng: self.st.rng.clone(),
+            vars: self.st.vars.clone(),
             warnings: self.st.warnings.clone(),
         }
     }
@@ -189,6 +206,7 @@ impl<'p> Derivation<'p> {
         let seed = opts.effective_seed(program);
         let mut st = State::new(&tab, seed);
         st.rng = cp.rng.clone();
+        st.vars = cp.vars.clone();
         st.warnings = cp.warnings.clone();
         st.step = cp.step;
         Ok(Derivation {
@@ -227,6 +245,7 @@ pub struct Checkpoint {
     pub string: ModuleStore,
     pub step: u32,
     rng: Rand48,
+    vars: Vec<f64>,
     warnings: Vec<DepthWarning>,
 }
 

@@ -48,7 +48,7 @@ pub enum DeriveError {
     #[error("{context} at step {step}: {what}")]
     #[diagnostic(
         code(lsys::derive::table_index),
-        help("table indices are whole numbers within the ranges of the table's #define; guard the production with a condition on the index, or enlarge the table")
+        help("indices are whole numbers within the ranges of the table's #define (an array's: 0 to its size - 1); guard the production with a condition on the index, or enlarge the table or array")
     )]
     TableIndex {
         /// e.g. "index 4 of table `dec` is outside 1..3".
@@ -58,6 +58,23 @@ pub enum DeriveError {
         #[source_code]
         src: Src,
         #[label("this lookup")]
+        span: SourceSpan,
+        #[label("in this production")]
+        production: Option<SourceSpan>,
+    },
+
+    #[error("{context} at step {step}: a loop went round more than {limit} times")]
+    #[diagnostic(
+        code(lsys::derive::endless_loop),
+        help("make the `while` condition become false (is the variable it tests changed in the loop?)")
+    )]
+    EndlessLoop {
+        limit: u64,
+        context: String,
+        step: u32,
+        #[source_code]
+        src: Src,
+        #[label("this loop")]
         span: SourceSpan,
         #[label("in this production")]
         production: Option<SourceSpan>,
@@ -131,6 +148,7 @@ impl DeriveError {
             | DeriveError::ParamLimit { step, .. }
             | DeriveError::DivisionByZero { step, .. }
             | DeriveError::TableIndex { step, .. }
+            | DeriveError::EndlessLoop { step, .. }
             | DeriveError::NotFinite { step, .. }
             | DeriveError::BadProbability { step, .. } => Some(*step),
             DeriveError::TooManySymbols { .. } => None,

@@ -110,6 +110,8 @@ pub(crate) struct State {
     pub(crate) rng: Rand48,
     pub(crate) stack: Vec<f64>,
     pub(crate) binds: Vec<f64>,
+    /// Variables of cpfg's statement blocks.
+    pub(crate) vars: Vec<f64>,
     pub(crate) weights: Vec<(u32, f64)>,
     levels: Vec<Level>,
     pub(crate) warnings: Vec<DepthWarning>,
@@ -122,6 +124,7 @@ impl State {
             rng: Rand48::new(seed),
             stack: vec![0.0; tab.compiled.max_stack.max(1)],
             binds: vec![0.0; tab.nbinds().max(1)],
+            vars: tab.program.var_init.clone(),
             weights: Vec::new(),
             levels: Vec::new(),
             warnings: Vec::new(),
@@ -139,11 +142,14 @@ fn src(tab: &Tables, span: Span) -> Src {
 pub(crate) enum Site {
     Axiom,
     Prod(Table, usize),
+    /// A statement block of the L-system (`Start`, `StartEach`, ...).
+    Hook(&'static str),
 }
 
 fn site_context(tab: &Tables, site: Site) -> (String, Option<Span>) {
     match site {
         Site::Axiom => ("in the axiom".to_string(), None),
+        Site::Hook(name) => (format!("in the `{name}:` block"), None),
         Site::Prod(t, i) => {
             let p = &tab.program.table(t)[i];
             let mut text = crate::bytecode::one_line(tab.program.sources.slice(p.span));
@@ -185,6 +191,29 @@ pub(crate) fn fault_error(tab: &Tables, fault: Fault, site: Site, step: u32) -> 
                 production,
             }
         }
+        FaultKind::ArrayIndex { array, dim, value } => {
+            let a = &tab.program.arrays[array as usize];
+            DeriveError::TableIndex {
+                what: format!(
+                    "index {value} of array `{}` is outside 0..{}",
+                    a.name,
+                    a.dims[dim as usize] - 1
+                ),
+                context,
+                step,
+                src,
+                span,
+                production,
+            }
+        }
+        FaultKind::LoopLimit => DeriveError::EndlessLoop {
+            limit: crate::bytecode::vm::MAX_LOOP_ITERATIONS,
+            context,
+            step,
+            src,
+            span,
+            production,
+        },
         FaultKind::NotFinite(value) => DeriveError::NotFinite {
             value,
             context,
@@ -251,6 +280,7 @@ fn eval(
         chunk,
         &tab.compiled.consts,
         binds,
+        &mut st.vars,
         &mut st.stack,
         &mut st.rng,
         &mut NoSink,
@@ -473,7 +503,15 @@ pub(crate) fn rewrite(
         let succ = &codes[p].succ;
         match max_depth {
             None => {
-                let r = vm::run(succ, consts, b, &mut st.stack, &mut st.rng, out);
+                let r = vm::run(
+                    succ,
+                    consts,
+                    b,
+                    &mut st.vars,
+                    &mut st.stack,
+                    &mut st.rng,
+                    out,
+                );
                 st.binds = binds;
                 r.map_err(|f| fault_error(tab, f, site, st.step))?;
             }
@@ -494,6 +532,7 @@ pub(crate) fn rewrite(
                     succ,
                     consts,
                     b,
+                    &mut st.vars,
                     &mut st.stack,
                     &mut st.rng,
                     &mut level.store,
@@ -538,4 +577,27 @@ pub(crate) fn rewrite_recursive(
         None
     };
     rewrite(tab, st, t, input, idx, 0, out)
+}
+
+/// Run one of the L-system's statement blocks, if it has it.
+pub(crate) fn run_hook(
+    tab: &Tables,
+    st: &mut State,
+    name: &'static str,
+    chunk: Option<&Chunk>,
+) -> Result<(), Fail> {
+    let Some(chunk) = chunk else {
+        return Ok(());
+    };
+    vm::run(
+        chunk,
+        &tab.compiled.consts,
+        &[],
+        &mut st.vars,
+        &mut st.stack,
+        &mut st.rng,
+        &mut NoSink,
+    )
+    .map(|_| ())
+    .map_err(|f| fault_error(tab, f, Site::Hook(name), st.step))
 }

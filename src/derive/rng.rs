@@ -15,9 +15,12 @@ const C: u64 = 0xB;
 const MASK: u64 = (1 << 48) - 1;
 
 /// POSIX `drand48`.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Rand48 {
     state: u64,
+    /// The second normal sample of the last polar-method draw, which the
+    /// next `nran` returns (cpfg's `iset`/`gset`).
+    spare: Option<f64>,
 }
 
 impl Rand48 {
@@ -25,6 +28,7 @@ impl Rand48 {
     pub fn new(seed: u64) -> Rand48 {
         Rand48 {
             state: ((seed & 0xFFFF_FFFF) << 16) | 0x330E,
+            spare: None,
         }
     }
 
@@ -37,6 +41,31 @@ impl Rand48 {
     pub fn next_u48(&mut self) -> u64 {
         self.state = A.wrapping_mul(self.state).wrapping_add(C) & MASK;
         self.state
+    }
+
+    /// cpfg's `srand(x)`: seed with C's `(long) x` (truncated toward
+    /// zero; NaN and out-of-range values saturate) and forget the spare
+    /// normal sample.
+    pub fn reseed(&mut self, x: f64) {
+        *self = Rand48::new(x as i64 as u64);
+    }
+
+    /// cpfg's `nran(mean, sd)`: Marsaglia's polar method, two uniform
+    /// draws per attempt, the second sample kept for the next call.
+    pub fn nran(&mut self, mean: f64, sd: f64) -> f64 {
+        if let Some(g) = self.spare.take() {
+            return g * sd + mean;
+        }
+        loop {
+            let v1 = 2.0 * self.next_f64() - 1.0;
+            let v2 = 2.0 * self.next_f64() - 1.0;
+            let rsq = v1 * v1 + v2 * v2;
+            if rsq < 1.0 && rsq != 0.0 {
+                let fac = (-2.0 * rsq.ln() / rsq).sqrt();
+                self.spare = Some(v1 * fac);
+                return v2 * fac * sd + mean;
+            }
+        }
     }
 
     /// `drand48()`: uniform in `[0, 1)`.

@@ -79,8 +79,9 @@ pub enum HeaderKind {
     Decomposition,
     /// `module A(x), B`.
     Module(Vec<ModuleDecl>),
-    /// cpfg statement blocks (`Start: { ... }`), not supported yet.
-    Block(String),
+    /// cpfg statement blocks: `Start:`, `StartEach:`, `EndEach:`, `End:`
+    /// and `define:` with their statements.
+    Block(String, Block),
     /// `angle: θ` — the default turning angle in degrees.
     Angle(Expr),
     /// `step: d` — the default step length.
@@ -150,8 +151,10 @@ pub struct Production {
     pub pred: Vec<PatTok>,
     pub rctx: Vec<PatTok>,
     pub cond: Option<Condition>,
-    /// cpfg statement blocks (`{ x = 1; }`) around the condition.
-    pub blocks: Vec<Span>,
+    /// cpfg statement block run before the condition (`: {x = 1;} x > 0`).
+    pub pre: Option<Block>,
+    /// cpfg statement block run once the condition holds.
+    pub post: Option<Block>,
     /// The arrow, if the production was written with one.
     pub arrow: Option<Span>,
     pub succ: Vec<ModuleTok>,
@@ -179,6 +182,86 @@ pub enum ExprKind {
     Call(Ident, Vec<Expr>),
     /// `name[i,j]` or `name[i][j]` (tables).
     Index(Ident, Vec<Expr>),
+    /// `"..."`, as written (with its quotes): an argument of `printf`.
+    Str(String),
+}
+
+/// A braced list of cpfg's C-like statements.
+#[derive(Clone, Debug)]
+pub struct Block {
+    pub stmts: Vec<CStmt>,
+    pub span: Span,
+}
+
+/// One C-like statement.
+#[derive(Clone, Debug)]
+pub enum CStmt {
+    /// `x = e;`, `a[i][j] += e;`.
+    Assign {
+        target: LValue,
+        op: AssignOp,
+        value: Expr,
+        span: Span,
+    },
+    /// `e;` (a call such as `srand(3)` or `printf(...)`).
+    Expr(Expr),
+    If {
+        cond: Expr,
+        then: Vec<CStmt>,
+        els: Vec<CStmt>,
+        span: Span,
+    },
+    While {
+        cond: Expr,
+        body: Vec<CStmt>,
+        span: Span,
+    },
+    DoWhile {
+        body: Vec<CStmt>,
+        cond: Expr,
+        span: Span,
+    },
+    /// `array a[3] = {1,2,3}, b[2][2];`
+    Array(Vec<ArrayDecl>),
+}
+
+/// The left-hand side of an assignment: a variable or an array element.
+#[derive(Clone, Debug)]
+pub struct LValue {
+    pub name: Ident,
+    pub index: Vec<Expr>,
+    pub span: Span,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AssignOp {
+    Set,
+    Add,
+    Sub,
+    Mul,
+    Div,
+}
+
+impl AssignOp {
+    pub fn text(self) -> &'static str {
+        match self {
+            AssignOp::Set => "=",
+            AssignOp::Add => "+=",
+            AssignOp::Sub => "-=",
+            AssignOp::Mul => "*=",
+            AssignOp::Div => "/=",
+        }
+    }
+}
+
+/// `name[d1][d2] = { ... }` in an `array` statement; the initializer is
+/// flattened in row-major order.
+#[derive(Clone, Debug)]
+pub struct ArrayDecl {
+    pub name: Ident,
+    pub dims: Vec<Expr>,
+    pub init: Option<Vec<Expr>>,
+    pub span: Span,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -258,6 +341,77 @@ impl fmt::Display for Expr {
                 write!(f, "{}[", n.name)?;
                 comma_list(f, args)?;
                 write!(f, "]")
+            }
+            ExprKind::Str(s) => write!(f, "{s}"),
+        }
+    }
+}
+
+impl fmt::Display for Block {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{{")?;
+        for s in &self.stmts {
+            write!(f, " {s}")?;
+        }
+        write!(f, " }}")
+    }
+}
+
+fn stmt_list(f: &mut fmt::Formatter<'_>, stmts: &[CStmt]) -> fmt::Result {
+    write!(f, "{{")?;
+    for s in stmts {
+        write!(f, " {s}")?;
+    }
+    write!(f, " }}")
+}
+
+impl fmt::Display for CStmt {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CStmt::Assign {
+                target, op, value, ..
+            } => {
+                write!(f, "{}", target.name.name)?;
+                for i in &target.index {
+                    write!(f, "[{i}]")?;
+                }
+                write!(f, " {} {value};", op.text())
+            }
+            CStmt::Expr(e) => write!(f, "{e};"),
+            CStmt::If {
+                cond, then, els, ..
+            } => {
+                write!(f, "if {cond} ")?;
+                stmt_list(f, then)?;
+                if !els.is_empty() {
+                    write!(f, " else ")?;
+                    stmt_list(f, els)?;
+                }
+                Ok(())
+            }
+            CStmt::While { cond, body, .. } => {
+                write!(f, "while {cond} ")?;
+                stmt_list(f, body)
+            }
+            CStmt::DoWhile { body, cond, .. } => {
+                write!(f, "do ")?;
+                stmt_list(f, body)?;
+                write!(f, " while {cond};")
+            }
+            CStmt::Array(ds) => {
+                write!(f, "array")?;
+                for (i, d) in ds.iter().enumerate() {
+                    write!(f, "{} {}", if i > 0 { "," } else { "" }, d.name.name)?;
+                    for e in &d.dims {
+                        write!(f, "[{e}]")?;
+                    }
+                    if let Some(init) = &d.init {
+                        write!(f, " = {{")?;
+                        comma_list(f, init)?;
+                        write!(f, "}}")?;
+                    }
+                }
+                write!(f, ";")
             }
         }
     }
@@ -409,8 +563,8 @@ fn dump_item(out: &mut String, item: &Item) {
                         let _ = write!(out, " {}({})", d.name.name, ps.join(","));
                     }
                 }
-                HeaderKind::Block(kw) => {
-                    let _ = write!(out, "block {kw}");
+                HeaderKind::Block(kw, b) => {
+                    let _ = write!(out, "block {kw} {b}");
                 }
                 HeaderKind::Angle(e) => {
                     let _ = write!(out, "angle {e}");
@@ -440,6 +594,9 @@ fn dump_item(out: &mut String, item: &Item) {
                 out.push_str(" > ");
                 pats(out, &p.rctx);
             }
+            if let Some(b) = &p.pre {
+                let _ = write!(out, " : pre {b}");
+            }
             match &p.cond {
                 Some(Condition::Expr(e)) => {
                     let _ = write!(out, " : {e}");
@@ -447,6 +604,9 @@ fn dump_item(out: &mut String, item: &Item) {
                 Some(Condition::Else(_)) => out.push_str(" : else"),
                 Some(Condition::Always(_)) => out.push_str(" : *"),
                 None => {}
+            }
+            if let Some(b) = &p.post {
+                let _ = write!(out, " : post {b}");
             }
             out.push_str(if p.arrow.is_some() { " --> " } else { " :: " });
             mods(out, &p.succ);

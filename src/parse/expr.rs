@@ -140,7 +140,16 @@ impl Lower<'_> {
                 let name = self.ident(super::lower::next(&mut it));
                 let args = super::lower::next(&mut it)
                     .into_inner()
-                    .map(|a| self.expr(a))
+                    .map(|a| {
+                        if a.as_rule() == Rule::string_lit {
+                            Ok(Expr {
+                                span: self.span(&a),
+                                kind: ExprKind::Str(a.as_str().to_string()),
+                            })
+                        } else {
+                            self.expr(a)
+                        }
+                    })
                     .collect::<Result<_, _>>()?;
                 ExprKind::Call(name, args)
             }

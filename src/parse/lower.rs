@@ -175,7 +175,10 @@ impl Lower<'_> {
                     .collect();
                 HeaderKind::Module(decls)
             }
-            Rule::block_h => HeaderKind::Block(kw.map_or("", |k| k.as_str()).to_string()),
+            Rule::block_h => {
+                let kw = kw.map_or("", |k| k.as_str()).to_string();
+                HeaderKind::Block(kw, self.block(next(&mut inner))?)
+            }
             Rule::angle_h => HeaderKind::Angle(self.expr(next(&mut inner))?),
             Rule::step_h => HeaderKind::Step(self.expr(next(&mut inner))?),
             Rule::width_h => HeaderKind::Width(self.expr(next(&mut inner))?),
@@ -218,7 +221,7 @@ impl Lower<'_> {
         let arrow_form = form.as_rule() == Rule::arrow_form;
         let (mut cond, mut arrow, mut succ, mut succ_span, mut prob) =
             (None, None, None, None, None);
-        let mut blocks = Vec::new();
+        let (mut pre, mut post) = (None, None);
         for part in form.into_inner() {
             match part.as_rule() {
                 Rule::condition => {
@@ -237,7 +240,17 @@ impl Lower<'_> {
                     });
                 }
                 Rule::arrow => arrow = Some(self.span(&part)),
-                Rule::stmt_block => blocks.push(self.span(&part)),
+                // A block before the condition (or the only block, with no
+                // condition) runs first; one after the condition runs once
+                // it holds.
+                Rule::stmt_block => {
+                    let b = self.block(next(&mut part.into_inner()))?;
+                    if cond.is_none() && pre.is_none() {
+                        pre = Some(b);
+                    } else {
+                        post = Some(b);
+                    }
+                }
                 Rule::nl_indent => {}
                 Rule::successor => {
                     succ_span = Some(self.span(&part));
@@ -258,7 +271,8 @@ impl Lower<'_> {
             pred,
             rctx,
             cond,
-            blocks,
+            pre,
+            post,
             arrow,
             succ: succ.unwrap_or_default(),
             succ_span,

@@ -7,6 +7,7 @@
 //! syntax errors instead of stopping at the first.
 
 pub mod ast;
+mod block;
 mod error;
 mod expr;
 mod lower;

@@ -17,6 +17,9 @@ use crate::parse::ast;
 pub(super) struct Scope<'a> {
     /// Parameter names of the production, with their binding slots.
     pub params: &'a [(String, u16)],
+    /// The production's own variables (cpfg statement blocks), with their
+    /// slots; they shadow parameters of the same name.
+    pub locals: &'a [(String, u32)],
     /// Position in the flattened statement list, for "used before its
     /// #define".
     pub order: usize,
@@ -25,6 +28,7 @@ pub(super) struct Scope<'a> {
 impl Scope<'_> {
     pub const EMPTY: Scope<'static> = Scope {
         params: &[],
+        locals: &[],
         order: usize::MAX,
     };
 }
@@ -76,7 +80,21 @@ impl Resolver {
             }
             ast::ExprKind::Call(name, args) => return self.call(name, args, span, scope, exp),
             ast::ExprKind::Index(name, args) => {
-                return self.index(name, args, span, scope, exp);
+                if self.vars.array_ids.contains_key(&name.name) {
+                    let (id, idx) = self.elem_index(name, args, span, scope)?;
+                    ExprKind::Elem(id, idx)
+                } else {
+                    return self.index(name, args, span, scope, exp);
+                }
+            }
+            ast::ExprKind::Str(_) => {
+                self.error(ResolveError::Unsupported {
+                    what: "a string here".to_string(),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: "strings are arguments of cpfg's `printf` only".to_string(),
+                });
+                return None;
             }
         };
         Some(Expr { kind, span })
@@ -101,8 +119,8 @@ impl Resolver {
                     format!("`{n}` is a plain #define; declare a table with dimensions instead, e.g. `#define {n}[1..3] {{a, b, c}}`"),
                 ),
                 None => (
-                    format!("there is no table `{n}`"),
-                    format!("declare it above its first use, e.g. `#define {n}[1..3] {{a, b, c}}`"),
+                    format!("there is no table or array `{n}`"),
+                    format!("declare it above its first use, e.g. `#define {n}[1..3] {{a, b, c}}`, or in cpfg's `define: {{ array {n}[3]; }}`"),
                 ),
             };
             self.error(ResolveError::NotATable {
@@ -164,11 +182,34 @@ impl Resolver {
         if let Some(arg) = exp.args.get(n) {
             return Some(arg.clone());
         }
+        if let Some((_, slot)) = scope.locals.iter().find(|(p, _)| p == n) {
+            return Some(Expr {
+                kind: ExprKind::Var(*slot),
+                span,
+            });
+        }
         if let Some((_, slot)) = scope.params.iter().find(|(p, _)| p == n) {
             return Some(Expr {
                 kind: ExprKind::Param(*slot),
                 span,
             });
+        }
+        if let Some(&slot) = self.vars.globals.get(n) {
+            return Some(Expr {
+                kind: ExprKind::Var(slot),
+                span,
+            });
+        }
+        if self.vars.array_ids.contains_key(n) {
+            self.error(ResolveError::TableUse {
+                name: n.to_string(),
+                dims: String::new(),
+                problem: "it is an array and needs an index".to_string(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: format!("read one element, e.g. `{n}[i]`"),
+            });
+            return None;
         }
         if let Some(def) = self.defines.get(n).cloned() {
             if def.dims.is_some() {
@@ -289,6 +330,14 @@ impl Resolver {
         scope: &Scope,
         exp: &Expansion,
     ) -> Option<Expr> {
+        // cpfg's printing functions: lsys prints the derived string, not
+        // the model's messages, so the call does nothing and yields 0.
+        if matches!(name.name.as_str(), "printf" | "fprintf" | "fflush") {
+            return Some(Expr {
+                kind: ExprKind::Num(0.0),
+                span,
+            });
+        }
         let resolved: Vec<Option<Expr>> =
             args.iter().map(|a| self.expr_in(a, scope, exp)).collect();
         let resolved: Vec<Expr> = resolved.into_iter().collect::<Option<_>>()?;
@@ -320,6 +369,9 @@ impl Resolver {
             }
             let map = params.into_iter().zip(resolved).collect();
             return self.expand(&def, span, scope, exp, map);
+        }
+        if let Some(e) = self.random_call(name, &resolved, span) {
+            return e;
         }
         let Some(f) = Func::from_name(&name.name) else {
             let mut known: Vec<String> = Func::ALL.iter().map(|f| f.name().to_string()).collect();
@@ -369,4 +421,39 @@ pub(super) fn suggest<'a>(name: &str, known: impl Iterator<Item = &'a str>) -> O
         .filter(|(d, k)| *d <= 2 && *d < name.chars().count().max(2) && *k != name)
         .min_by(|a, b| a.0.cmp(&b.0).then(a.1.cmp(b.1)))
         .map(|(_, k)| k)
+}
+
+impl Resolver {
+    /// cpfg's generator calls that are not plain functions: `nran(mean,
+    /// sd)` and `srand(seed)`. `None` when `name` is neither.
+    fn random_call(
+        &mut self,
+        name: &ast::Ident,
+        args: &[Expr],
+        span: crate::source::Span,
+    ) -> Option<Option<Expr>> {
+        let want = match name.name.as_str() {
+            "nran" => 2,
+            "srand" => 1,
+            _ => return None,
+        };
+        if args.len() != want {
+            self.error(ResolveError::CallArity {
+                name: name.name.clone(),
+                expected: want,
+                found: args.len(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: None,
+            });
+            return Some(None);
+        }
+        let mut a = args.iter().cloned().map(Box::new);
+        let first = a.next().expect("checked count");
+        let kind = match a.next() {
+            Some(second) => ExprKind::Nran(first, second),
+            None => ExprKind::Srand(first),
+        };
+        Some(Some(Expr { kind, span }))
+    }
 }

@@ -86,6 +86,75 @@ pub enum ExprKind {
     Call(Func, Vec<Expr>),
     /// `NAME[i, j, ...]`: an element of table [`Program::tables`]`[id]`.
     Index(u32, Vec<Expr>),
+    /// A variable of cpfg's C-like statements: slot in [`Program::vars`].
+    Var(u32),
+    /// `a[i][j]`: an element of array [`Program::arrays`]`[id]`.
+    Elem(u32, Vec<Expr>),
+    /// `nran(mean, sd)`: normally distributed, from the derivation's
+    /// generator (as cpfg's polar method draws it).
+    Nran(Box<Expr>, Box<Expr>),
+    /// `srand(seed)`: reseed the generator; yields 0.
+    Srand(Box<Expr>),
+}
+
+/// A cpfg C-like statement, resolved.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// `target = value` (compound assignments are expanded: `x += 1` is
+    /// `x = x + 1`).
+    Set {
+        target: Target,
+        value: Expr,
+    },
+    /// An expression evaluated for its effect (`srand(3);`).
+    Eval(Expr),
+    If(Expr, Vec<Stmt>, Vec<Stmt>),
+    While(Expr, Vec<Stmt>),
+    DoWhile(Vec<Stmt>, Expr),
+}
+
+/// Where an assignment stores.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Target {
+    Var(u32, Span),
+    Elem(u32, Vec<Expr>, Span),
+}
+
+/// A variable slot: a global (statement blocks of the L-system), a
+/// production's own, or one element of an array.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VarInfo {
+    pub name: String,
+    pub span: Span,
+}
+
+/// `array name[d1][d2]`: `len` slots from `base` in the variables, row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArrayInfo {
+    pub name: String,
+    pub dims: Vec<usize>,
+    pub base: u32,
+    pub span: Span,
+}
+
+/// cpfg's statement blocks of the L-system, run by the derivation:
+/// `Start:` before the axiom is evaluated, `StartEach:` / `EndEach:` around
+/// every step, `End:` after the last one.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Hooks {
+    pub start: Vec<Stmt>,
+    pub start_each: Vec<Stmt>,
+    pub end_each: Vec<Stmt>,
+    pub end: Vec<Stmt>,
+}
+
+impl Hooks {
+    pub fn is_empty(&self) -> bool {
+        self.start.is_empty()
+            && self.start_each.is_empty()
+            && self.end_each.is_empty()
+            && self.end.is_empty()
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -257,6 +326,9 @@ pub struct Production {
     pub succ: Vec<SuccModule>,
     /// Relative weight in a stochastic choice.
     pub prob: Option<Expr>,
+    /// cpfg's statements before the condition and once it holds.
+    pub pre: Vec<Stmt>,
+    pub post: Vec<Stmt>,
 }
 
 impl Production {
@@ -309,6 +381,12 @@ pub struct Program {
     pub turtle: TurtleSettings,
     /// Tables (`#define NAME[dims] {...}`), indexed by [`ExprKind::Index`].
     pub tables: Vec<TableDef>,
+    /// Variables of the C-like statements with their initial values
+    /// (0, or an array's initializer).
+    pub vars: Vec<VarInfo>,
+    pub var_init: Vec<f64>,
+    pub arrays: Vec<ArrayInfo>,
+    pub hooks: Hooks,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.

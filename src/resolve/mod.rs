@@ -4,6 +4,7 @@
 //! all files are collected and reported together.
 
 mod alphabet;
+mod cstmt;
 pub mod error;
 mod expr;
 mod fold;
@@ -58,6 +59,7 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         arities: HashMap::new(),
         tables: Vec::new(),
         table_ids: HashMap::new(),
+        vars: cstmt::Vars::default(),
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -107,6 +109,8 @@ pub(crate) struct Resolver {
     /// Evaluated tables and their ids by name.
     pub tables: Vec<ir::TableDef>,
     pub table_ids: HashMap<String, u32>,
+    /// Variables, arrays and hooks of cpfg's C-like statements.
+    pub vars: cstmt::Vars,
 }
 
 impl Resolver {

@@ -34,6 +34,7 @@ struct Sections {
 impl Resolver {
     pub(super) fn statements(&mut self, items: &[(u32, Item)]) -> Option<Program> {
         self.record_arities(items);
+        self.declare_globals(items);
         let mut s = Sections::default();
         let mut tables: HashMap<Table, Vec<Production>> = HashMap::new();
         for (order, (_, item)) in items.iter().enumerate() {
@@ -75,6 +76,7 @@ impl Resolver {
         if s.turtle.dialect_given().is_none() {
             turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
         }
+        let vars = self.take_vars();
         let mut take = |t| tables.remove(&t).unwrap_or_default();
         Some(Program {
             sources: std::mem::take(&mut self.sources),
@@ -97,6 +99,10 @@ impl Resolver {
             defines,
             turtle,
             tables: std::mem::take(&mut self.tables),
+            vars: vars.vars,
+            var_init: vars.init,
+            arrays: vars.arrays,
+            hooks: vars.hooks,
         })
     }
 
@@ -113,7 +119,10 @@ impl Resolver {
     }
 
     fn header(&mut self, h: &ast::Header, order: usize, s: &mut Sections) {
-        let scope = Scope { params: &[], order };
+        let scope = Scope {
+            order,
+            ..Scope::EMPTY
+        };
         if let Some(end) = s.ended {
             if !matches!(h.kind, HeaderKind::Endlsystem) {
                 self.after_end(h.span, end);
@@ -132,15 +141,26 @@ impl Resolver {
             }
             HeaderKind::DerivationLength(e) => {
                 if let Some((_, first)) = s.dlength {
-                    self.duplicate(h, "derivation length:", first, "keep one `derivation length:`; to change it for one run use `-n STEPS`");
-                } else if let Some(n) = self.const_count(e, &scope, "derivation length", 10_000_000) {
+                    self.duplicate(
+                        h,
+                        "derivation length:",
+                        first,
+                        "keep one `derivation length:`; to change it for one run use `-n STEPS`",
+                    );
+                } else if let Some(n) = self.const_count(e, &scope, "derivation length", 10_000_000)
+                {
                     s.dlength = Some((n as u32, h.keyword));
                 }
             }
             HeaderKind::Axiom(toks) => {
                 if let Some((_, first)) = &s.axiom {
                     let first = *first;
-                    self.duplicate(h, "Axiom:", first, "a grammar has one axiom; remove one of them");
+                    self.duplicate(
+                        h,
+                        "Axiom:",
+                        first,
+                        "a grammar has one axiom; remove one of them",
+                    );
                 } else {
                     let m = self.successor(toks, &scope);
                     s.axiom = Some((m, h.keyword));
@@ -170,7 +190,12 @@ impl Resolver {
             }
             HeaderKind::Seed(e) => {
                 if let Some((_, first)) = s.seed {
-                    self.duplicate(h, "seed:", first, "keep one `seed:`; to change it for one run use `--seed N`");
+                    self.duplicate(
+                        h,
+                        "seed:",
+                        first,
+                        "keep one `seed:`; to change it for one run use `--seed N`",
+                    );
                 } else if let Some(n) = self.const_count(e, &scope, "seed", u32::MAX as u64) {
                     s.seed = Some((n, h.keyword));
                 }
@@ -187,7 +212,12 @@ impl Resolver {
                 };
                 if let Some((_, first)) = s.depth.get(&t) {
                     let first = *first;
-                    self.duplicate(h, "maximum depth:", first, "each section has one `maximum depth:`");
+                    self.duplicate(
+                        h,
+                        "maximum depth:",
+                        first,
+                        "each section has one `maximum depth:`",
+                    );
                 } else if let Some(n) = self.const_count(e, &scope, "maximum depth", 100_000) {
                     s.depth.insert(t, (n.max(1) as u32, h.keyword));
                 }
@@ -201,12 +231,7 @@ impl Resolver {
             | HeaderKind::Width(_)
             | HeaderKind::Dialect(..)
             | HeaderKind::Colour(..) => unreachable!("handled by turtle_header"),
-            HeaderKind::Block(kw) => self.error(ResolveError::Unsupported {
-                what: format!("cpfg's statement block `{kw}:`"),
-                src: self.sources.named_source(h.span),
-                span: h.span.into(),
-                help: "C-like statement blocks (Start:, StartEach:, EndEach:, End:, define:) are planned with cpfg compatibility; compute the values with #defines instead".to_string(),
-            }),
+            HeaderKind::Block(kw, b) => self.hook_block(kw, b, order),
         }
     }
 
@@ -265,14 +290,6 @@ impl Resolver {
         s: &mut Sections,
     ) -> Option<Production> {
         let errors_before = self.errors.len();
-        for b in &p.blocks {
-            self.error(ResolveError::Unsupported {
-                what: "a cpfg statement block in a production".to_string(),
-                src: self.sources.named_source(*b),
-                span: (*b).into(),
-                help: "C-like statements (`{ x = y*2; }`) around conditions are planned with cpfg compatibility; compute the value in the successor's expressions instead".to_string(),
-            });
-        }
         let mut params = Vec::new();
         let mut spans = Vec::new();
         let lctx = self.pattern(&p.lctx, false, &mut params, &mut spans, false);
@@ -300,10 +317,20 @@ impl Resolver {
                 help: "these sections rewrite each module on its own; move the context-sensitive production above the `homomorphism`/`decomposition` line".to_string(),
             });
         }
+        let (locals, mut pre) = self.production_locals(p, &params);
         let scope = Scope {
             params: &params,
+            locals: &locals,
             order,
         };
+        if let Some(b) = &p.pre {
+            pre.extend(self.stmts(&b.stmts, &scope));
+        }
+        let post = p
+            .post
+            .as_ref()
+            .map(|b| self.stmts(&b.stmts, &scope))
+            .unwrap_or_default();
         let key: PredKey = pred.iter().map(|m| (m.sym, m.arity)).collect();
         let pred_text = self.sources.slice(p.head_span).trim().to_string();
         let cond = match &p.cond {
@@ -360,6 +387,8 @@ impl Resolver {
             cond,
             succ,
             prob,
+            pre,
+            post,
         })
     }
 }
