@@ -18,6 +18,7 @@
 pub mod build;
 pub mod bytecode;
 pub mod cli;
+pub mod cpfg;
 pub mod derive;
 pub mod diag;
 pub mod export;

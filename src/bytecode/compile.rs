@@ -41,6 +41,7 @@ pub fn compile(program: &Program) -> Result<Compiled, BytecodeError> {
         decomposition,
         homomorphism,
         hooks,
+        functions: program.functions.clone(),
         max_stack: 0,
     };
     let mut max = out.axiom.max_stack;
@@ -411,10 +412,14 @@ impl Compiler<'_> {
                     1 - idx.len() as isize,
                 );
             }
-            ExprKind::Nran(m, sd) => {
-                self.expr(b, m)?;
-                self.expr(b, sd)?;
-                b.push(Op::Nran, span, -1);
+            ExprKind::Random(f, a, c) => {
+                self.expr(b, a)?;
+                self.expr(b, c)?;
+                b.push(Op::Random(*f), span, -1);
+            }
+            ExprKind::Spline(f, x) => {
+                self.expr(b, x)?;
+                b.push(Op::Spline(*f), span, 0);
             }
             ExprKind::Srand(seed) => {
                 self.expr(b, seed)?;

@@ -10,7 +10,7 @@
 //! indices in the same chunk. Truth is C's: zero is false, anything else
 //! (NaN included) is true; logic and comparisons produce `1.0` or `0.0`.
 
-use crate::resolve::{Func, SymId};
+use crate::resolve::{Func, RandFn, SymId};
 use crate::source::Span;
 
 /// One instruction. Operands are indices, never pointers, so chunks are
@@ -93,11 +93,15 @@ pub enum Op {
     StoreElem { array: u32, desc: u32 },
     /// Pop and discard (an expression statement).
     Pop,
-    /// `nran(mean, sd)`: pop `sd`, pop `mean`, push a normal sample drawn
-    /// from the derivation's generator.
-    Nran,
+    /// `nran(mean, sd)`, `bran(a, b)`, `biran(n, p)`: pop the second
+    /// argument, pop the first, push a sample drawn from the derivation's
+    /// generator.
+    Random(RandFn),
     /// `srand(seed)`: pop the seed, reseed the generator, push 0.
     Srand,
+    /// cpfg's `func`: pop `x`, push function `func` of the program at `x`.
+    /// The VM reads the function from [`Compiled::functions`].
+    Spline(u32),
     /// End of chunk; the value on top of the stack (0 if empty) is the result.
     Ret,
 }
@@ -135,8 +139,9 @@ impl Op {
             Op::LoadElem { .. } => "load_elem",
             Op::StoreElem { .. } => "store_elem",
             Op::Pop => "pop",
-            Op::Nran => "nran",
+            Op::Random(f) => f.name(),
             Op::Srand => "srand",
+            Op::Spline(_) => "func",
             Op::Ret => "ret",
         }
     }
@@ -203,6 +208,8 @@ pub struct Compiled {
     /// cpfg's `Start:`, `StartEach:`, `EndEach:` and `End:` blocks (see
     /// `resolve::Hooks`); `None` where the grammar has none.
     pub hooks: HookCode,
+    /// cpfg's view-file functions, for [`Op::Spline`].
+    pub functions: Vec<crate::cpfg::spline::SplineFn>,
     /// Deepest stack of any chunk: the VM's stack size.
     pub max_stack: usize,
 }

@@ -5,8 +5,9 @@
 //! production and the step).
 
 use super::op::{Chunk, Op};
+use crate::cpfg::spline::SplineFn;
 use crate::derive::rng::Rand48;
-use crate::resolve::{Func, SymId};
+use crate::resolve::{Func, RandFn, SymId};
 use crate::source::Span;
 
 /// Where [`Op::Emit`] writes modules.
@@ -120,6 +121,7 @@ pub fn table_offset(bounds: impl Iterator<Item = (f64, f64)>, idx: &[f64]) -> Re
 pub fn run<S: Sink>(
     chunk: &Chunk,
     consts: &[f64],
+    funcs: &[SplineFn],
     binds: &[f64],
     vars: &mut [f64],
     stack: &mut [f64],
@@ -301,11 +303,16 @@ pub fn run<S: Sink>(
                 }
             }
             Op::Pop => sp -= 1,
-            Op::Nran => {
+            Op::Random(f) => {
                 sp -= 1;
-                let sd = stack[sp];
-                stack[sp - 1] = rng.nran(stack[sp - 1], sd);
+                let (a, b) = (stack[sp - 1], stack[sp]);
+                stack[sp - 1] = match f {
+                    RandFn::Nran => rng.nran(a, b),
+                    RandFn::Bran => rng.bran(a, b),
+                    RandFn::Biran => rng.biran(a, b),
+                };
             }
+            Op::Spline(f) => stack[sp - 1] = funcs[f as usize].value(stack[sp - 1]),
             Op::Srand => {
                 rng.reseed(stack[sp - 1]);
                 stack[sp - 1] = 0.0;

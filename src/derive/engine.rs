@@ -7,7 +7,8 @@ use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
 use super::rewrite::{
-    check_limits, fault_error, rewrite, rewrite_recursive, run_hook, Site, State, Tables,
+    check_limits, fault_error, rewrite, rewrite_recursive, run_hook, store_params, Site, State,
+    Tables,
 };
 use super::rng::{Rand48, DEFAULT_SEED};
 use super::store::{ContextIndex, ModuleStore};
@@ -72,6 +73,7 @@ impl<'p> Derivation<'p> {
         vm::run(
             &compiled.axiom,
             &compiled.consts,
+            &compiled.functions,
             &[],
             &mut st.vars,
             &mut st.stack,
@@ -79,6 +81,7 @@ impl<'p> Derivation<'p> {
             &mut next,
         )
         .map_err(|f| fault_error(&tab, f, Site::Axiom, 0))?;
+        store_params(&tab, &mut next, 0);
         check_limits(&tab, &next, None, 0)?;
         let mut d = Derivation {
             tab,

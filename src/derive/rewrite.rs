@@ -53,6 +53,20 @@ pub(crate) struct Tables<'p> {
     pub(crate) skip: Vec<bool>,
     pub(crate) max_modules: usize,
     pub(crate) max_params: usize,
+    /// cpfg dialect: parameters are stored as 32-bit floats, as cpfg
+    /// stores them in its string (expressions still compute in f64).
+    pub(crate) f32_params: bool,
+}
+
+/// Round the parameters written since `from` to `f32`, when the dialect
+/// stores them so.
+#[inline]
+pub(crate) fn store_params(tab: &Tables, out: &mut ModuleStore, from: usize) {
+    if tab.f32_params {
+        for v in &mut out.params[from..] {
+            *v = *v as f32 as f64;
+        }
+    }
 }
 
 impl<'p> Tables<'p> {
@@ -85,6 +99,7 @@ impl<'p> Tables<'p> {
                 .collect(),
             max_modules: opts.max_modules,
             max_params: opts.max_params.min(u32::MAX as usize),
+            f32_params: program.turtle.dialect == crate::turtle::Dialect::Cpfg,
         })
     }
 
@@ -279,6 +294,7 @@ fn eval(
     vm::run(
         chunk,
         &tab.compiled.consts,
+        &tab.compiled.functions,
         binds,
         &mut st.vars,
         &mut st.stack,
@@ -503,15 +519,18 @@ pub(crate) fn rewrite(
         let succ = &codes[p].succ;
         match max_depth {
             None => {
+                let from = out.params.len();
                 let r = vm::run(
                     succ,
                     consts,
+                    &tab.compiled.functions,
                     b,
                     &mut st.vars,
                     &mut st.stack,
                     &mut st.rng,
                     out,
                 );
+                store_params(tab, out, from);
                 st.binds = binds;
                 r.map_err(|f| fault_error(tab, f, site, st.step))?;
             }
@@ -531,6 +550,7 @@ pub(crate) fn rewrite(
                 let r = vm::run(
                     succ,
                     consts,
+                    &tab.compiled.functions,
                     b,
                     &mut st.vars,
                     &mut st.stack,
@@ -538,6 +558,7 @@ pub(crate) fn rewrite(
                     &mut level.store,
                 )
                 .map_err(|f| fault_error(tab, f, site, st.step));
+                store_params(tab, &mut level.store, 0);
                 st.binds = binds;
                 let r = r.and_then(|_| {
                     let idx = if rules.has_context {
@@ -592,6 +613,7 @@ pub(crate) fn run_hook(
     vm::run(
         chunk,
         &tab.compiled.consts,
+        &tab.compiled.functions,
         &[],
         &mut st.vars,
         &mut st.stack,

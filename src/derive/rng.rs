@@ -68,6 +68,54 @@ impl Rand48 {
         }
     }
 
+    /// cpfg's `bran(a, b)`: beta-distributed in (0, 1), by Cheng's
+    /// rejection algorithm (two non-zero uniform draws per attempt). Gives
+    /// NaN for parameters that are not positive, where cpfg would loop.
+    pub fn bran(&mut self, a: f64, b: f64) -> f64 {
+        if !(a > 0.0 && b > 0.0) || !a.is_finite() || !b.is_finite() {
+            return f64::NAN;
+        }
+        let s = a + b;
+        let lambda = if a.min(b) <= 1.0 {
+            a.min(b)
+        } else {
+            ((2.0 * a * b - s) / (s - 2.0)).sqrt()
+        };
+        let u = a + lambda;
+        // Each round accepts with probability over 1/4; the cap only stops
+        // degenerate parameters from spinning.
+        for _ in 0..10_000 {
+            let u1 = self.nonzero();
+            let u2 = self.nonzero();
+            let v = (1.0 / lambda) * (u1 / (1.0 - u1)).ln();
+            let ym = a * v.exp();
+            if s * (s / (b + ym)).ln() + u * v - 4f64.ln() >= (u1 * u1 * u2).ln() {
+                return ym / (b + ym);
+            }
+        }
+        f64::NAN
+    }
+
+    /// cpfg's `biran(n, p)`: binomial, by `n` coin flips (`n` truncated
+    /// as C's `(int)` does; at most 10^7 flips).
+    pub fn biran(&mut self, n: f64, p: f64) -> f64 {
+        let n = if n.is_nan() {
+            0
+        } else {
+            (n as i64).clamp(0, 10_000_000)
+        };
+        (0..n).filter(|_| self.next_f64() <= p).count() as f64
+    }
+
+    fn nonzero(&mut self) -> f64 {
+        loop {
+            let u = self.next_f64();
+            if u != 0.0 {
+                return u;
+            }
+        }
+    }
+
     /// `drand48()`: uniform in `[0, 1)`.
     #[inline]
     pub fn next_f64(&mut self) -> f64 {

@@ -310,6 +310,20 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("`{name}` is a cpfg turtle command lsys does not draw; it is kept as a module that draws nothing")]
+    #[diagnostic(
+        code(lsys::resolve::ignored_command),
+        severity(Warning),
+        help("see `lsys commands` for the commands the turtle draws")
+    )]
+    IgnoredCommand {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("not drawn")]
+        span: SourceSpan,
+    },
+
     #[error("this production can never apply")]
     #[diagnostic(code(lsys::resolve::unreachable), severity(Warning))]
     Unreachable {

@@ -9,7 +9,7 @@ use std::collections::HashMap;
 use miette::Report;
 
 use super::error::ResolveError;
-use super::ir::{Expr, ExprKind, Func, UnOp};
+use super::ir::{Expr, ExprKind, Func, RandFn, UnOp};
 use super::Resolver;
 use crate::parse::ast;
 
@@ -338,6 +338,9 @@ impl Resolver {
                 span,
             });
         }
+        if name.name == "func" && !self.defines.contains_key("func") {
+            return self.spline_call(args, span, scope, exp);
+        }
         let resolved: Vec<Option<Expr>> =
             args.iter().map(|a| self.expr_in(a, scope, exp)).collect();
         let resolved: Vec<Expr> = resolved.into_iter().collect::<Option<_>>()?;
@@ -432,9 +435,11 @@ impl Resolver {
         args: &[Expr],
         span: crate::source::Span,
     ) -> Option<Option<Expr>> {
-        let want = match name.name.as_str() {
-            "nran" => 2,
-            "srand" => 1,
+        let (want, rand) = match name.name.as_str() {
+            "nran" => (2, RandFn::Nran),
+            "bran" => (2, RandFn::Bran),
+            "biran" => (2, RandFn::Biran),
+            "srand" => (1, RandFn::Nran),
             _ => return None,
         };
         if args.len() != want {
@@ -451,9 +456,124 @@ impl Resolver {
         let mut a = args.iter().cloned().map(Box::new);
         let first = a.next().expect("checked count");
         let kind = match a.next() {
-            Some(second) => ExprKind::Nran(first, second),
+            Some(second) => ExprKind::Random(rand, first, second),
             None => ExprKind::Srand(first),
         };
         Some(Some(Expr { kind, span }))
+    }
+}
+
+impl Resolver {
+    /// cpfg's `func(id, x)`: `id` is a function's number in the view file
+    /// (from 1) or its name; the functions are read from the view file the
+    /// first time.
+    fn spline_call(
+        &mut self,
+        args: &[ast::Expr],
+        span: crate::source::Span,
+        scope: &Scope,
+        exp: &Expansion,
+    ) -> Option<Expr> {
+        if args.len() != 2 {
+            self.error(ResolveError::CallArity {
+                name: "func".to_string(),
+                expected: 2,
+                found: args.len(),
+                src: self.sources.named_source(span),
+                span: span.into(),
+                help: Some(
+                    "`func(id, x)`: function `id` of the view file at `x` in [0, 1]".to_string(),
+                ),
+            });
+            return None;
+        }
+        let functions = self.view_functions(span)?;
+        let by_name = match &args[0].kind {
+            ast::ExprKind::Name(n) => functions.iter().position(|f| f.name == *n),
+            _ => None,
+        };
+        let index = match by_name {
+            Some(i) => i,
+            None => {
+                let id = self.expr_in(&args[0], scope, exp)?;
+                let id = super::fold::fold(id, &self.sources, &self.tables).ok()?;
+                match id.kind {
+                    ExprKind::Num(v)
+                        if v >= 1.0 && v.fract() == 0.0 && (v as usize) <= functions.len() =>
+                    {
+                        v as usize - 1
+                    }
+                    _ => {
+                        let names: Vec<String> = functions
+                            .iter()
+                            .enumerate()
+                            .map(|(i, f)| format!("{} = {}", i + 1, f.name))
+                            .collect();
+                        self.error(ResolveError::BadValue {
+                            what: "the function of `func`".to_string(),
+                            why: "it is not the number or name of a function of the view file"
+                                .to_string(),
+                            src: self.sources.named_source(args[0].span),
+                            span: args[0].span.into(),
+                            help: Some(if names.is_empty() {
+                                "the view file has no `function:` lines".to_string()
+                            } else {
+                                format!("the view file's functions are {}", names.join(", "))
+                            }),
+                        });
+                        return None;
+                    }
+                }
+            }
+        };
+        let x = self.expr_in(&args[1], scope, exp)?;
+        Some(Expr {
+            kind: ExprKind::Spline(index as u32, Box::new(x)),
+            span,
+        })
+    }
+
+    /// The view file's functions (read once); `None` after reporting why
+    /// there are none.
+    fn view_functions(
+        &mut self,
+        span: crate::source::Span,
+    ) -> Option<Vec<crate::cpfg::spline::SplineFn>> {
+        if let Some(f) = &self.vars.functions {
+            return Some(f.clone());
+        }
+        let model = match &self.sources.get(0).origin {
+            crate::source::Origin::Disk(p) => Some(p.clone()),
+            _ => None,
+        };
+        let found = match &model {
+            Some(p) => crate::cpfg::view::load_functions(p),
+            None => Ok(None),
+        };
+        match found {
+            Ok(Some((_, fs))) => {
+                self.vars.functions = Some(fs.clone());
+                Some(fs)
+            }
+            Ok(None) => {
+                self.error(ResolveError::Unsupported {
+                    what: "`func` without a view file".to_string(),
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: "cpfg's `func(id, x)` reads the functions named on the `function:` lines of the model's view file; put the `.v` file beside the model (named in `specifications`, or the model's name with `.v`)".to_string(),
+                });
+                None
+            }
+            Err(why) => {
+                self.error(ResolveError::BadValue {
+                    what: "function file".to_string(),
+                    why,
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                    help: None,
+                });
+                None
+            }
+        }
     }
 }

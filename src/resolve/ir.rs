@@ -90,11 +90,34 @@ pub enum ExprKind {
     Var(u32),
     /// `a[i][j]`: an element of array [`Program::arrays`]`[id]`.
     Elem(u32, Vec<Expr>),
-    /// `nran(mean, sd)`: normally distributed, from the derivation's
-    /// generator (as cpfg's polar method draws it).
-    Nran(Box<Expr>, Box<Expr>),
+    /// cpfg's two-argument random functions (`nran`, `bran`, `biran`),
+    /// drawn from the derivation's generator as cpfg draws them.
+    Random(RandFn, Box<Expr>, Box<Expr>),
     /// `srand(seed)`: reseed the generator; yields 0.
     Srand(Box<Expr>),
+    /// cpfg's `func(id, x)`: function [`Program::functions`]`[index]` at x.
+    Spline(u32, Box<Expr>),
+}
+
+/// cpfg's random distributions beyond `ran`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RandFn {
+    /// `nran(mean, sd)`: normal.
+    Nran,
+    /// `bran(a, b)`: beta.
+    Bran,
+    /// `biran(n, p)`: binomial.
+    Biran,
+}
+
+impl RandFn {
+    pub fn name(self) -> &'static str {
+        match self {
+            RandFn::Nran => "nran",
+            RandFn::Bran => "bran",
+            RandFn::Biran => "biran",
+        }
+    }
 }
 
 /// A cpfg C-like statement, resolved.
@@ -387,6 +410,8 @@ pub struct Program {
     pub var_init: Vec<f64>,
     pub arrays: Vec<ArrayInfo>,
     pub hooks: Hooks,
+    /// The functions of a cpfg model's view file (`func(id, x)`).
+    pub functions: Vec<crate::cpfg::spline::SplineFn>,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.

@@ -60,6 +60,8 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         tables: Vec::new(),
         table_ids: HashMap::new(),
         vars: cstmt::Vars::default(),
+        cpfg: false,
+        warned_at: Default::default(),
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -111,6 +113,13 @@ pub(crate) struct Resolver {
     pub table_ids: HashMap<String, u32>,
     /// Variables, arrays and hooks of cpfg's C-like statements.
     pub vars: cstmt::Vars,
+    /// The root is a cpfg file (`.l`): every module name is one character,
+    /// as cpfg's scanner reads them, turtle commands may carry parameters
+    /// the turtle ignores, and unknown `@` commands are kept as inert
+    /// modules (with a warning).
+    pub cpfg: bool,
+    /// Unknown `@` commands already warned about (one warning per name).
+    pub warned_at: std::collections::HashSet<String>,
 }
 
 impl Resolver {
@@ -123,6 +132,7 @@ impl Resolver {
     }
 
     fn run(&mut self, items: Vec<(u32, ast::Item)>, opts: &Options) -> Option<Program> {
+        self.cpfg = self.sources.get(0).name.ends_with(".l");
         self.collect_defines(&items);
         let element_overrides = self.apply_overrides(opts);
         self.evaluate_tables(&element_overrides);

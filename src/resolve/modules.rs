@@ -29,6 +29,13 @@ impl Resolver {
                 Item::Production(p) => {
                     for t in &p.pred {
                         if let PatTok::Module(m) = t {
+                            if self.cpfg && m.kind == TokKind::Word {
+                                // cpfg's names are single characters.
+                                for c in m.text.chars() {
+                                    preds.push((c.to_string(), m.span));
+                                }
+                                continue;
+                            }
                             if m.kind == TokKind::Word {
                                 self.alphabet.add_word(&m.text);
                             }
@@ -91,6 +98,16 @@ impl Resolver {
         let pieces: Vec<Piece> = if tok.kind == TokKind::At {
             let p = self.alphabet.split(&tok.text, tok.kind);
             if p[0].fallback {
+                if self.cpfg {
+                    // cpfg has more `@` commands than the turtle draws
+                    // (textures, contours, ...): keep it, drawing nothing.
+                    self.unknown_turtle_warning(tok);
+                    return vec![Split {
+                        name: tok.text.clone(),
+                        span: tok.span,
+                        args: tok.args.as_deref(),
+                    }];
+                }
                 self.unknown_turtle(tok);
             }
             p
@@ -133,6 +150,17 @@ impl Resolver {
             src: self.sources.named_source(tok.name_span),
             span: tok.name_span.into(),
             help: format!("the turtle's `@` commands are {}", ats.join(" ")),
+        });
+    }
+
+    fn unknown_turtle_warning(&mut self, tok: &ModuleTok) {
+        if !self.warned_at.insert(tok.text.clone()) {
+            return;
+        }
+        self.warn(ResolveError::IgnoredCommand {
+            name: tok.text.clone(),
+            src: self.sources.named_source(tok.name_span),
+            span: tok.name_span.into(),
         });
     }
 
@@ -199,7 +227,10 @@ impl Resolver {
                     .arities
                     .get(&sym)
                     .is_some_and(|a| a.counts.contains(&n));
-                if !declared && (n < c.min_args as usize || n > c.max_args as usize) {
+                // cpfg reads the parameters a command knows and ignores
+                // the rest (`+(20,0)`).
+                let too_many = n > c.max_args as usize && !self.cpfg;
+                if !declared && (n < c.min_args as usize || too_many) {
                     let expected = range_text(c.min_args as usize, c.max_args as usize);
                     self.error(ResolveError::Arity {
                         name: name.clone(),
@@ -288,12 +319,17 @@ impl Resolver {
                 PatTok::Open(s) => out.push(PatItem::Open(*s)),
                 PatTok::Close(s) => out.push(PatItem::Close(*s)),
                 PatTok::Module(m) => {
+                    // cpfg: `*` as a context means "no context" (`* < F > Y`).
+                    if m.kind == TokKind::Punct && m.text == "*" && !whole_words && m.args.is_none()
+                    {
+                        continue;
+                    }
                     if m.kind == TokKind::Punct && m.text == "*" {
                         self.error(ResolveError::Unsupported {
-                            what: "the wildcard `*` in a pattern".to_string(),
+                            what: "`*` in a predecessor".to_string(),
                             src: self.sources.named_source(m.span),
                             span: m.span.into(),
-                            help: "name the module the context must match; wildcards are planned with cpfg compatibility".to_string(),
+                            help: "`*` alone stands for an empty context (`* < A > B`); a predecessor must name its modules".to_string(),
                         });
                         continue;
                     }

@@ -103,6 +103,7 @@ impl Resolver {
             var_init: vars.init,
             arrays: vars.arrays,
             hooks: vars.hooks,
+            functions: vars.functions.unwrap_or_default(),
         })
     }
 

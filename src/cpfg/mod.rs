@@ -1,0 +1,5 @@
+//! cpfg's model objects beyond the L-system file: the view file and the
+//! function files `func(id, x)` reads.
+
+pub mod spline;
+pub mod view;
