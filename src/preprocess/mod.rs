@@ -1,0 +1,123 @@
+//! The C preprocessor that cpfg runs over every `.l` file, rewritten so
+//! that line structure survives. Input: the root file, a [`Resolver`] for
+//! `#include` names and [`Options`]. Output: one preprocessed text per file
+//! read ([`Output`]), each with exactly as many lines as its original, plus
+//! errors and warnings pointing into the original texts.
+//!
+//! How lines are kept:
+//! - directive lines become empty lines, except `#include`, which stays
+//!   (normalised to `#include "name"` / `#include <name>`) so the loader can
+//!   splice the included file's statements there ([`OutFile::includes`]);
+//! - a backslash-newline joins the next line onto the first one; the
+//!   following lines are left empty;
+//! - a function-like macro invocation whose arguments span lines is
+//!   expanded onto the line of its name; the lines it consumed are empty
+//!   (except for what follows its `)`, which stays on its own line);
+//! - `/* */` comments become a space (their newlines are kept), `//`
+//!   comments are removed to the end of the line.
+//!
+//! Only a `#` that is the first non-blank character of a line starts a
+//! directive: cpfg's `#(w)` turtle command elsewhere is ordinary text.
+//!
+//! Stages: [`lexer`] (text -> logical lines of tokens), [`macros`]
+//! (`#define` -> macro), [`expand`] (tokens -> expanded tokens),
+//! [`conditional`] and [`if_expr`] (`#if` groups), [`driver`] (directives,
+//! includes, one file at a time), [`render`] (tokens -> lines of text).
+
+mod conditional;
+mod driver;
+mod error;
+mod expand;
+mod if_expr;
+mod lexer;
+mod macros;
+mod render;
+mod token;
+
+#[cfg(test)]
+mod tests;
+
+use std::path::PathBuf;
+
+pub use error::{ErrorKind, PreprocessDiagnostic, PreprocessError};
+
+/// Settings of one preprocessor run.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// `-D NAME=VALUE`, defined before the root file is read. `NAME` may be
+    /// `F(x)` for a function-like macro; an empty value defines it as empty.
+    pub defines: Vec<(String, String)>,
+    /// How deeply `#include`s may nest (default 64; at most 256 is used, so
+    /// the recursion over files stays within any thread's stack).
+    pub max_include_depth: usize,
+    /// How deeply macro arguments may nest inside one another during
+    /// expansion (default 200; at most 1000 is used).
+    pub max_expansion_depth: usize,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            defines: Vec::new(),
+            max_include_depth: 64,
+            max_expansion_depth: 200,
+        }
+    }
+}
+
+/// One file as read by the resolver.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RawFile {
+    /// Display name, used in messages and `__FILE__`.
+    pub name: String,
+    /// Canonical identity, used to recognise include cycles.
+    pub key: PathBuf,
+    pub text: String,
+}
+
+/// How `#include` names are found; the loader implements it (relative to
+/// the including file's folder, confinement, the std library for `<...>`).
+pub trait Resolver {
+    /// The file `name` (written `"name"`, or `<name>` when `angled`)
+    /// included from `including`, or why it cannot be read, e.g.
+    /// "no such file: x (searched: ...)".
+    fn resolve(&mut self, including: &RawFile, name: &str, angled: bool) -> Result<RawFile, String>;
+}
+
+/// One file after preprocessing.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct OutFile {
+    pub raw: RawFile,
+    /// Preprocessed text, with exactly as many lines as `raw.text`
+    /// (counted as `split('\n')`; CRLF becomes LF).
+    pub text: String,
+    /// The `#include` lines of this file that were read, in order.
+    pub includes: Vec<IncludeSite>,
+}
+
+/// An `#include` line kept in a file's output text.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct IncludeSite {
+    /// 1-based line in the including file.
+    pub line: usize,
+    /// Index into [`Output::files`].
+    pub file: usize,
+}
+
+/// All files read, the root first; a file included twice appears twice
+/// (its text may differ, since the macros in effect may differ).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct Output {
+    pub files: Vec<OutFile>,
+}
+
+/// Preprocesses `root` and everything it includes. Never panics; errors
+/// and warnings (see [`PreprocessError::warning`]) are returned beside
+/// whatever output could be made.
+pub fn preprocess(
+    root: RawFile,
+    resolver: &mut dyn Resolver,
+    opts: &Options,
+) -> (Output, Vec<PreprocessError>) {
+    driver::run(root, resolver, opts)
+}
