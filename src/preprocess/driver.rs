@@ -38,7 +38,11 @@ struct Pp<'r> {
     includes_stopped: bool,
 }
 
-pub(crate) fn run(root: RawFile, resolver: &mut dyn Resolver, opts: &Options) -> (Output, Vec<PreprocessError>) {
+pub(crate) fn run(
+    root: RawFile,
+    resolver: &mut dyn Resolver,
+    opts: &Options,
+) -> (Output, Vec<PreprocessError>) {
     let mut pp = Pp {
         macros: HashMap::new(),
         errors: Vec::new(),
@@ -83,7 +87,13 @@ fn span_of(toks: &[Token], fallback: &Range<usize>) -> Range<usize> {
 }
 
 impl Pp<'_> {
-    fn error(&mut self, kind: ErrorKind, file: usize, span: Range<usize>, message: String) -> &mut PreprocessError {
+    fn error(
+        &mut self,
+        kind: ErrorKind,
+        file: usize,
+        span: Range<usize>,
+        message: String,
+    ) -> &mut PreprocessError {
         self.errors
             .push(PreprocessError::new(kind, file, span, message));
         let n = self.errors.len() - 1;
@@ -151,9 +161,13 @@ impl Pp<'_> {
                 ErrorKind::UnterminatedIf,
                 idx,
                 span,
-                format!("this conditional is not closed by #endif before the end of {}", raw.name),
+                format!(
+                    "this conditional is not closed by #endif before the end of {}",
+                    raw.name
+                ),
             )
-            .help = Some("add `#endif`; every #if/#ifdef/#ifndef needs one in the same file".into());
+            .help =
+                Some("add `#endif`; every #if/#ifdef/#ifndef needs one in the same file".into());
         }
         if let Some(f) = self.files.get_mut(idx) {
             f.text = render.finish();
@@ -204,7 +218,14 @@ impl Pp<'_> {
         self.error(kind, idx, span, message);
     }
 
-    fn directive(&mut self, idx: usize, raw: &RawFile, line: &[Token], conds: &mut Conditionals, render: &mut Render) {
+    fn directive(
+        &mut self,
+        idx: usize,
+        raw: &RawFile,
+        line: &[Token],
+        conds: &mut Conditionals,
+        render: &mut Render,
+    ) {
         let Some(hash) = line.first() else { return };
         let Some(name_tok) = line.get(1) else {
             return; // The null directive.
@@ -225,9 +246,16 @@ impl Pp<'_> {
             "ifdef" | "ifndef" => {
                 let c = if conds.active() {
                     match rest.first() {
-                        Some(t) if t.is_ident() => self.macros.contains_key(&t.text) == (name == "ifdef"),
+                        Some(t) if t.is_ident() => {
+                            self.macros.contains_key(&t.text) == (name == "ifdef")
+                        }
                         _ => {
-                            self.error(ErrorKind::BadDirective, idx, whole.clone(), format!("#{name} needs a macro name"));
+                            self.error(
+                                ErrorKind::BadDirective,
+                                idx,
+                                whole.clone(),
+                                format!("#{name} needs a macro name"),
+                            );
                             false
                         }
                     }
@@ -260,19 +288,40 @@ impl Pp<'_> {
                     self.macros.remove(&t.text);
                 }
                 _ => {
-                    self.error(ErrorKind::BadDirective, idx, whole, "#undef needs a macro name".into());
+                    self.error(
+                        ErrorKind::BadDirective,
+                        idx,
+                        whole,
+                        "#undef needs a macro name".into(),
+                    );
                 }
             },
-            "include" | "include_next" | "import" => self.include(idx, raw, hash, rest, &whole, render),
+            "include" | "include_next" | "import" => {
+                self.include(idx, raw, hash, rest, &whole, render)
+            }
             "line" | "pragma" | "ident" | "sccs" | "assert" | "unassert" => {}
             "error" => {
-                self.error(ErrorKind::ErrorDirective, idx, whole, format!("#error {}", spell(rest)));
+                self.error(
+                    ErrorKind::ErrorDirective,
+                    idx,
+                    whole,
+                    format!("#error {}", spell(rest)),
+                );
             }
             "warning" => {
-                self.error(ErrorKind::WarningDirective, idx, whole, format!("#warning {}", spell(rest)));
+                self.error(
+                    ErrorKind::WarningDirective,
+                    idx,
+                    whole,
+                    format!("#warning {}", spell(rest)),
+                );
             }
             _ => {
-                let shown = if name.is_empty() { name_tok.text.to_string() } else { name.to_string() };
+                let shown = if name.is_empty() {
+                    name_tok.text.to_string()
+                } else {
+                    name.to_string()
+                };
                 self.error(
                     ErrorKind::BadDirective,
                     idx,
@@ -296,21 +345,31 @@ impl Pp<'_> {
                             ErrorKind::Redefined,
                             idx,
                             name_span,
-                            format!("`{}` redefined; the new definition replaces the old one", m.name),
+                            format!(
+                                "`{}` redefined; the new definition replaces the old one",
+                                m.name
+                            ),
                         );
                     }
                 }
                 self.macros.insert(m.name.clone(), Rc::new(m));
             }
             Err(e) => {
-                let span = e.at.and_then(|i| rest.get(i)).map_or(whole.clone(), |t| t.span.clone());
+                let span =
+                    e.at.and_then(|i| rest.get(i))
+                        .map_or(whole.clone(), |t| t.span.clone());
                 self.error(ErrorKind::BadDirective, idx, span, e.message);
             }
         }
     }
 
     /// `"name"` or `<name>` (after macro expansion if neither is written).
-    fn include_operand(&mut self, idx: usize, raw: &RawFile, rest: &[Token]) -> Option<(String, bool, Range<usize>)> {
+    fn include_operand(
+        &mut self,
+        idx: usize,
+        raw: &RawFile,
+        rest: &[Token],
+    ) -> Option<(String, bool, Range<usize>)> {
         let direct = |toks: &[Token]| -> Option<(String, bool, Range<usize>)> {
             let first = toks.first()?;
             if first.kind == Kind::Str {
@@ -320,9 +379,17 @@ impl Pp<'_> {
             if first.is_punct("<") {
                 let close = toks.iter().position(|t| t.is_punct(">"))?;
                 let inner = toks.get(1..close)?;
-                let name: String = inner.iter().enumerate().map(|(k, t)| {
-                    if k > 0 { format!("{}{}", t.ws, t.text) } else { t.text.to_string() }
-                }).collect();
+                let name: String = inner
+                    .iter()
+                    .enumerate()
+                    .map(|(k, t)| {
+                        if k > 0 {
+                            format!("{}{}", t.ws, t.text)
+                        } else {
+                            t.text.to_string()
+                        }
+                    })
+                    .collect();
                 return Some((name, true, first.span.start..toks[close].span.end));
             }
             None
@@ -334,9 +401,22 @@ impl Pp<'_> {
         direct(&expanded)
     }
 
-    fn include(&mut self, idx: usize, raw: &RawFile, hash: &Token, rest: &[Token], whole: &Range<usize>, render: &mut Render) {
+    fn include(
+        &mut self,
+        idx: usize,
+        raw: &RawFile,
+        hash: &Token,
+        rest: &[Token],
+        whole: &Range<usize>,
+        render: &mut Render,
+    ) {
         let Some((name, angled, name_span)) = self.include_operand(idx, raw, rest) else {
-            self.error(ErrorKind::BadDirective, idx, whole.clone(), "#include expects \"file\" or <file>".into());
+            self.error(
+                ErrorKind::BadDirective,
+                idx,
+                whole.clone(),
+                "#include expects \"file\" or <file>".into(),
+            );
             return;
         };
         if self.includes_stopped {
@@ -345,8 +425,17 @@ impl Pp<'_> {
         let file = match self.resolver.resolve(raw, &name, angled) {
             Ok(f) => f,
             Err(why) => {
-                let shown = if angled { format!("<{name}>") } else { format!("\"{name}\"") };
-                self.error(ErrorKind::IncludeNotFound, idx, name_span, format!("cannot include {shown}: {why}"));
+                let shown = if angled {
+                    format!("<{name}>")
+                } else {
+                    format!("\"{name}\"")
+                };
+                self.error(
+                    ErrorKind::IncludeNotFound,
+                    idx,
+                    name_span,
+                    format!("cannot include {shown}: {why}"),
+                );
                 return;
             }
         };
@@ -370,7 +459,11 @@ impl Pp<'_> {
                 file: new_idx,
             });
         }
-        let shown = if angled { format!("<{name}>") } else { format!("\"{name}\"") };
+        let shown = if angled {
+            format!("<{name}>")
+        } else {
+            format!("\"{name}\"")
+        };
         render.set_line(hash.line, format!("{}#include {shown}", hash.ws));
         self.process(new_idx);
     }

@@ -33,7 +33,12 @@ fn no_more() -> Option<Vec<Token>> {
 }
 
 impl Expander<'_> {
-    fn error(&mut self, kind: ErrorKind, span: Range<usize>, message: String) -> &mut PreprocessError {
+    fn error(
+        &mut self,
+        kind: ErrorKind,
+        span: Range<usize>,
+        message: String,
+    ) -> &mut PreprocessError {
         self.errors
             .push(PreprocessError::new(kind, self.file, span, message));
         let n = self.errors.len() - 1;
@@ -62,14 +67,21 @@ impl Expander<'_> {
             }
             // A function-like macro name is only an invocation when `(` follows,
             // possibly on a later line.
+            let mut pulled = 0;
             if q.is_empty() {
                 if let Some(line) = more() {
+                    pulled = line.len();
                     q.extend(line);
                 }
             }
             if !q.front().is_some_and(|n| n.is_punct("(")) {
                 out.push(t);
                 continue;
+            }
+            // Like GNU cpp, a multi-line invocation and the rest of its last
+            // line are output on the line of the macro's name.
+            for n in q.iter_mut().take(pulled) {
+                n.line = t.line;
             }
             match self.collect_args(&m, &t, &mut q, more) {
                 Ok((args, rparen)) => {
@@ -149,7 +161,10 @@ impl Expander<'_> {
             let Some(t) = q.pop_front() else {
                 match more() {
                     Some(line) => {
-                        q.extend(line);
+                        q.extend(line.into_iter().map(|mut n| {
+                            n.line = name.line;
+                            n
+                        }));
                         continue;
                     }
                     None => {
@@ -247,34 +262,35 @@ impl Expander<'_> {
             let bt = &body[i];
             let mut from_arg = false;
             let mut va_placemarker = false;
-            let mut item: Vec<Token> = if fnlike && bt.is_punct("#") && body.get(i + 1).and_then(param).is_some() {
-                let p = body.get(i + 1).and_then(param).unwrap_or(0);
-                i += 2;
-                vec![stringify(&args[p], bt)]
-            } else if let Some(p) = param(bt) {
-                i += 1;
-                from_arg = true;
-                if glue || is_paste(i) {
-                    if args[p].is_empty() {
-                        va_placemarker = m.variadic && p + 1 == args.len();
-                        vec![Token {
-                            kind: Kind::Placemarker,
-                            text: Rc::from(""),
-                            ..bt.clone()
-                        }]
+            let mut item: Vec<Token> =
+                if fnlike && bt.is_punct("#") && body.get(i + 1).and_then(param).is_some() {
+                    let p = body.get(i + 1).and_then(param).unwrap_or(0);
+                    i += 2;
+                    vec![stringify(&args[p], bt)]
+                } else if let Some(p) = param(bt) {
+                    i += 1;
+                    from_arg = true;
+                    if glue || is_paste(i) {
+                        if args[p].is_empty() {
+                            va_placemarker = m.variadic && p + 1 == args.len();
+                            vec![Token {
+                                kind: Kind::Placemarker,
+                                text: Rc::from(""),
+                                ..bt.clone()
+                            }]
+                        } else {
+                            args[p].clone()
+                        }
                     } else {
-                        args[p].clone()
+                        if expanded[p].is_none() {
+                            expanded[p] = Some(self.expand_arg(&args[p], depth));
+                        }
+                        expanded[p].clone().unwrap_or_default()
                     }
                 } else {
-                    if expanded[p].is_none() {
-                        expanded[p] = Some(self.expand_arg(&args[p], depth));
-                    }
-                    expanded[p].clone().unwrap_or_default()
-                }
-            } else {
-                i += 1;
-                vec![bt.clone()]
-            };
+                    i += 1;
+                    vec![bt.clone()]
+                };
             if let Some(first) = item.first_mut() {
                 if from_arg {
                     first.ws = bt.ws.clone();
@@ -291,7 +307,11 @@ impl Expander<'_> {
                     out.pop();
                     continue;
                 }
-                let rest = if item.is_empty() { Vec::new() } else { item.split_off(1) };
+                let rest = if item.is_empty() {
+                    Vec::new()
+                } else {
+                    item.split_off(1)
+                };
                 match (out.pop(), item.pop()) {
                     (Some(l), Some(r)) => out.extend(paste(l, r)),
                     (l, r) => out.extend(l.into_iter().chain(r)),
@@ -324,7 +344,10 @@ impl Expander<'_> {
                 self.error(
                     ErrorKind::Recursion,
                     t.span.clone(),
-                    format!("macro arguments nested more than {} deep; left unexpanded", self.max_depth),
+                    format!(
+                        "macro arguments nested more than {} deep; left unexpanded",
+                        self.max_depth
+                    ),
                 );
                 *self.budget = 0;
             }

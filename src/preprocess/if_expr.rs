@@ -48,7 +48,12 @@ pub(crate) fn replace_defined(toks: &[Token], macros: &Macros) -> Result<Vec<Tok
                     ))
                 }
             },
-            _ => return Err(err(t.span.clone(), "`defined` must be followed by a macro name")),
+            _ => {
+                return Err(err(
+                    t.span.clone(),
+                    "`defined` must be followed by a macro name",
+                ))
+            }
         };
         let yes = macros.contains_key(&name.text) || matches!(&*name.text, "__LINE__" | "__FILE__");
         out.push(Token {
@@ -79,7 +84,10 @@ pub(crate) fn eval(toks: &[Token], whole: Range<usize>) -> Result<i64, ExprError
     };
     let v = p.comma(true)?;
     if let Some(t) = p.toks.get(p.pos) {
-        return Err(err(t.span.clone(), format!("unexpected `{}` in #if expression", t.text)));
+        return Err(err(
+            t.span.clone(),
+            format!("unexpected `{}` in #if expression", t.text),
+        ));
     }
     Ok(v)
 }
@@ -134,7 +142,10 @@ impl Parser<'_> {
         self.enter()?;
         let a = self.comma(ev && c != 0)?;
         if !self.peek_punct(":") {
-            return Err(err(self.span_here(), "expected `:` in `?:` in #if expression"));
+            return Err(err(
+                self.span_here(),
+                "expected `:` in `?:` in #if expression",
+            ));
         }
         self.pos += 1;
         let b = self.cond(ev && c == 0)?;
@@ -238,7 +249,10 @@ impl Parser<'_> {
                 self.nesting -= 1;
                 Ok(v)
             }
-            _ => Err(err(t.span.clone(), format!("unexpected `{}` in #if expression", t.text))),
+            _ => Err(err(
+                t.span.clone(),
+                format!("unexpected `{}` in #if expression", t.text),
+            )),
         }
     }
 }

@@ -158,7 +158,8 @@ pub(crate) fn lex(text: &str, file: usize, errors: &mut Vec<PreprocessError>) ->
                 i += 1;
             }
             kind = Kind::Ident;
-        } else if c.is_ascii_digit() || (c == '.' && at(i + 1).is_some_and(|d| d.is_ascii_digit())) {
+        } else if c.is_ascii_digit() || (c == '.' && at(i + 1).is_some_and(|d| d.is_ascii_digit()))
+        {
             i += 1;
             while let Some(d) = at(i) {
                 if matches!(d, 'e' | 'E' | 'p' | 'P') && matches!(at(i + 1), Some('+' | '-')) {

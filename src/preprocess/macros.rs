@@ -68,12 +68,18 @@ pub(crate) fn parse_define(toks: &[Token]) -> Result<Macro, DefineError> {
     let mut params = None;
     let mut variadic = false;
     // Function-like only when `(` touches the name.
-    if toks.get(1).is_some_and(|t| t.is_punct("(") && !t.has_space()) {
+    if toks
+        .get(1)
+        .is_some_and(|t| t.is_punct("(") && !t.has_space())
+    {
         let mut ps: Vec<Rc<str>> = Vec::new();
         i = 2;
         let bad = |at: usize, what: &str| DefineError {
             at: Some(at.min(toks.len() - 1)),
-            message: format!("bad parameter list in #define of `{}`: {what}", name_tok.text),
+            message: format!(
+                "bad parameter list in #define of `{}`: {what}",
+                name_tok.text
+            ),
         };
         if toks.get(i).is_some_and(|t| t.is_punct(")")) {
             i += 1;
@@ -93,7 +99,12 @@ pub(crate) fn parse_define(toks: &[Token]) -> Result<Macro, DefineError> {
                             return Err(bad(i, "`...` must be the last parameter"));
                         }
                     }
-                    Some(t) => return Err(bad(i, &format!("expected a parameter name, found `{}`", t.text))),
+                    Some(t) => {
+                        return Err(bad(
+                            i,
+                            &format!("expected a parameter name, found `{}`", t.text),
+                        ))
+                    }
                     None => return Err(bad(i, "missing `)`")),
                 }
                 i += 1;
@@ -103,7 +114,9 @@ pub(crate) fn parse_define(toks: &[Token]) -> Result<Macro, DefineError> {
                         i += 1;
                         break;
                     }
-                    Some(t) => return Err(bad(i, &format!("expected `,` or `)`, found `{}`", t.text))),
+                    Some(t) => {
+                        return Err(bad(i, &format!("expected `,` or `)`, found `{}`", t.text)))
+                    }
                     None => return Err(bad(i, "missing `)`")),
                 }
             }

@@ -11,8 +11,9 @@
 //! - a backslash-newline joins the next line onto the first one; the
 //!   following lines are left empty;
 //! - a function-like macro invocation whose arguments span lines is
-//!   expanded onto the line of its name; the lines it consumed are empty
-//!   (except for what follows its `)`, which stays on its own line);
+//!   expanded onto the line of its name, followed by the rest of the line
+//!   of its `)` (as GNU cpp prints it: cpfg reads a production per line);
+//!   the lines it consumed are left empty;
 //! - `/* */` comments become a space (their newlines are kept), `//`
 //!   comments are removed to the end of the line.
 //!
@@ -81,7 +82,8 @@ pub trait Resolver {
     /// The file `name` (written `"name"`, or `<name>` when `angled`)
     /// included from `including`, or why it cannot be read, e.g.
     /// "no such file: x (searched: ...)".
-    fn resolve(&mut self, including: &RawFile, name: &str, angled: bool) -> Result<RawFile, String>;
+    fn resolve(&mut self, including: &RawFile, name: &str, angled: bool)
+        -> Result<RawFile, String>;
 }
 
 /// One file after preprocessing.
