@@ -87,7 +87,7 @@ pub(crate) fn parse_define(toks: &[Token]) -> Result<Macro, DefineError> {
             loop {
                 match toks.get(i) {
                     Some(t) if t.is_ident() => {
-                        if ps.iter().any(|p| *p == t.text) {
+                        if ps.contains(&t.text) {
                             return Err(bad(i, &format!("`{}` appears twice", t.text)));
                         }
                         ps.push(t.text.clone());
