@@ -19,7 +19,7 @@ use super::token::{Kind, Token};
 use super::{IncludeSite, Options, OutFile, Output, RawFile, Resolver};
 
 /// Tokens all expansions of a run may produce before expansion stops.
-const EXPANSION_BUDGET: usize = 20_000_000;
+const EXPANSION_BUDGET: usize = if cfg!(test) { 200_000 } else { 20_000_000 };
 /// Files one run may read (an include tree can grow exponentially).
 const MAX_FILES: usize = 10_000;
 
@@ -53,7 +53,7 @@ pub(crate) fn run(
         }],
         resolver,
         max_include: opts.max_include_depth.min(256),
-        max_expansion: opts.max_expansion_depth.clamp(1, 1000),
+        max_expansion: opts.max_expansion_depth.clamp(1, 256),
         budget: EXPANSION_BUDGET,
         chain: Vec::new(),
         includes_stopped: false,
@@ -63,8 +63,15 @@ pub(crate) fn run(
     (Output { files: pp.files }, pp.errors)
 }
 
+/// A `#` first on a line followed by a name, a number (a line marker) or
+/// nothing. Unlike GNU cpp (which reports "invalid preprocessing
+/// directive"), `#(w)` at the start of a line is cpfg's turtle command and
+/// stays text: real cpfg models begin continuation lines with it.
 fn is_directive(line: &[Token]) -> bool {
     line.first().is_some_and(|t| t.bol && t.is_punct("#"))
+        && line
+            .get(1)
+            .map_or(true, |t| matches!(t.kind, Kind::Ident | Kind::Number))
 }
 
 /// Tokens spelled back as text, with single spaces where there was space.
@@ -329,7 +336,8 @@ impl Pp<'_> {
                     format!("unknown preprocessor directive `#{shown}`"),
                 )
                 .help = Some(
-                    "a `#` that begins a line starts a directive (#define, #include, #if, ...); to start a line with the `#` turtle command, put something before it, e.g. a space is not enough: write it after the previous module".into(),
+                    "a `#` first on a line followed by a name starts a directive (#define, #include, #if, ...)"
+                        .into(),
                 );
             }
         }

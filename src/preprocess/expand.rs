@@ -123,7 +123,9 @@ impl Expander<'_> {
         if let Some(next) = q.front_mut() {
             next.pad = true;
         }
-        if res.len() >= *self.budget {
+        if *self.budget == 0 {
+            // Already reported; what is left is not expanded any more.
+        } else if res.len() >= *self.budget {
             *self.budget = 0;
             let span = res.first().map_or(0..0, |t| t.span.clone());
             self.error(

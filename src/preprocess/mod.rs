@@ -17,8 +17,10 @@
 //! - `/* */` comments become a space (their newlines are kept), `//`
 //!   comments are removed to the end of the line.
 //!
-//! Only a `#` that is the first non-blank character of a line starts a
-//! directive: cpfg's `#(w)` turtle command elsewhere is ordinary text.
+//! Only a `#` that is the first non-blank character of a line, followed by
+//! a name, a number or nothing, starts a directive: cpfg's `#(w)` turtle
+//! command is ordinary text, even at the start of a line (GNU cpp would
+//! reject that line as an invalid directive; real cpfg models have it).
 //!
 //! Stages: [`lexer`] (text -> logical lines of tokens), [`macros`]
 //! (`#define` -> macro), [`expand`] (tokens -> expanded tokens),
@@ -52,7 +54,8 @@ pub struct Options {
     /// the recursion over files stays within any thread's stack).
     pub max_include_depth: usize,
     /// How deeply macro arguments may nest inside one another during
-    /// expansion (default 200; at most 1000 is used).
+    /// expansion (default 200; at most 256 is used, which fits a 2 MiB
+    /// thread stack even in debug builds).
     pub max_expansion_depth: usize,
 }
 

@@ -418,6 +418,13 @@ fn error_include_cycle_names_the_chain() {
         e.message
     );
     assert_eq!(at, "\"a.l\"");
+    // The deepest nesting allowed fits the stack.
+    let opts = Options {
+        max_include_depth: usize::MAX,
+        ..Options::default()
+    };
+    let (e, _) = one_error_with("#include \"a.l\"\n", &files, &opts);
+    assert!(e.message.contains("more than 256 deep"), "{}", e.message);
     // A file including itself twice stops after the first error, quickly.
     let (e, _) = one_error_with(
         "#include \"s.l\"\n",
@@ -459,6 +466,32 @@ fn error_if_expression() {
 }
 
 #[test]
+fn elif_after_a_false_if_is_evaluated() {
+    let (e, at) = one_error("#if 0\n#elif 1/0\n#endif");
+    assert_eq!((e.kind, at.as_str()), (ErrorKind::IfExpression, "/"));
+}
+
+#[test]
+fn deeply_nested_if_expression_is_an_error_not_a_crash() {
+    let src = format!("#if {}1{}\n#endif", "(".repeat(5000), ")".repeat(5000));
+    let (e, _) = one_error(&src);
+    assert_eq!(e.kind, ErrorKind::IfExpression);
+    assert!(e.message.contains("nested too deeply"), "{}", e.message);
+    let src = format!("#if {}1\n#endif", "-".repeat(5000));
+    assert_eq!(one_error(&src).0.kind, ErrorKind::IfExpression);
+}
+
+#[test]
+fn errors_in_included_files_point_into_them() {
+    let files = [("a.l", "x\n#include \"gone.l\"\n")];
+    let (e, at) = one_error_with("#include \"a.l\"\n", &files, &Options::default());
+    assert_eq!(
+        (e.kind, e.file, at.as_str()),
+        (ErrorKind::IncludeNotFound, 1, "\"gone.l\"")
+    );
+}
+
+#[test]
 fn error_directive_text() {
     let (e, at) = one_error("#error stop /* c */ here\n");
     assert_eq!(e.kind.code(), "lsys::preprocess::error_directive");
@@ -481,6 +514,35 @@ fn error_recursion_depth() {
             .all(|e| e.kind.code() == "lsys::preprocess::recursion"),
         "{errs:#?}"
     );
+    assert_eq!(lines(&out.files[0].text), 2);
+}
+
+#[test]
+fn error_recursion_exponential_growth() {
+    // Each level doubles: 2^30 tokens would never finish.
+    let mut src = String::from("#define A0 x x\n");
+    for i in 1..30 {
+        src.push_str(&format!("#define A{i} A{p} A{p}\n", p = i - 1));
+    }
+    src.push_str("A29\n");
+    let (e, at) = one_error(&src);
+    assert_eq!((e.kind, at.as_str()), (ErrorKind::Recursion, "A29"));
+}
+
+#[test]
+fn deepest_allowed_expansion_fits_the_stack() {
+    let opts = Options {
+        max_expansion_depth: 100_000,
+        ..Options::default()
+    };
+    let src = format!(
+        "#define F(x) [x]\n{}1{}",
+        "F(".repeat(1200),
+        ")".repeat(1200)
+    );
+    let (out, errs, _) = run_with(&src, &[], &opts);
+    assert_eq!(errs.len(), 1, "{errs:#?}");
+    assert_eq!(errs[0].kind, ErrorKind::Recursion);
     assert_eq!(lines(&out.files[0].text), 2);
 }
 
