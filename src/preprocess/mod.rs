@@ -22,10 +22,29 @@
 //! command is ordinary text, even at the start of a line (GNU cpp would
 //! reject that line as an invalid directive; real cpfg models have it).
 //!
-//! Stages: [`lexer`] (text -> logical lines of tokens), [`macros`]
-//! (`#define` -> macro), [`expand`] (tokens -> expanded tokens),
-//! [`conditional`] and [`if_expr`] (`#if` groups), [`driver`] (directives,
-//! includes, one file at a time), [`render`] (tokens -> lines of text).
+//! Compared with GNU cpp in its default mode (all 111 cpfg models of the
+//! shared corpus give the same tokens, except two whose `#(` lines GNU
+//! cpp rejects):
+//! - `'` does not start a character literal (cpfg's `'` is a turtle
+//!   command; macros between two `'` are expanded) and `$` is not part of
+//!   identifiers;
+//! - in a function-like body, `#` not followed by a parameter is kept as
+//!   text (cpfg's `#(w)`), and a `##` whose result is not one token keeps
+//!   the tokens, instead of errors;
+//! - `#if` arithmetic is signed 64-bit, wrapping; no `'c'` constants, no
+//!   unsigned arithmetic; floats are an error;
+//! - no predefined macros (`__STDC__`, `unix`, ...) except `__LINE__` and
+//!   `__FILE__`; no `__COUNTER__`, `__DATE__`, `_Pragma`;
+//! - a directive inside a macro's argument list ends it
+//!   (`unterminated_call`); GNU cpp would process the directive;
+//! - `#line`, `#pragma`, `#ident` are ignored, `#include_next` and
+//!   `#import` are `#include`; a `#include` that cannot be read is reported
+//!   and its line left empty.
+//!
+//! Stages: `lexer` (text -> logical lines of tokens), `macros`
+//! (`#define` -> macro), `expand` (tokens -> expanded tokens),
+//! `conditional` and `if_expr` (`#if` groups), `driver` (directives,
+//! includes, one file at a time), `render` (tokens -> lines of text).
 
 mod conditional;
 mod driver;
