@@ -174,6 +174,33 @@ fn comments_become_spaces_and_keep_their_newlines() {
 }
 
 #[test]
+fn undef_and_redefine() {
+    assert_eq!(
+        pp("#define X 1\nX\n#undef X\nX\n#define X 2\nX"),
+        "\n1\n\nX\n\n2"
+    );
+}
+
+#[test]
+fn directive_ends_the_search_for_a_parenthesis() {
+    assert_eq!(
+        pp("#define G(x) <x>\n#define Y 1\nG\n#undef Y\n(Y)"),
+        "\n\nG\n\n(Y)"
+    );
+}
+
+#[test]
+fn apostrophe_is_a_turtle_command_not_a_char_literal() {
+    assert_eq!(pp("#define C 3\nF';(C)' F"), "\nF';(3)' F");
+}
+
+#[test]
+fn empty_and_comment_only_files() {
+    assert_eq!(pp(""), "");
+    assert_eq!(pp("/* a\n b */ // c\n"), "\n\n");
+}
+
+#[test]
 fn strings_are_not_expanded() {
     assert_eq!(pp("#define X 1\n\"X\" X"), "\n\"X\" 1");
 }
