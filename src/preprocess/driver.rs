@@ -18,8 +18,11 @@ use super::render::Render;
 use super::token::{Kind, Token};
 use super::{IncludeSite, Options, OutFile, Output, RawFile, Resolver};
 
-/// Tokens all expansions of a run may produce before expansion stops.
-const EXPANSION_BUDGET: usize = if cfg!(test) { 200_000 } else { 20_000_000 };
+/// Tokens the expansions of one line may produce before expansion stops
+/// (`#define A B B`, `#define B C C`, ... grows exponentially).
+const LINE_BUDGET: usize = if cfg!(test) { 200_000 } else { 2_000_000 };
+/// The same for a whole run, so many such lines cannot take long either.
+const RUN_BUDGET: usize = 50_000_000;
 /// Files one run may read (an include tree can grow exponentially).
 const MAX_FILES: usize = 10_000;
 
@@ -30,7 +33,11 @@ struct Pp<'r> {
     resolver: &'r mut dyn Resolver,
     max_include: usize,
     max_expansion: usize,
+    /// What the current line's expansions may still produce.
     budget: usize,
+    /// What the rest of the run may still produce.
+    run_budget: usize,
+    run_budget_reported: bool,
     /// Indices of the files being processed, outermost first.
     chain: Vec<usize>,
     /// After one depth error, further includes are refused, so a file that
@@ -54,7 +61,9 @@ pub(crate) fn run(
         resolver,
         max_include: opts.max_include_depth.min(256),
         max_expansion: opts.max_expansion_depth.clamp(1, 256),
-        budget: EXPANSION_BUDGET,
+        budget: 0,
+        run_budget: RUN_BUDGET,
+        run_budget_reported: false,
         chain: Vec::new(),
         includes_stopped: false,
     };
@@ -151,6 +160,17 @@ impl Pp<'_> {
                     lines.pop_front()
                 }
             };
+            if self.run_budget == 0 && !self.run_budget_reported {
+                self.run_budget_reported = true;
+                let span = span_of(&line, &(0..0));
+                self.error(
+                    ErrorKind::Recursion,
+                    idx,
+                    span,
+                    format!("macro expansions produced over {RUN_BUDGET} tokens; from here on nothing is expanded"),
+                );
+            }
+            self.start_budget();
             let mut ex = Expander {
                 macros: &self.macros,
                 errors: &mut self.errors,
@@ -160,6 +180,7 @@ impl Pp<'_> {
                 budget: &mut self.budget,
             };
             let out = ex.expand(line.into(), &mut more, 0);
+            self.end_budget();
             render.emit(&out);
         }
         let open: Vec<Range<usize>> = conds.unterminated().collect();
@@ -184,6 +205,7 @@ impl Pp<'_> {
 
     fn expand_alone(&mut self, idx: usize, name: &str, toks: &[Token]) -> Vec<Token> {
         let mut none = || None;
+        self.start_budget();
         let mut ex = Expander {
             macros: &self.macros,
             errors: &mut self.errors,
@@ -192,7 +214,18 @@ impl Pp<'_> {
             max_depth: self.max_expansion,
             budget: &mut self.budget,
         };
-        ex.expand(toks.iter().cloned().collect(), &mut none, 0)
+        let out = ex.expand(toks.iter().cloned().collect(), &mut none, 0);
+        self.end_budget();
+        out
+    }
+
+    fn start_budget(&mut self) {
+        self.budget = LINE_BUDGET.min(self.run_budget);
+    }
+
+    fn end_budget(&mut self) {
+        let used = LINE_BUDGET.min(self.run_budget) - self.budget;
+        self.run_budget -= used;
     }
 
     fn eval_if(&mut self, idx: usize, raw: &RawFile, rest: &[Token], whole: &Range<usize>) -> bool {
