@@ -557,6 +557,35 @@ fn error_recursion_exponential_growth() {
 }
 
 #[test]
+fn expansion_budget_is_per_line() {
+    // 2^14 tokens a line: the lines together exceed one line's budget (50000 in tests).
+    let mut src = String::from("#define A0 x x\n");
+    for i in 1..14 {
+        src.push_str(&format!("#define A{i} A{p} A{p}\n", p = i - 1));
+    }
+    src.push_str("A13\nA13\nA13\nA13\n");
+    let (out, errs, _) = run_with(&src, &[], &Options::default());
+    assert!(errs.is_empty(), "{errs:#?}");
+    let last = out.files[0].text.lines().last().unwrap_or("");
+    assert_eq!(last.split(' ').count(), 1 << 14);
+}
+
+#[test]
+fn conditionals_do_not_cross_file_boundaries() {
+    let files = [("a.l", "#if 1\na\n")];
+    let (out, errs, _) = run_with("#include \"a.l\"\n#else\nb\n", &files, &Options::default());
+    let kinds: Vec<(ErrorKind, usize)> = errs.iter().map(|e| (e.kind, e.file)).collect();
+    assert_eq!(
+        kinds,
+        [
+            (ErrorKind::UnterminatedIf, 1),
+            (ErrorKind::ElseWithoutIf, 0)
+        ]
+    );
+    assert_eq!(out.files[0].text, "#include \"a.l\"\n\nb\n");
+}
+
+#[test]
 fn deepest_allowed_expansion_fits_the_stack() {
     let opts = Options {
         max_expansion_depth: 100_000,
