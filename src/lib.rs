@@ -26,6 +26,7 @@ pub mod mesh;
 pub mod pailou;
 pub mod parse;
 pub mod pipeline;
+pub mod preprocess;
 pub mod progress;
 pub mod repl;
 pub mod resolve;
