@@ -266,6 +266,10 @@ impl Func {
     }
 
     pub fn from_name(name: &str) -> Option<Func> {
+        // cpfg writes C's name for the absolute value.
+        if name == "fabs" {
+            return Some(Func::Abs);
+        }
         Func::ALL.into_iter().find(|f| f.name() == name)
     }
 

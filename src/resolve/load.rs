@@ -63,9 +63,14 @@ pub struct Loaded {
     pub items: Vec<(FileId, Item)>,
     pub errors: Vec<Report>,
     pub warnings: Vec<Report>,
+    /// The files went through the C preprocessor (a cpfg `.l` root), which
+    /// took the `-D` definitions.
+    pub preprocessed: bool,
 }
 
-pub fn load(input: &Input) -> Result<Loaded, InputError> {
+/// Loads `input` and what it includes. A cpfg file (`.l`) goes through the
+/// C preprocessor first, with `defines` (`-D`) defined before its first line.
+pub fn load(input: &Input, defines: &[(String, String)]) -> Result<Loaded, InputError> {
     let root = match input {
         Input::Path(p) => {
             let text = std::fs::read(p).map_err(|e| InputError::NotFound {
@@ -107,24 +112,36 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             items: Vec::new(),
             errors: Vec::new(),
             warnings: Vec::new(),
+            preprocessed: false,
         },
         stack: Vec::new(),
         root_dir: std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone()),
         root_shown: root_dir,
+        pre: None,
+    };
+    let root = if root.name.ends_with(".l") {
+        loader.preprocess(root, defines)
+    } else {
+        root
     };
     let id = loader.loaded.sources.add(root);
+    if let Some(pre) = &mut loader.pre {
+        pre.ids.insert(id, 0);
+    }
     loader.file(id);
     Ok(loader.loaded)
 }
 
-struct Loader {
-    loaded: Loaded,
+pub(super) struct Loader {
+    pub(super) loaded: Loaded,
     /// The include chain being loaded: (file, its identity for cycles).
     stack: Vec<(FileId, String)>,
     /// Every included file must resolve (links followed) inside this.
-    root_dir: PathBuf,
+    pub(super) root_dir: PathBuf,
     /// The same folder as the user named it, for messages.
-    root_shown: PathBuf,
+    pub(super) root_shown: PathBuf,
+    /// A cpfg root's preprocessed files, and which file id holds which.
+    pub(super) pre: Option<super::cpp_load::Preprocessed>,
 }
 
 impl Loader {
@@ -152,6 +169,9 @@ impl Loader {
         }
         for item in ast.items {
             match item {
+                Item::Include(Include::Path { span, .. }) if self.pre.is_some() => {
+                    self.include_preprocessed(id, &file, span)
+                }
                 Item::Include(Include::Path { ref path, span }) => {
                     self.include_path(&file, path, span)
                 }
@@ -236,7 +256,7 @@ impl Loader {
         }
     }
 
-    fn enter(&mut self, from: &SourceFile, file: SourceFile, span: Span) {
+    pub(super) fn enter(&mut self, from: &SourceFile, file: SourceFile, span: Span) {
         let ident = Self::identity(&file);
         if let Some(pos) = self.stack.iter().position(|(_, i)| *i == ident) {
             let mut chain: Vec<String> = self.stack[pos..]

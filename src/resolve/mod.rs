@@ -4,6 +4,7 @@
 //! all files are collected and reported together.
 
 mod alphabet;
+mod cpp_load;
 mod cstmt;
 pub mod error;
 mod expr;
@@ -47,7 +48,14 @@ pub struct Failure {
 
 /// Resolves `input`. `Err(InputError)` when the root cannot be read at all.
 pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure>, InputError> {
-    let loaded = load::load(input)?;
+    let loaded = load::load(input, &opts.defines)?;
+    // A cpfg file's -D definitions went to the preprocessor.
+    let no_defines = Options::default();
+    let opts = if loaded.preprocessed {
+        &no_defines
+    } else {
+        opts
+    };
     let mut r = Resolver {
         sources: loaded.sources,
         errors: loaded.errors,
