@@ -117,6 +117,9 @@ pub fn table_offset(bounds: impl Iterator<Item = (f64, f64)>, idx: &[f64]) -> Re
 /// `binds` every slot the chunk reads and `vars` every variable (cpfg's
 /// statement blocks). Returns the value on top of the stack at `Ret` (0 if
 /// the stack is empty).
+// The VM's hot loop takes plain slices rather than a context struct so
+// that each is a register-held pointer; hence the long parameter list.
+#[allow(clippy::too_many_arguments)]
 #[inline]
 pub fn run<S: Sink>(
     chunk: &Chunk,

@@ -185,7 +185,7 @@ fn read_points(lines: &mut Lines) -> Result<Vec<(f64, f64)>, FuncError> {
             Some(m) => (num(m)? as i64).clamp(1, 16) as usize,
             None => 1,
         };
-        points.extend(std::iter::repeat_n((x, y), mult));
+        points.extend(std::iter::repeat((x, y)).take(mult));
     }
     Ok(points)
 }

@@ -72,7 +72,7 @@ impl Rand48 {
     /// rejection algorithm (two non-zero uniform draws per attempt). Gives
     /// NaN for parameters that are not positive, where cpfg would loop.
     pub fn bran(&mut self, a: f64, b: f64) -> f64 {
-        if !(a > 0.0 && b > 0.0) || !a.is_finite() || !b.is_finite() {
+        if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
             return f64::NAN;
         }
         let s = a + b;
