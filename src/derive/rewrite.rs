@@ -14,7 +14,7 @@ use super::rng::Rand48;
 use super::store::{head_arity, head_sym, ContextIndex, ModuleStore, MAX_SYMBOLS};
 use crate::bytecode::vm::{self, NoSink};
 use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
-use crate::resolve::{Program, Table};
+use crate::resolve::{Program, Table, CLOSE_BRACKET, OPEN_BRACKET};
 use crate::source::Span;
 
 /// Internal error: boxed so that the `Result`s passed per module stay small.
@@ -56,6 +56,9 @@ pub(crate) struct Tables<'p> {
     /// cpfg dialect: parameters are stored as 32-bit floats, as cpfg
     /// stores them in its string (expressions still compute in f64).
     pub(crate) f32_params: bool,
+    /// cpfg dialect: the symbol `%`, which cuts the rest of its branch
+    /// from the string when the next step reads it.
+    pub(crate) cut: Option<u32>,
 }
 
 /// Round the parameters written since `from` to `f32`, when the dialect
@@ -82,7 +85,9 @@ impl<'p> Tables<'p> {
                 limit: MAX_SYMBOLS,
             }));
         }
-        let rules = TABLES.map(|t| {
+        let cpfg = program.turtle.dialect == crate::turtle::Dialect::Cpfg;
+        let cut = program.symbols.get("%").filter(|_| cpfg);
+        let mut rules = TABLES.map(|t| {
             let never: Vec<bool> = compiled
                 .table(t)
                 .iter()
@@ -90,6 +95,10 @@ impl<'p> Tables<'p> {
                 .collect();
             Rules::new(program.table(t), &never, nsyms)
         });
+        if let Some(c) = cut {
+            // Route `%` to the dispatch loop, where it is cut.
+            rules[0].has_rules[c as usize] = true;
+        }
         Ok(Tables {
             program,
             compiled,
@@ -99,7 +108,8 @@ impl<'p> Tables<'p> {
                 .collect(),
             max_modules: opts.max_modules,
             max_params: opts.max_params.min(u32::MAX as usize),
-            f32_params: program.turtle.dialect == crate::turtle::Dialect::Cpfg,
+            f32_params: cpfg,
+            cut,
         })
     }
 
@@ -503,6 +513,25 @@ pub(crate) fn rewrite(
             }
             out.extend_raw(&heads[i0..i], &params[off0..off]);
             check_limits(tab, out, None, st.step)?;
+            continue;
+        }
+        if t == Table::Main && tab.cut == Some(head_sym(h)) && head_arity(h) == 0 {
+            // cpfg's cut: drop `%` and the rest of its branch, up to (not
+            // including) the `]` that closes it.
+            let mut depth = 0usize;
+            while i < n {
+                let s = head_sym(heads[i]);
+                if s == OPEN_BRACKET {
+                    depth += 1;
+                } else if s == CLOSE_BRACKET {
+                    if depth == 0 {
+                        break;
+                    }
+                    depth -= 1;
+                }
+                off += head_arity(heads[i]);
+                i += 1;
+            }
             continue;
         }
         let Some((p, bound)) = choose(tab, st, t, &inp, i, off)? else {

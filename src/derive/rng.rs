@@ -28,7 +28,10 @@ impl Rand48 {
     pub fn new(seed: u64) -> Rand48 {
         Rand48 {
             state: ((seed & 0xFFFF_FFFF) << 16) | 0x330E,
-            spare: None,
+            // cpfg starts with a spare sample of 0 (its `gset` is a zeroed
+            // static and `iset` starts non-zero), so the first `nran(m, s)`
+            // before any `srand` gives exactly `m`.
+            spare: Some(0.0),
         }
     }
 
@@ -48,6 +51,7 @@ impl Rand48 {
     /// normal sample.
     pub fn reseed(&mut self, x: f64) {
         *self = Rand48::new(x as i64 as u64);
+        self.spare = None;
     }
 
     /// cpfg's `nran(mean, sd)`: Marsaglia's polar method, two uniform

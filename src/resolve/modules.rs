@@ -333,7 +333,7 @@ impl Resolver {
                         });
                         continue;
                     }
-                    let pieces = if whole_words && m.kind == TokKind::Word {
+                    let pieces = if whole_words && m.kind == TokKind::Word && !self.cpfg {
                         vec![Split {
                             name: m.text.clone(),
                             span: m.span,
