@@ -324,6 +324,11 @@ impl Resolver {
                     {
                         continue;
                     }
+                    // cpfg: `=` in a right context skips the rest of the
+                    // branch (`F > [+D=]`), which the `]` after it does here.
+                    if self.cpfg && allow_brackets && m.kind == TokKind::Punct && m.text == "=" {
+                        continue;
+                    }
                     if m.kind == TokKind::Punct && m.text == "*" {
                         self.error(ResolveError::Unsupported {
                             what: "`*` in a predecessor".to_string(),
