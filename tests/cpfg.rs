@@ -67,3 +67,20 @@ fn errors_after_expansion_point_at_the_original_line() {
     );
     insta::assert_snapshot!(stderr);
 }
+
+#[test]
+fn query_modules_context_through_brackets_and_cuts() {
+    let out = lsys(&fixture("queries"), &["derive", "--every", "plant.l"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    // The position is filled after each step: y grows by one F per step.
+    assert!(
+        text.lines().nth(2).is_some_and(|l| l.ends_with("?P(0,2)")),
+        "{text}"
+    );
+    insta::assert_snapshot!(text);
+}

@@ -145,12 +145,51 @@ impl<'p> Derivation<'p> {
         self.decompose()?;
         mem::swap(&mut self.cur, &mut self.next);
         self.steps += 1;
+        self.fill_queries();
         let hooks = &self.tab.compiled.hooks;
         run_hook(&self.tab, &mut self.st, "EndEach", hooks.end_each.as_ref())?;
         if self.steps == self.tab.program.derivation_length {
             run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
         }
         Ok(())
+    }
+
+    /// cpfg's query modules (`?P(x,y,z)`, `?H`, `?L`, `?U`): an
+    /// interpretation of the string sets their parameters to the turtle's
+    /// position and orientation where they stand, after every step.
+    fn fill_queries(&mut self) {
+        if !self.tab.has_queries {
+            return;
+        }
+        let program = self.tab.program;
+        let opts = crate::turtle::TurtleOptions::new(&program.turtle, None, None, None);
+        let own = crate::turtle::query_values(program, &self.cur, &opts);
+        // The turtle draws the homomorphism's output; the queries in it are
+        // those of the string, in the same order, unless the homomorphism
+        // rewrites query modules too (then the string is interpreted as it
+        // stands).
+        let drawn = if program.homomorphism.is_empty() {
+            None
+        } else {
+            self.homomorphism().ok().and_then(|h| {
+                let v = crate::turtle::query_values(program, &h.modules, &opts).ok()?;
+                Some(v)
+            })
+        };
+        // A string the turtle refuses (a NaN parameter) keeps its values.
+        let Ok(own) = own else { return };
+        let vals: Vec<(usize, usize, [f64; 3])> = match drawn {
+            Some(d) if d.len() == own.len() => own
+                .iter()
+                .zip(d)
+                .map(|(o, d)| (o.0, o.1.min(d.1), d.2))
+                .collect(),
+            _ => own,
+        };
+        for (at, n, v) in vals {
+            self.cur.params[at..at + n].copy_from_slice(&v[..n]);
+        }
+        super::rewrite::store_params(&self.tab, &mut self.cur, 0);
     }
 
     /// The current string.

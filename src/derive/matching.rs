@@ -199,10 +199,12 @@ pub(crate) fn match_at(
             }
             j -= 1;
             let s = head_sym(heads[j]);
-            if s == CLOSE_BRACKET {
+            if skip[s as usize] {
+                // Skipped (a bracket only in the cpfg dialect).
+            } else if s == CLOSE_BRACKET {
                 // A branch to our left: skip it whole, continue left of its `[`.
                 j = idx.partner_of(j)?;
-            } else if s == OPEN_BRACKET || skip[s as usize] {
+            } else if s == OPEN_BRACKET {
                 // `[`: climb out of our branch to its parent.
             } else {
                 break;
@@ -223,13 +225,13 @@ pub(crate) fn match_at(
                         return None;
                     }
                     let s = head_sym(heads[j]);
-                    if s == OPEN_BRACKET {
+                    if skip[s as usize] {
+                        j += 1;
+                    } else if s == OPEN_BRACKET {
                         // A branch the pattern does not enter: skip it.
                         j = idx.partner_of(j)? + 1;
                     } else if s == CLOSE_BRACKET {
                         return None; // end of our branch
-                    } else if skip[s as usize] {
-                        j += 1;
                     } else {
                         break;
                     }

@@ -59,6 +59,8 @@ pub(crate) struct Tables<'p> {
     /// cpfg dialect: the symbol `%`, which cuts the rest of its branch
     /// from the string when the next step reads it.
     pub(crate) cut: Option<u32>,
+    /// The alphabet has cpfg query modules to fill after each step.
+    pub(crate) has_queries: bool,
 }
 
 /// Round the parameters written since `from` to `f32`, when the dialect
@@ -103,13 +105,21 @@ impl<'p> Tables<'p> {
             program,
             compiled,
             rules,
+            // Outside the cpfg dialect brackets always structure context.
             skip: (0..nsyms as u32)
-                .map(|s| program.skips_in_context(s))
+                .map(|s| {
+                    program.skips_in_context(s)
+                        && (cpfg || (s != OPEN_BRACKET && s != CLOSE_BRACKET))
+                })
                 .collect(),
             max_modules: opts.max_modules,
             max_params: opts.max_params.min(u32::MAX as usize),
             f32_params: cpfg,
             cut,
+            has_queries: program.symbols.list.iter().any(|s| {
+                s.kind == crate::resolve::SymbolKind::Query
+                    && matches!(s.name.as_str(), "?P" | "?H" | "?L" | "?U")
+            }),
         })
     }
 

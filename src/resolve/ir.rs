@@ -488,13 +488,14 @@ impl Program {
     }
 
     /// Whether context matching skips this symbol.
+    /// Brackets come out skipped when `consider:` does not list them (or
+    /// `ignore:` does): cpfg then reads context straight through branches;
+    /// the engine honours that in the cpfg dialect only.
     pub fn skips_in_context(&self, sym: SymId) -> bool {
         match &self.context {
             ContextFilter::All => false,
             ContextFilter::Ignore(v) => v.contains(&sym),
-            ContextFilter::Consider(v) => {
-                sym != OPEN_BRACKET && sym != CLOSE_BRACKET && !v.contains(&sym)
-            }
+            ContextFilter::Consider(v) => !v.contains(&sym),
         }
     }
 }

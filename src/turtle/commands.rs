@@ -313,7 +313,7 @@ pub const COMMANDS: &[Command] = &[
         (0, 1),
         "0 (off)",
         Elasticity,
-        "set the tropism elasticity e",
+        "set the tropism elasticity e (cpfg: @Ts(i, e), tropism i)",
     ),
     cmd(
         "@T",

@@ -108,6 +108,60 @@ pub fn interpret(
     store: &ModuleStore,
     opts: &TurtleOptions,
 ) -> Result<Drawing, TurtleError> {
+    interpret_with(program, store, opts, &mut |_, _, _| {})
+}
+
+/// The values cpfg's query modules take in `store`: for each `?P`, `?H`,
+/// `?L` or `?U` with parameters, the offset of its first parameter and the
+/// turtle's position, heading, left or up vector where the module stands
+/// (as many components as it has parameters, at most 3).
+pub fn query_values(
+    program: &Program,
+    store: &ModuleStore,
+    opts: &TurtleOptions,
+) -> Result<Vec<(usize, usize, [f64; 3])>, TurtleError> {
+    let which: Vec<Option<u8>> = program
+        .symbols
+        .list
+        .iter()
+        .map(|s| match (s.kind, s.name.as_str()) {
+            (SymbolKind::Query, "?P") => Some(0),
+            (SymbolKind::Query, "?H") => Some(1),
+            (SymbolKind::Query, "?L") => Some(2),
+            (SymbolKind::Query, "?U") => Some(3),
+            _ => None,
+        })
+        .collect();
+    let mut out = Vec::new();
+    interpret_with(program, store, opts, &mut |sym, offset, f| {
+        let (Some(k), arity) = (which[sym.0 as usize], sym.1) else {
+            return;
+        };
+        let v = match k {
+            0 => f.pos,
+            1 => f.h,
+            2 => f.l,
+            _ => f.u,
+        };
+        out.push((offset, arity.min(3), [v.x as f64, v.y as f64, v.z as f64]));
+    })
+    // A string between steps may end inside a polygon; the frames up to
+    // the end are what the queries need.
+    .or_else(|e| match e {
+        TurtleError::UnclosedPolygon { .. } => Ok(Drawing::default()),
+        e => Err(e),
+    })?;
+    Ok(out)
+}
+
+/// [`interpret`], telling `on_module((symbol, arity), first parameter
+/// offset, frame)` the turtle's frame at every query module.
+fn interpret_with(
+    program: &Program,
+    store: &ModuleStore,
+    opts: &TurtleOptions,
+    on_query: &mut dyn FnMut((SymId, usize), usize, &Frame),
+) -> Result<Drawing, TurtleError> {
     let acts: Vec<Act> = program
         .symbols
         .list
@@ -139,6 +193,9 @@ pub fn interpret(
     while i < heads.len() {
         let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
         let args = &params[offset..offset + arity];
+        if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
+            on_query((sym, arity), offset, &t.state.frame);
+        }
         offset += arity;
         let act = acts[sym as usize];
         if act != Act::Command(Action::Nothing) {
@@ -320,6 +377,11 @@ impl Turtle<'_> {
                 let up = (args.len() >= 6).then(|| v(3));
                 s.frame.set_heading(v(0), up);
                 s.chain = None;
+            }
+            // cpfg writes `@Ts(movement, e)`: the first parameter picks one
+            // of its tropisms, the second is the elasticity (none: 0).
+            Elasticity if self.opts.dialect == Dialect::Cpfg => {
+                s.elasticity = args.get(1).map_or(0.0, |&e| e as f32)
             }
             Elasticity => s.elasticity = args.first().map_or(0.0, |&e| e as f32),
             Tropism => {

@@ -11,4 +11,4 @@ pub mod frame;
 pub mod interp;
 pub use drawing::Drawing;
 pub use error::TurtleError;
-pub use interp::{interpret, TurtleOptions};
+pub use interp::{interpret, query_values, TurtleOptions};
