@@ -154,13 +154,17 @@ pub fn query_values(
     Ok(out)
 }
 
+/// Called with (symbol, arity), the offset of the first parameter and the
+/// frame at each query module.
+type QueryFn<'a> = dyn FnMut((SymId, usize), usize, &Frame) + 'a;
+
 /// [`interpret`], telling `on_module((symbol, arity), first parameter
 /// offset, frame)` the turtle's frame at every query module.
 fn interpret_with(
     program: &Program,
     store: &ModuleStore,
     opts: &TurtleOptions,
-    on_query: &mut dyn FnMut((SymId, usize), usize, &Frame),
+    on_query: &mut QueryFn,
 ) -> Result<Drawing, TurtleError> {
     let acts: Vec<Act> = program
         .symbols
