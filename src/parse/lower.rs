@@ -284,6 +284,7 @@ impl Lower<'_> {
 
     fn pattern<'i>(&self, items: impl Iterator<Item = Pair<'i, Rule>>) -> PResult<Vec<PatTok>> {
         items
+            .filter(|it| it.as_rule() != Rule::nl_indent)
             .map(|it| {
                 Ok(match it.as_rule() {
                     Rule::open_br => PatTok::Open(self.span(&it)),

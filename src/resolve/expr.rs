@@ -330,9 +330,15 @@ impl Resolver {
         scope: &Scope,
         exp: &Expansion,
     ) -> Option<Expr> {
-        // cpfg's printing functions: lsys prints the derived string, not
-        // the model's messages, so the call does nothing and yields 0.
-        if matches!(name.name.as_str(), "printf" | "fprintf" | "fflush") {
+        // cpfg's functions with effects outside the string: printing and
+        // writing files (lsys prints the derived string, not the model's
+        // messages or files), and `stop`, `display`, `play`, which control
+        // cpfg's animation window, not the derivation. The call does
+        // nothing and yields 0 (docs/cpfg.md lists them).
+        if matches!(
+            name.name.as_str(),
+            "printf" | "fprintf" | "fflush" | "fopen" | "fclose" | "stop" | "display" | "play"
+        ) {
             return Some(Expr {
                 kind: ExprKind::Num(0.0),
                 span,
