@@ -95,6 +95,8 @@ impl<'p> Derivation<'p> {
         };
         d.decompose()?;
         mem::swap(&mut d.cur, &mut d.next);
+        // cpfg interprets the axiom too before the first step reads it.
+        d.fill_queries();
         Ok(d)
     }
 
