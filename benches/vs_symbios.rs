@@ -48,7 +48,8 @@ fn main() {
     let cases = [
         Case {
             name: "W1 n=11",
-            rules: &["X -> F[+X]F[-X]+X", "F -> FF"],
+            // symbios reads `FF` as one symbol: modules are spaced.
+            rules: &["X -> F [ + X ] F [ - X ] + X", "F -> F F"],
             axiom: "X",
             steps: 11,
             lsys: common::w1(),

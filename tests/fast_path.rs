@@ -156,3 +156,58 @@ fn seeded_stochastic_decomposition_keeps_its_numbers() {
     let text = "Lsystem: 1\nseed: 7\nAxiom: A(1)\nA(x) : x < 50 --> A(x+1) B(x)\ndecomposition\nB(y) --> C(ran(y)) : 1\nB(y) --> D : 1\nendlsystem\n";
     assert!(same(text, 8, opts()));
 }
+
+/// `derive::count` against counting the derived string.
+fn counts_agree(text: &str, steps: u32) -> bool {
+    let c = compile(text);
+    let counted = lsys::derive::count(&c.program, &c.compiled, opts(), steps).unwrap();
+    let s = lsys::derive::derive(&c.program, &c.compiled, opts(), steps).unwrap();
+    let want: Vec<u64> = s
+        .counts(c.program.symbols.len())
+        .into_iter()
+        .map(|n| n as u64)
+        .collect();
+    assert_eq!(counted.per_symbol, want, "{text}");
+    assert_eq!(counted.total(), s.len() as u64);
+    counted.expanded
+}
+
+#[test]
+fn count_by_expansion_matches_the_string() {
+    assert!(counts_agree(
+        &grammar("X", "X --> F[+X]F[-X]+X\nF --> FF"),
+        7
+    ));
+    assert!(counts_agree(
+        &grammar(
+            "A(1) B(2)",
+            "A(x) : x < 6 --> F(x)[+(25)A(x+1)][-(25)A(x+1)]\nA(x) --> F(x)\nB(y) : y > 1 --> B(y / 2) B(y / 3) C"
+        ),
+        9
+    ));
+    // Not expandable: stochastic, context, decomposition.
+    assert!(!counts_agree(
+        &grammar("A", "A --> A B : 1\nA --> B A : 2\nB --> A"),
+        8
+    ));
+    assert!(!counts_agree(
+        &grammar("B A A A", "B < A --> B\nA --> A"),
+        4
+    ));
+    assert!(!counts_agree(
+        "Lsystem: 1\nAxiom: A\nA --> A B\ndecomposition\nB --> C C\nendlsystem\n",
+        5
+    ));
+}
+
+#[test]
+fn count_reaches_billions_of_modules_without_building_them() {
+    let c = compile(&grammar(
+        "A(1)",
+        "A(x) : x < 40 --> F(x)[+(25)A(x+1)][-(25)A(x+1)]\nA(x) --> F(x)",
+    ));
+    let n = lsys::derive::count(&c.program, &c.compiled, opts(), 30).unwrap();
+    assert!(n.expanded);
+    // Every rewrite of an A adds 8 modules; 2^30 - 1 rewrites.
+    assert_eq!(n.total(), 8 * (1u64 << 30) - 7);
+}

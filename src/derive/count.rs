@@ -57,10 +57,12 @@ pub fn count(
 ) -> Result<Counts, DeriveError> {
     let nsyms = program.symbols.len();
     let tab = Tables::new(program, compiled, &opts)?;
-    if program.decomposition.is_empty() && Plan::new(&tab).is_some() {
+    let plan = Plan::new(&tab).filter(|_| program.decomposition.is_empty());
+    if let Some(plan) = plan {
         // The axiom (which may call `ran`) is evaluated as usual.
         let axiom = Derivation::new(program, compiled, opts.clone())?.into_current();
         let mut c = Counter {
+            plan: &plan,
             tab: &tab,
             stack: vec![0.0; compiled.max_stack.max(1)],
             memo: HashMap::new(),
@@ -96,6 +98,7 @@ pub fn count(
 }
 
 struct Counter<'t, 'p> {
+    plan: &'t Plan,
     tab: &'t Tables<'p>,
     stack: Vec<f64>,
     /// (head, parameter bits, remaining steps) -> counts per symbol.
@@ -125,7 +128,7 @@ impl Counter<'_, '_> {
             add(acc, c);
             return Ok(());
         }
-        let Some(p) = choose(self.tab, &mut self.stack, head, params)? else {
+        let Some(p) = choose(self.plan, self.tab, &mut self.stack, head, params)? else {
             // No production applies now, so none ever will: the module's
             // symbol and parameters never change.
             acc[sym] = acc[sym].saturating_add(1);

@@ -24,6 +24,7 @@
 use super::rewrite::Tables;
 use super::rng::Rand48;
 use super::store::{head_arity, head_sym, ModuleStore};
+use super::template::{Cond, Succ};
 use crate::bytecode::vm::{self, NoSink, Sink};
 use crate::bytecode::{Chunk, CondCode, Op, ProdCode};
 
@@ -90,6 +91,10 @@ pub(crate) struct Plan {
     pub(crate) out: Vec<Option<(usize, usize)>>,
     /// Strings this long or longer are rewritten in parallel.
     pub(crate) par_min: usize,
+    /// `succ[p]`: production `p`'s successor as a template, when simple.
+    succ: Vec<Option<Succ>>,
+    /// `cond[p]`: its condition as a comparison, when simple.
+    cond: Vec<Option<Cond>>,
 }
 
 impl Plan {
@@ -100,7 +105,10 @@ impl Plan {
         if rules.has_context {
             return None;
         }
+        let consts = &tab.compiled.consts;
         let mut out = Vec::with_capacity(rules.shapes.len());
+        let mut succs = Vec::with_capacity(rules.shapes.len());
+        let mut conds = Vec::with_capacity(rules.shapes.len());
         for (shape, code) in rules.shapes.iter().zip(&tab.compiled.main) {
             // Every field is named, so a field added to `ProdCode` (a new
             // kind of code a production runs) stops the build here until
@@ -120,10 +128,17 @@ impl Plan {
                 return None;
             }
             out.push(static_output(succ));
+            succs.push(Succ::new(succ, consts));
+            conds.push(match cond {
+                CondCode::Code(c) => Cond::new(c, consts),
+                _ => None,
+            });
         }
         Some(Plan {
             out,
             par_min: super::parallel::PAR_MIN_MODULES,
+            succ: succs,
+            cond: conds,
         })
     }
 
@@ -153,7 +168,7 @@ impl Plan {
             max_modules: tab.max_modules,
             max_params: tab.max_params,
         };
-        run_range(tab, stack, &input.heads, &input.params, &mut sink).is_ok()
+        run_range(self, tab, stack, &input.heads, &input.params, &mut sink).is_ok()
     }
 }
 
@@ -164,6 +179,9 @@ pub(crate) trait Out: Sink {
     fn copy(&mut self, heads: &[u32], params: &[f64]);
     /// Called after every production or copied run; `Err`: give up.
     fn check(&self) -> Result<(), ()>;
+    /// Write successor template `t` with bindings `b`; `Err`: a value is
+    /// not finite.
+    fn template(&mut self, t: &Succ, b: &[f64]) -> Result<(), ()>;
 }
 
 struct LimitSink<'a> {
@@ -192,6 +210,11 @@ impl Out for LimitSink<'_> {
         }
         Ok(())
     }
+
+    #[inline(always)]
+    fn template(&mut self, t: &Succ, b: &[f64]) -> Result<(), ()> {
+        t.write(b, &mut self.out.heads, &mut self.out.params)
+    }
 }
 
 /// The production that applies to the module `head` with parameters `b`,
@@ -199,6 +222,7 @@ impl Out for LimitSink<'_> {
 /// `Err`: the condition faulted.
 #[inline(always)]
 pub(crate) fn choose(
+    plan: &Plan,
     tab: &Tables,
     stack: &mut [f64],
     head: u32,
@@ -214,6 +238,11 @@ pub(crate) fn choose(
         match &codes[p].cond {
             CondCode::Always => return Ok(Some(p)),
             CondCode::Never(_) => {}
+            CondCode::Code(_) if plan.cond[p].is_some() => {
+                if plan.cond[p].is_some_and(|c| c.holds(b)) {
+                    return Ok(Some(p));
+                }
+            }
             CondCode::Code(ch) => {
                 // No `ran` in eligible code: the generator is never drawn.
                 let mut rng = Rand48::new(0);
@@ -233,6 +262,7 @@ pub(crate) fn choose(
 /// first module's) into `sink`.
 #[inline(always)]
 pub(crate) fn run_range<S: Out>(
+    plan: &Plan,
     tab: &Tables,
     stack: &mut [f64],
     heads: &[u32],
@@ -259,8 +289,13 @@ pub(crate) fn run_range<S: Out>(
         }
         let a = head_arity(h);
         let b = &params[off..off + a];
-        match choose(tab, stack, h, b)? {
+        match choose(plan, tab, stack, h, b)? {
             None => sink.copy(&heads[i..i + 1], b),
+            Some(p) if plan.succ[p].is_some() => {
+                if let Some(t) = &plan.succ[p] {
+                    sink.template(t, b)?;
+                }
+            }
             Some(p) => {
                 vm::run(&codes[p].succ, consts, b, stack, &mut rng, sink).map_err(|_| ())?;
             }

@@ -62,6 +62,7 @@ mod parallel;
 mod rewrite;
 pub mod rng;
 pub mod store;
+mod template;
 
 pub use count::{count, Counts};
 pub use engine::{

@@ -23,6 +23,7 @@ use rayon::prelude::*;
 use super::fast::{choose, run_range, Out, Plan};
 use super::rewrite::Tables;
 use super::store::{head_arity, pack, ModuleStore};
+use super::template::Succ;
 use crate::bytecode::vm::Sink;
 
 /// Inputs smaller than this are rewritten on one core: below it the
@@ -70,7 +71,7 @@ pub(crate) fn step(
             let mut stack = vec![0.0; tab.compiled.max_stack.max(1)];
             let hs = &heads[cut[c]..cut[c + 1]];
             let ps = &params[in_off[c]..in_off[c + 1]];
-            measure(tab, &sizes, &mut stack, hs, ps).ok()
+            measure(plan, tab, &sizes, &mut stack, hs, ps).ok()
         })
         .collect();
     let measured: Vec<(usize, usize)> = match measured.into_iter().collect::<Option<_>>() {
@@ -107,7 +108,7 @@ pub(crate) fn step(
             };
             let inh = &heads[cut[c]..cut[c + 1]];
             let inp = &params[in_off[c]..in_off[c + 1]];
-            run_range(tab, &mut stack, inh, inp, &mut sink).is_ok()
+            run_range(plan, tab, &mut stack, inh, inp, &mut sink).is_ok()
                 && sink.h == sink.heads.len()
                 && sink.p == sink.params.len()
         });
@@ -150,6 +151,7 @@ fn split<'a, T>(mut s: &'a mut [T], at: &[usize]) -> Vec<&'a mut [T]> {
 
 /// Modules and parameter values the slice `heads` / `params` rewrites to.
 fn measure(
+    plan: &Plan,
     tab: &Tables,
     sizes: &[(usize, usize)],
     stack: &mut [f64],
@@ -162,7 +164,7 @@ fn measure(
     for &h in heads {
         let a = head_arity(h);
         let chosen = if has_rules[(h & super::store::SYM_MASK) as usize] {
-            choose(tab, stack, h, &params[off..off + a])?
+            choose(plan, tab, stack, h, &params[off..off + a])?
         } else {
             None
         };
@@ -225,6 +227,19 @@ impl Out for SliceSink<'_, '_> {
 
     #[inline(always)]
     fn check(&self) -> Result<(), ()> {
+        Ok(())
+    }
+
+    #[inline(always)]
+    fn template(&mut self, t: &Succ, b: &[f64]) -> Result<(), ()> {
+        let (m, n) = t.size();
+        t.write_into(
+            b,
+            &mut self.heads[self.h..self.h + m],
+            &mut self.params[self.p..self.p + n],
+        )?;
+        self.h += m;
+        self.p += n;
         Ok(())
     }
 }
