@@ -218,7 +218,7 @@ fn count_cmd(
             text.push_str(&format!("{} {n}\n", program.symbols.name(s as u32)));
         }
     }
-    let written = match &d.output {
+    match &d.output {
         None => emit_stdout(|out| out.write_all(text.as_bytes())),
         Some(path) => {
             match crate::export::atomic::write_file(path, |f| f.write_all(text.as_bytes())) {
@@ -229,8 +229,7 @@ fn count_cmd(
                 }
             }
         }
-    };
-    written
+    }
 }
 
 enum Outcome {
