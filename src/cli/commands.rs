@@ -212,10 +212,19 @@ fn count_cmd(
             return EX_DATAERR;
         }
     };
-    let mut text = format!("{} modules\n", counts.total());
+    // Counts saturate at u64::MAX: say so rather than print a wrong number.
+    let show = |n: u64| {
+        if n == u64::MAX {
+            format!("at least {n}")
+        } else {
+            n.to_string()
+        }
+    };
+    let mut text = format!("{} modules\n", show(counts.total()));
     for (s, &n) in counts.per_symbol.iter().enumerate() {
         if n > 0 {
-            text.push_str(&format!("{} {n}\n", program.symbols.name(s as u32)));
+            let name = program.symbols.name(s as u32);
+            text.push_str(&format!("{name} {}\n", show(n)));
         }
     }
     match &d.output {
