@@ -211,3 +211,9 @@ fn count_reaches_billions_of_modules_without_building_them() {
     // Every rewrite of an A adds 8 modules; 2^30 - 1 rewrites.
     assert_eq!(n.total(), 8 * (1u64 << 30) - 7);
 }
+
+#[test]
+fn not_taken_in_the_cpfg_dialect() {
+    let text = "dialect: cpfg\nLsystem: 1\nAxiom: A(1)\nA(x) --> A(x+1) B(x)\nendlsystem\n";
+    assert!(!same(text, 4, opts()));
+}

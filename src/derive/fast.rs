@@ -8,8 +8,8 @@
 //! binding buffers, recursion levels). This loop keeps only
 //! "first candidate whose condition holds, run its successor".
 //!
-//! Eligibility is a conservative whitelist ([`Plan::new`]): every main
-//! production has a one-module strict predecessor, no context, no
+//! Eligibility is a conservative whitelist ([`Plan::new`]): the paper's
+//! dialect, and every main production has a one-module strict predecessor, no context, no
 //! probability, and its condition and successor use only the instructions
 //! listed in [`op_allowed`] (no `ran`, so the generator is untouched and
 //! the step's result cannot depend on evaluation order). Anything else —
@@ -27,6 +27,7 @@ use super::store::{head_arity, head_sym, ModuleStore};
 use super::template::{Cond, Succ};
 use crate::bytecode::vm::{self, NoSink, Sink};
 use crate::bytecode::{Chunk, CondCode, Op, ProdCode};
+use crate::turtle::Dialect;
 
 /// Instructions the fast path may run. Everything here is a pure function
 /// of the bindings and the constant pool (no generator, no state), so the
@@ -103,6 +104,13 @@ impl Plan {
     pub(crate) fn new(tab: &Tables) -> Option<Plan> {
         let rules = &tab.rules[0];
         if rules.has_context {
+            return None;
+        }
+        // Only the dialect whose rewriting is exactly "first matching
+        // production, run its code": other dialects may add rules of their
+        // own to the general engine (cpfg's `%` cuts, parameters stored
+        // as f32) that no instruction shows.
+        if !matches!(tab.program.turtle.dialect, Dialect::Paper) {
             return None;
         }
         let consts = &tab.compiled.consts;
