@@ -110,6 +110,9 @@ pub struct DeriveArgs {
     /// Print the string after the homomorphism (what the turtle draws).
     #[arg(long)]
     pub homomorphism: bool,
+    /// Print the number of modules (in all, then per symbol) instead of the string. Grammars whose productions rewrite each module on its own (no context, no probabilities, no `ran`, no decomposition) are counted without building the string, however long it is.
+    #[arg(long, conflicts_with_all = ["every", "homomorphism"])]
+    pub count: bool,
     /// Write the string here instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

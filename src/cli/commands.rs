@@ -131,6 +131,9 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         max_params: d.run.max_params,
     };
     let steps = d.run.steps.unwrap_or(program.derivation_length);
+    if d.count {
+        return count_cmd(d, &comp, opts, steps, color);
+    }
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {
         let line = |s: &ModuleStore, step: u32, mut out: &mut dyn Write| -> Result<(), Outcome> {
             let shown = if d.homomorphism {
@@ -188,6 +191,52 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         Err(Outcome::Io(e)) => {
             eprintln!("lsys: cannot write the output: {e}");
             EX_IOERR
+        }
+    }
+}
+
+/// `lsys derive --count`: `N modules` on the first line, then `SYMBOL N`
+/// for every symbol present, in symbol order.
+fn count_cmd(
+    d: &DeriveArgs,
+    comp: &Compilation,
+    opts: DeriveOptions,
+    steps: u32,
+    color: bool,
+) -> i32 {
+    let program = &comp.program;
+    let counts = match derive::count(program, &comp.compiled, opts, steps) {
+        Ok(c) => c,
+        Err(e) => {
+            report(&e, color);
+            return EX_DATAERR;
+        }
+    };
+    // Counts saturate at u64::MAX: say so rather than print a wrong number.
+    let show = |n: u64| {
+        if n == u64::MAX {
+            format!("at least {n}")
+        } else {
+            n.to_string()
+        }
+    };
+    let mut text = format!("{} modules\n", show(counts.total()));
+    for (s, &n) in counts.per_symbol.iter().enumerate() {
+        if n > 0 {
+            let name = program.symbols.name(s as u32);
+            text.push_str(&format!("{name} {}\n", show(n)));
+        }
+    }
+    match &d.output {
+        None => emit_stdout(|out| out.write_all(text.as_bytes())),
+        Some(path) => {
+            match crate::export::atomic::write_file(path, |f| f.write_all(text.as_bytes())) {
+                Ok(()) => EX_OK,
+                Err(e) => {
+                    eprintln!("lsys: cannot write the output: {e}");
+                    EX_IOERR
+                }
+            }
         }
     }
 }

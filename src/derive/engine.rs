@@ -6,6 +6,7 @@
 use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
+use super::fast::Plan;
 use super::rewrite::{
     check_limits, fault_error, rewrite, rewrite_recursive, run_hook, store_params, Site, State,
     Tables,
@@ -56,6 +57,10 @@ pub struct Derivation<'p> {
     spare: ModuleStore,
     index: ContextIndex,
     steps: u32,
+    /// The fast main-table step, when every production is simple enough.
+    fast: Option<Plan>,
+    /// Length of the string before the current one (growth projection).
+    prev_len: usize,
 }
 
 impl<'p> Derivation<'p> {
@@ -92,7 +97,10 @@ impl<'p> Derivation<'p> {
             spare: ModuleStore::new(),
             index: ContextIndex::default(),
             steps: 0,
+            fast: None,
+            prev_len: 0,
         };
+        d.fast = Plan::new(&d.tab);
         d.decompose()?;
         mem::swap(&mut d.cur, &mut d.next);
         // cpfg interprets the axiom too before the first step reads it.
@@ -128,6 +136,40 @@ impl<'p> Derivation<'p> {
             "StartEach",
             hooks.start_each.as_ref(),
         )?;
+        // Only strings over ~1M modules can exhaust memory in one step;
+        // below that, reading /proc/meminfo would cost more than the step.
+        if self.cur.len() > 1 << 20 {
+            super::budget::check(
+                self.prev_len,
+                &self.cur,
+                self.st.step,
+                (self.tab.max_modules, self.tab.max_params),
+                super::budget::available_memory(),
+            )?;
+        }
+        self.prev_len = self.cur.len();
+        let fast_done = self
+            .fast
+            .as_ref()
+            .is_some_and(|f| f.step(&self.tab, &mut self.st.stack, &self.cur, &mut self.next));
+        if !fast_done {
+            self.general_step()?;
+        }
+        self.decompose()?;
+        mem::swap(&mut self.cur, &mut self.next);
+        self.steps += 1;
+        self.fill_queries();
+        let hooks = &self.tab.compiled.hooks;
+        run_hook(&self.tab, &mut self.st, "EndEach", hooks.end_each.as_ref())?;
+        if self.steps == self.tab.program.derivation_length {
+            run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
+        }
+        Ok(())
+    }
+
+    /// The main-table rewrite of [`step`](Derivation::step) by the general
+    /// engine (everything the fast path does not take).
+    fn general_step(&mut self) -> Result<(), DeriveError> {
         let idx = if self.tab.rules[0].has_context {
             self.index.build(&self.cur);
             Some(&self.index)
@@ -144,15 +186,6 @@ impl<'p> Derivation<'p> {
             0,
             &mut self.next,
         )?;
-        self.decompose()?;
-        mem::swap(&mut self.cur, &mut self.next);
-        self.steps += 1;
-        self.fill_queries();
-        let hooks = &self.tab.compiled.hooks;
-        run_hook(&self.tab, &mut self.st, "EndEach", hooks.end_each.as_ref())?;
-        if self.steps == self.tab.program.derivation_length {
-            run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
-        }
         Ok(())
     }
 
@@ -192,6 +225,34 @@ impl<'p> Derivation<'p> {
             self.cur.params[at..at + n].copy_from_slice(&v[..n]);
         }
         super::rewrite::store_params(&self.tab, &mut self.cur, 0);
+    }
+
+    fn with_fast_plan(mut self) -> Derivation<'p> {
+        self.fast = Plan::new(&self.tab);
+        self
+    }
+
+    /// Whether steps take the fast (and, for large strings, parallel)
+    /// path of `fast.rs`.
+    pub fn uses_fast_path(&self) -> bool {
+        self.fast.is_some()
+    }
+
+    /// Tests: always use the general engine.
+    #[doc(hidden)]
+    pub fn without_fast_path(mut self) -> Derivation<'p> {
+        self.fast = None;
+        self
+    }
+
+    /// Tests: rewrite strings of at least `n` modules in parallel (when
+    /// there is more than one thread).
+    #[doc(hidden)]
+    pub fn with_parallel_threshold(mut self, n: usize) -> Derivation<'p> {
+        if let Some(f) = &mut self.fast {
+            f.par_min = n;
+        }
+        self
     }
 
     /// The current string.
@@ -262,7 +323,10 @@ impl<'p> Derivation<'p> {
             spare: ModuleStore::new(),
             index: ContextIndex::default(),
             steps: cp.step,
-        })
+            fast: None,
+            prev_len: 0,
+        }
+        .with_fast_plan())
     }
 
     /// The homomorphism of the current string (see [`homomorphism`]).

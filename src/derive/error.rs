@@ -132,6 +132,19 @@ pub enum DeriveError {
         production: Option<SourceSpan>,
     },
 
+    #[error("step {step} would not fit in memory: about {modules} modules ({bytes} with the string before it), and {available} is available")]
+    #[diagnostic(
+        code(lsys::derive::too_large),
+        help("the size is projected from the growth of the last step; derive fewer steps, count the modules without building the string with `lsys derive --count`, or lower `--max-modules` (now {limit}) so that the derivation stops at a size of your choosing")
+    )]
+    TooLarge {
+        step: u32,
+        modules: u64,
+        bytes: String,
+        available: String,
+        limit: usize,
+    },
+
     #[error("the program has {count} module symbols; at most {limit} are supported")]
     #[diagnostic(
         code(lsys::derive::too_many_symbols),
@@ -150,7 +163,8 @@ impl DeriveError {
             | DeriveError::TableIndex { step, .. }
             | DeriveError::EndlessLoop { step, .. }
             | DeriveError::NotFinite { step, .. }
-            | DeriveError::BadProbability { step, .. } => Some(*step),
+            | DeriveError::BadProbability { step, .. }
+            | DeriveError::TooLarge { step, .. } => Some(*step),
             DeriveError::TooManySymbols { .. } => None,
         }
     }

@@ -52,13 +52,19 @@
 //!   [`DeriveOptions::max_modules`] modules or
 //!   [`DeriveOptions::max_params`] parameter values.
 
+mod budget;
+pub mod count;
 mod engine;
 pub mod error;
+mod fast;
 mod matching;
+mod parallel;
 mod rewrite;
 pub mod rng;
 pub mod store;
+mod template;
 
+pub use count::{count, Counts};
 pub use engine::{
     derive, derive_each, homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted,
 };

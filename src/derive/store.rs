@@ -148,7 +148,7 @@ impl ModuleStore {
                     if k > 0 {
                         buf.push(b',');
                     }
-                    write!(buf, "{v}")?;
+                    write_f64(&mut buf, *v)?;
                 }
                 buf.push(b')');
             }
@@ -189,6 +189,34 @@ impl ModuleStore {
             self.params.extend_from_slice(params);
         }
     }
+}
+
+/// Append `v` as Rust's `{}` prints it. Whole numbers (the usual
+/// parameters) are printed by hand: the general float formatter costs more
+/// than the rest of printing a module together.
+#[inline]
+fn write_f64(buf: &mut Vec<u8>, v: f64) -> io::Result<()> {
+    // Below 2^53 every whole f64 is exact and `{}` prints its digits with
+    // no fraction and no exponent; `-0.0` prints as `-0`.
+    if v.fract() == 0.0 && v.abs() < 9_007_199_254_740_992.0 {
+        if v.is_sign_negative() {
+            buf.push(b'-');
+        }
+        let mut n = v.abs() as u64;
+        let mut digits = [0u8; 20];
+        let mut k = digits.len();
+        loop {
+            k -= 1;
+            digits[k] = b'0' + (n % 10) as u8;
+            n /= 10;
+            if n == 0 {
+                break;
+            }
+        }
+        buf.extend_from_slice(&digits[k..]);
+        return Ok(());
+    }
+    write!(buf, "{v}")
 }
 
 impl Sink for ModuleStore {
@@ -283,6 +311,35 @@ impl ContextIndex {
                 }
                 _ => {}
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::write_f64;
+
+    #[test]
+    fn whole_numbers_print_as_display_does() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            25.0,
+            -123456789.0,
+            9_007_199_254_740_991.0,
+            -9_007_199_254_740_991.0,
+            9_007_199_254_740_992.0,
+            1e300,
+            0.5,
+            -2.25,
+            1e-7,
+            f64::MAX,
+        ] {
+            let mut b = Vec::new();
+            write_f64(&mut b, v).unwrap();
+            assert_eq!(String::from_utf8(b).unwrap(), format!("{v}"), "{v:e}");
         }
     }
 }

@@ -1,0 +1,95 @@
+//! Source to `.glb` (issue 6, W3, T and P): derive + turtle + mesh, then
+//! GLB assembly and writing the file, end to end; plus the meshing stage
+//! alone for W3 (modules of the derived string per second).
+
+mod common;
+
+use divan::counter::ItemsCount;
+use divan::{black_box, Bencher};
+use lsys::build::{self, BuildOptions};
+use lsys::pailou::{self, PailouType};
+use lsys::pipeline::Compilation;
+use lsys::resolve::Input;
+
+fn main() {
+    divan::main();
+}
+
+fn opts() -> BuildOptions {
+    BuildOptions {
+        derive: common::big(),
+        ..BuildOptions::default()
+    }
+}
+
+/// Build `c` and write the GLB to a temporary file; the file's size.
+fn to_glb_file(c: &Compilation, dir: &std::path::Path) -> usize {
+    let built = build::build(c, &opts()).expect("builds");
+    let bytes = lsys::export::gltf::to_glb(&built.scene).expect("exports");
+    std::fs::write(dir.join("out.glb"), &bytes).expect("writes");
+    bytes.len()
+}
+
+fn w3(bencher: Bencher, c: Compilation) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let n = build::build(&c, &opts()).expect("builds").modules;
+    bencher
+        .counter(ItemsCount::new(n))
+        .bench_local(|| black_box(to_glb_file(&c, dir.path())));
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn w3_w1_glb(bencher: Bencher) {
+    w3(bencher, common::w1());
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn w3_w2_glb(bencher: Bencher) {
+    w3(bencher, common::w2(18));
+}
+
+/// Meshing alone (tubes), modules of the string per second.
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn w3_w2_mesh_only(bencher: Bencher) {
+    let c = common::w2(18);
+    let built = build::build(&c, &opts()).expect("builds");
+    let palette = lsys::mesh::Palette::new(&c.program.turtle.palette);
+    let o = opts();
+    bencher
+        .counter(ItemsCount::new(built.modules))
+        .bench_local(|| {
+            black_box(
+                lsys::mesh::build_scene(
+                    &c.program,
+                    &built.drawing,
+                    &palette,
+                    &o.components,
+                    &o.mesh,
+                )
+                .expect("meshes"),
+            )
+        });
+}
+
+/// T: the Toukung side view with NTL = 18, source (compiled each time)
+/// to `.glb`.
+#[divan::bench(sample_count = 20)]
+fn t_toukung_side_glb(bencher: Bencher) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    bencher.bench_local(|| {
+        let c = common::compile(Input::Std("toukung_side".into()), &[("NTL", "18")]);
+        black_box(to_glb_file(&c, dir.path()))
+    });
+}
+
+/// P: the 6-5-15 Pailou, style to generated grammar to `.glb`.
+#[divan::bench(sample_count = 20)]
+fn p_pailou_6_5_15_glb(bencher: Bencher) {
+    let dir = tempfile::tempdir().expect("temp dir");
+    bencher.bench_local(|| {
+        let layout = pailou::style_layout("6-5-15", PailouType::Ridge).expect("style");
+        let input = pailou::input(&layout, PailouType::Ridge, "style 6-5-15", "pailou.lsys");
+        let c = common::compile(input, &[]);
+        black_box(to_glb_file(&c, dir.path()))
+    });
+}
