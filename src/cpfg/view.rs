@@ -86,3 +86,25 @@ pub fn load_functions(model: &Path) -> Result<Option<(PathBuf, Vec<SplineFn>)>, 
     }
     Ok(Some((view, out)))
 }
+
+/// The turning angle the view file gives (`angle factor: n` is 360/n
+/// degrees, `angle increment: d` is d degrees), computed in `f32` as cpfg
+/// reads it. `None` without a view file or either line.
+pub fn view_angle(model: &Path) -> Option<f64> {
+    let view = find_view_file(model)?;
+    let text = fs::read(&view).ok()?;
+    let text = String::from_utf8_lossy(&text);
+    let mut angle = None;
+    for line in text.lines() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        let value = rest.split_whitespace().next().and_then(|v| v.parse::<f32>().ok());
+        match (key.trim().to_ascii_lowercase().as_str(), value) {
+            ("angle factor", Some(n)) if n != 0.0 => angle = Some(f64::from(360.0f32 / n)),
+            ("angle increment", Some(d)) => angle = Some(f64::from(d)),
+            _ => {}
+        }
+    }
+    angle
+}

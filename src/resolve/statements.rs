@@ -76,6 +76,12 @@ impl Resolver {
         if s.turtle.dialect_given().is_none() {
             turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
         }
+        // A cpfg model's turning angle is in its view file.
+        if self.cpfg && turtle.angle.is_none() {
+            if let crate::source::Origin::Disk(p) = &self.sources.get(0).origin {
+                turtle.angle = crate::cpfg::view::view_angle(p);
+            }
+        }
         let vars = self.take_vars();
         let mut take = |t| tables.remove(&t).unwrap_or_default();
         Some(Program {
