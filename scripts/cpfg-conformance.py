@@ -60,6 +60,15 @@ def first_line(text):
     return ""
 
 
+def needs_environment(d):
+    """Whether cpfg runs the model with an environmental program (-e)."""
+    try:
+        spec = open(os.path.join(d, "specifications"), errors="replace").read()
+    except OSError:
+        return False
+    return any("cpfg" in l and re.search(r"\s-e\s", l) for l in spec.splitlines())
+
+
 def first_diff(a, b):
     n = min(len(a), len(b))
     for i in range(n):
@@ -118,21 +127,27 @@ def main():
                 k = first_diff(want, have)
                 results.append("differs at %d: want %r got %r (lengths %d/%d)" % (
                     k, want[max(0, k - 15):k + 25], have[max(0, k - 15):k + 25], len(want), len(have)))
-        rows.append((name, check, results[0], results[1]))
+        env = needs_environment(d)
+        rows.append((name, check, results[0], results[1], env))
     n = len(rows)
     n_check = sum(1 for r in rows if r[1] == "ok")
     with_exp = [r for r in rows if r[2] != "-" or r[3] != "-"]
-    exact = [r for r in with_exp if all(x in ("ok", "-") for x in r[2:])]
+    exact = [r for r in with_exp if all(x in ("ok", "-") for x in r[2:4])]
+    no_env = [r for r in with_exp if not r[4]]
+    exact_no_env = [r for r in exact if not r[4]]
     if a.markdown:
-        print("| model | check | string | homomorphism |")
-        print("|---|---|---|---|")
+        print("| model | check | string | homomorphism | -e |")
+        print("|---|---|---|---|---|")
         for r in rows:
-            print("| %s | %s |" % (r[0], " | ".join(x.replace("|", "\\|") for x in r[1:])))
+            cells = [x.replace("|", "\\|")[:90] for x in r[1:4]] + ["yes" if r[4] else ""]
+            print("| %s | %s |" % (r[0], " | ".join(cells)))
     else:
         for r in rows:
-            print("%-70s check: %s\n    str: %s\n    homo: %s" % r)
+            print("%-70s check: %s%s\n    str: %s\n    homo: %s" % (
+                r[0], r[1], "  [environmental program: out of scope]" if r[4] else "", r[2], r[3]))
     print("\n%d of %d models pass check; %d of %d models with expected strings derive them exactly"
           % (n_check, n, len(exact), len(with_exp)))
+    print("without environmental programs (-e): %d of %d" % (len(exact_no_env), len(no_env)))
     return 0 if len(exact) == len(with_exp) else 1
 
 

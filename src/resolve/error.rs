@@ -324,6 +324,19 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("`?E` modules are answered by an environmental program, which lsys does not run")]
+    #[diagnostic(
+        code(lsys::resolve::environment),
+        severity(Warning),
+        help("cpfg runs this model with `-e PROGRAM` (see its `specifications`); here `?E` keeps the parameters the grammar writes, so the parts of the model that respond to the environment derive differently")
+    )]
+    Environment {
+        #[source_code]
+        src: Src,
+        #[label("first `?E` here")]
+        span: SourceSpan,
+    },
+
     #[error("this production can never apply")]
     #[diagnostic(code(lsys::resolve::unreachable), severity(Warning))]
     Unreachable {

@@ -76,6 +76,12 @@ impl Resolver {
         if s.turtle.dialect_given().is_none() {
             turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
         }
+        if let Some(Some(span)) = self.symbols.get("?E").map(|id| self.symbols.list[id as usize].span) {
+            self.warn(ResolveError::Environment {
+                src: self.sources.named_source(span),
+                span: span.into(),
+            });
+        }
         // A cpfg model's turning angle is in its view file.
         if self.cpfg && turtle.angle.is_none() {
             if let crate::source::Origin::Disk(p) = &self.sources.get(0).origin {
