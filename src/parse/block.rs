@@ -39,8 +39,11 @@ fn blank(text: &str) -> String {
             i += 1;
         }
     }
+    // A backslash means nothing in a statement: cpfg's scanner passes over
+    // one (left, e.g., by a `#define f(x) \\` whose body starts on the
+    // next line).
     for c in out.iter_mut() {
-        if *c == b'\n' || *c == b'\r' {
+        if *c == b'\n' || *c == b'\r' || *c == b'\\' {
             *c = b' ';
         }
     }

@@ -441,6 +441,8 @@ fn describe(rule: Rule) -> Option<&'static str> {
         successor => "a successor",
         neg | sub => "`-`",
         pos | add => "`+`",
+        // Never worth suggesting.
+        stray_backslash => return None,
         not => "`!`",
         mul => "`*`",
         div => "`/`",

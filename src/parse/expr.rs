@@ -25,7 +25,10 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
         .op(Op::infix(Rule::mul, Assoc::Left)
             | Op::infix(Rule::div, Assoc::Left)
             | Op::infix(Rule::rem, Assoc::Left))
-        .op(Op::prefix(Rule::neg) | Op::prefix(Rule::pos) | Op::prefix(Rule::not))
+        .op(Op::prefix(Rule::neg)
+            | Op::prefix(Rule::pos)
+            | Op::prefix(Rule::not)
+            | Op::prefix(Rule::stray_backslash))
         .op(Op::infix(Rule::pow, Assoc::Right))
 });
 
@@ -79,7 +82,7 @@ impl Lower<'_> {
                 let rhs = rhs?;
                 let o = match op.as_rule() {
                     Rule::neg => UnaryOp::Neg,
-                    Rule::pos => UnaryOp::Pos,
+                    Rule::pos | Rule::stray_backslash => UnaryOp::Pos,
                     _ => UnaryOp::Not,
                 };
                 Ok(Expr {
@@ -114,6 +117,18 @@ impl Lower<'_> {
             .parse(parts.into_iter())
     }
 
+    /// An argument of a call or a module: an expression or a string.
+    pub fn arg(&self, a: Pair<Rule>) -> PResult<Expr> {
+        if a.as_rule() == Rule::string_lit {
+            Ok(Expr {
+                span: self.span(&a),
+                kind: ExprKind::Str(a.as_str().to_string()),
+            })
+        } else {
+            self.expr(a)
+        }
+    }
+
     fn primary(&self, p: Pair<Rule>) -> PResult<Expr> {
         let span = self.span(&p);
         let kind = match p.as_rule() {
@@ -140,16 +155,7 @@ impl Lower<'_> {
                 let name = self.ident(super::lower::next(&mut it));
                 let args = super::lower::next(&mut it)
                     .into_inner()
-                    .map(|a| {
-                        if a.as_rule() == Rule::string_lit {
-                            Ok(Expr {
-                                span: self.span(&a),
-                                kind: ExprKind::Str(a.as_str().to_string()),
-                            })
-                        } else {
-                            self.expr(a)
-                        }
-                    })
+                    .map(|a| self.arg(a))
                     .collect::<Result<_, _>>()?;
                 ExprKind::Call(name, args)
             }

@@ -320,7 +320,7 @@ impl Lower<'_> {
         };
         let args = inner
             .next()
-            .map(|a| a.into_inner().map(|e| self.expr(e)).collect())
+            .map(|a| a.into_inner().map(|e| self.arg(e)).collect())
             .transpose()?;
         Ok(ModuleTok {
             text,

@@ -389,3 +389,21 @@ impl Resolver {
         std::mem::take(&mut self.vars)
     }
 }
+
+impl Resolver {
+    /// A string module parameter (`@L(" %.f", c)`): cpfg keeps the string
+    /// in a table and the module carries its number, from 1; so does lsys.
+    pub(super) fn string_param(&mut self, s: &str, span: Span) -> Expr {
+        let at = match self.strings.iter().position(|t| t == s) {
+            Some(i) => i,
+            None => {
+                self.strings.push(s.to_string());
+                self.strings.len() - 1
+            }
+        };
+        Expr {
+            kind: ExprKind::Num((at + 1) as f64),
+            span,
+        }
+    }
+}

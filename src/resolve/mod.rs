@@ -70,6 +70,7 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         vars: cstmt::Vars::default(),
         cpfg: false,
         warned_at: Default::default(),
+        strings: Vec::new(),
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -128,6 +129,8 @@ pub(crate) struct Resolver {
     pub cpfg: bool,
     /// Unknown `@` commands already warned about (one warning per name).
     pub warned_at: std::collections::HashSet<String>,
+    /// Strings given as module parameters, numbered from 1 as cpfg does.
+    pub strings: Vec<String>,
 }
 
 impl Resolver {

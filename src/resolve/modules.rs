@@ -203,7 +203,13 @@ impl Resolver {
                 let sym = self.intern(&s.name, Some(s.span));
                 let args = s.args.unwrap_or(&[]);
                 self.check_arity(sym, args.len(), s.span);
-                let args = args.iter().filter_map(|a| self.expr(a, scope)).collect();
+                let args = args
+                    .iter()
+                    .filter_map(|a| match &a.kind {
+                        ast::ExprKind::Str(s) => Some(self.string_param(s, a.span)),
+                        _ => self.expr(a, scope),
+                    })
+                    .collect();
                 out.push(SuccModule {
                     sym,
                     args,
