@@ -79,6 +79,43 @@ pub struct Common {
     /// Override a #define for this run: -D NAME=VALUE (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    #[command(flatten)]
+    pub source: SourceArgs,
+}
+
+/// Where includes may come from and how deep input may nest (see
+/// docs/limits.md).
+#[derive(Args, Debug, Clone)]
+pub struct SourceArgs {
+    /// Also allow and search this folder for `#include "..."` (repeatable; after the including file's folder).
+    #[arg(long = "include-dir", value_name = "DIR")]
+    pub include_dir: Vec<PathBuf>,
+    /// Stop with an error when includes nest deeper than this many files.
+    #[arg(long, value_name = "N", default_value_t = crate::resolve::MAX_INCLUDE_DEPTH)]
+    pub max_include_depth: usize,
+    /// Stop with an error when `(` and `{` nest deeper than this (at most 4096).
+    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_NESTING,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_NESTING_CEILING as u64))]
+    pub max_nesting: usize,
+    /// Stop with an error when one expression has more operators than this (at most 100000).
+    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_OPERATORS,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_OPERATORS_CEILING as u64))]
+    pub max_operators: usize,
+}
+
+impl SourceArgs {
+    /// The compilation options these arguments ask for, with `defines`.
+    pub fn options(&self, defines: &[(String, String)]) -> crate::resolve::Options {
+        crate::resolve::Options {
+            defines: defines.to_vec(),
+            include_dirs: self.include_dir.clone(),
+            max_include_depth: self.max_include_depth,
+            parse: crate::parse::Limits {
+                max_nesting: self.max_nesting,
+                max_operators: self.max_operators,
+            },
+        }
+    }
 }
 
 /// How far and how to derive (shared by `derive`, `build` and `render`).

@@ -507,7 +507,10 @@ pub(crate) fn rewrite(
                     } else {
                         None
                     };
-                    rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                    // Up to 100 000 levels deep: never overflow the stack.
+                    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+                        rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                    })
                 });
                 st.levels[d] = level;
                 r?;

@@ -58,14 +58,15 @@ pub enum ParseError {
         offset: usize,
     },
 
-    #[error("{what} is more than {limit}")]
+    #[error("{what} is more than {limit} (the limit set by `{option}`)")]
     #[diagnostic(
         code(lsys::parse::too_deep),
-        help("lsys refuses such input rather than risk running out of stack; split the expression with #defines or a production with fewer levels")
+        help("lsys refuses such input rather than risk running out of stack; split the expression with #defines or a production with fewer levels, or raise the limit with `{option}` (see docs/limits.md)")
     )]
     TooDeep {
         what: String,
         limit: usize,
+        option: String,
         #[source_code]
         src: NamedSource<Arc<String>>,
         #[label("here")]
@@ -83,6 +84,21 @@ pub enum ParseError {
         #[source_code]
         src: NamedSource<Arc<String>>,
         #[label("a comment begins here, right after a module")]
+        span: SourceSpan,
+        offset: usize,
+    },
+
+    #[error("`{typed}:` is not a header; it would be read as a production")]
+    #[diagnostic(
+        code(lsys::parse::misspelt_header),
+        help("did you mean `{header}:`? (if this is a production, write it with an arrow: `{typed} --> ...`)")
+    )]
+    MisspeltHeader {
+        typed: String,
+        header: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("not a header keyword")]
         span: SourceSpan,
         offset: usize,
     },
@@ -110,6 +126,7 @@ impl ParseError {
             | ParseError::BadNumber { offset, .. }
             | ParseError::BadTableDim { offset, .. }
             | ParseError::TooDeep { offset, .. }
+            | ParseError::MisspeltHeader { offset, .. }
             | ParseError::SlashComment { offset, .. } => *offset,
         }
     }
@@ -312,14 +329,15 @@ fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
 }
 
 fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
-    let before = &line[..col.min(line.len())];
+    let before = line.get(..col.min(line.len())).unwrap_or(line);
     let code = line.trim_start();
     if line.contains("=>") {
         return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
     }
     if let Some(kw) = HEADERS.iter().find(|k| {
+        // `get`: the line may hold non-ASCII text where the keyword would end.
         code.len() > k.len()
-            && code[..k.len()].eq_ignore_ascii_case(k)
+            && code.get(..k.len()).is_some_and(|c| c.eq_ignore_ascii_case(k))
             && !code[k.len()..].trim_start().starts_with(':')
     }) {
         let typed = &code[..kw.len()];

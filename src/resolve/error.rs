@@ -61,10 +61,10 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
-    #[error("includes nested deeper than {limit} files")]
+    #[error("includes nested deeper than {limit} files (the limit)")]
     #[diagnostic(
         code(lsys::resolve::include_depth),
-        help("the include chain is longer than any grammar needs; look for a file that includes a chain of generated files")
+        help("this include would be file {} of the chain; look for a file that includes a chain of generated files, or raise the limit with `--max-include-depth N`", limit + 1)
     )]
     IncludeDepth {
         limit: usize,

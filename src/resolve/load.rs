@@ -13,7 +13,7 @@ use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
 use crate::stdlib;
 
 /// Includes nested deeper than this are refused (a runaway generator, not
-/// a grammar).
+/// a grammar); `--max-include-depth` changes it.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
 /// What to compile.
@@ -65,7 +65,7 @@ pub struct Loaded {
     pub warnings: Vec<Report>,
 }
 
-pub fn load(input: &Input) -> Result<Loaded, InputError> {
+pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> {
     let root = match input {
         Input::Path(p) => {
             let text = std::fs::read(p).map_err(|e| InputError::NotFound {
@@ -101,6 +101,16 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
     }
     .filter(|d| !d.as_os_str().is_empty())
     .unwrap_or_else(|| PathBuf::from("."));
+    // `--include-dir` folders are allowed roots too (a missing one
+    // allows nothing: it cannot be canonicalised, so nothing starts with it).
+    let mut roots = vec![std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone())];
+    roots.extend(
+        opts.include_dirs
+            .iter()
+            .filter_map(|d| std::fs::canonicalize(d).ok()),
+    );
+    let mut shown = vec![root_dir];
+    shown.extend(opts.include_dirs.iter().cloned());
     let mut loader = Loader {
         loaded: Loaded {
             sources: SourceMap::new(),
@@ -109,8 +119,11 @@ pub fn load(input: &Input) -> Result<Loaded, InputError> {
             warnings: Vec::new(),
         },
         stack: Vec::new(),
-        root_dir: std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone()),
-        root_shown: root_dir,
+        roots,
+        roots_shown: shown,
+        include_dirs: opts.include_dirs.clone(),
+        max_depth: opts.max_include_depth,
+        limits: opts.parse,
     };
     let id = loader.loaded.sources.add(root);
     loader.file(id);
@@ -121,10 +134,17 @@ struct Loader {
     loaded: Loaded,
     /// The include chain being loaded: (file, its identity for cycles).
     stack: Vec<(FileId, String)>,
-    /// Every included file must resolve (links followed) inside this.
-    root_dir: PathBuf,
-    /// The same folder as the user named it, for messages.
-    root_shown: PathBuf,
+    /// Every included file must resolve (links followed) inside one of
+    /// these: the top-level file's folder, then the `--include-dir`s.
+    roots: Vec<PathBuf>,
+    /// The same folders as the user named them, for messages.
+    roots_shown: Vec<PathBuf>,
+    /// `--include-dir`: searched after the including file's folder.
+    include_dirs: Vec<PathBuf>,
+    /// `--max-include-depth`.
+    max_depth: usize,
+    /// `--max-nesting`, `--max-operators`.
+    limits: parse::Limits,
 }
 
 impl Loader {
@@ -142,7 +162,7 @@ impl Loader {
     fn file(&mut self, id: FileId) {
         let file = self.loaded.sources.get(id).clone();
         self.stack.push((id, Self::identity(&file)));
-        let (ast, errors) = parse::parse(id, &file);
+        let (ast, errors) = parse::parse_limited(id, &file, self.limits);
         for e in errors {
             if crate::diag::is_error(&e) {
                 self.loaded.errors.push(Report::new(e));
@@ -166,11 +186,28 @@ impl Loader {
 
     fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
         let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
-        let full = base.join(path);
+        let mut full = base.join(path);
+        // Not beside the including file: the first `--include-dir` that has it.
+        if !full.exists() {
+            if let Some(found) = self
+                .include_dirs
+                .iter()
+                .map(|d| d.join(path))
+                .find(|p| p.exists())
+            {
+                full = found;
+            }
+        }
         if let Ok(real) = std::fs::canonicalize(&full) {
             // `real` is only compared, never shown: messages keep the
             // user's own relative paths.
-            if !real.starts_with(&self.root_dir) {
+            if !self.roots.iter().any(|r| real.starts_with(r)) {
+                let inside = self
+                    .roots_shown
+                    .iter()
+                    .map(|d| d.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" or ");
                 self.loaded
                     .errors
                     .push(Report::new(ResolveError::IncludeOutside {
@@ -178,9 +215,8 @@ impl Loader {
                         src: from.named_source(),
                         span: span.into(),
                         help: format!(
-                            "{} is not inside {} (links are followed); copy the file into that folder or below it",
+                            "{} is not inside {inside} (links are followed); copy the file into that folder or below it, or allow its folder with `--include-dir DIR`",
                             full.display(),
-                            self.root_shown.display()
                         ),
                     }));
                 return;
@@ -191,7 +227,7 @@ impl Loader {
             Err(e) => {
                 let help = if from.dir().is_some() {
                     format!(
-                        "the path is relative to the including file's folder; lsys looked for {}",
+                        "the path is relative to the including file's folder (then to each `--include-dir`); lsys looked for {}",
                         full.display()
                     )
                 } else {
@@ -253,11 +289,11 @@ impl Loader {
                 }));
             return;
         }
-        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+        if self.stack.len() >= self.max_depth {
             self.loaded
                 .errors
                 .push(Report::new(ResolveError::IncludeDepth {
-                    limit: MAX_INCLUDE_DEPTH,
+                    limit: self.max_depth,
                     src: from.named_source(),
                     span: span.into(),
                 }));

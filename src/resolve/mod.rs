@@ -26,10 +26,29 @@ use crate::parse::ast;
 use crate::source::{Origin, SourceFile, SourceMap, Span};
 
 /// Options of one compilation.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// `-D NAME=VALUE` overrides, in command-line order (the last wins).
     pub defines: Vec<(String, String)>,
+    /// `--include-dir DIR`: where `#include "f"` looks after the including
+    /// file's folder; files below them may be included too.
+    pub include_dirs: Vec<std::path::PathBuf>,
+    /// Longest chain of nested includes (`--max-include-depth`).
+    pub max_include_depth: usize,
+    /// Nesting and expression limits of the parser (`--max-nesting`,
+    /// `--max-operators`).
+    pub parse: crate::parse::Limits,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            defines: Vec::new(),
+            include_dirs: Vec::new(),
+            max_include_depth: MAX_INCLUDE_DEPTH,
+            parse: crate::parse::Limits::default(),
+        }
+    }
 }
 
 /// A resolved grammar and the warnings found on the way.
@@ -46,7 +65,7 @@ pub struct Failure {
 
 /// Resolves `input`. `Err(InputError)` when the root cannot be read at all.
 pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure>, InputError> {
-    let loaded = load::load(input)?;
+    let loaded = load::load(input, opts)?;
     let mut r = Resolver {
         sources: loaded.sources,
         errors: loaded.errors,
