@@ -55,6 +55,19 @@ pub enum InputError {
         help("the standard library has: {available}")
     )]
     UnknownStd { name: String, available: String },
+    #[error("{path} is not an L-system source: it holds NUL bytes, as binary and UTF-16 files do")]
+    #[diagnostic(
+        code(lsys::resolve::input_not_source),
+        help("give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8")
+    )]
+    NotSource { path: String },
+}
+
+/// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
+/// file is refused unread, so that no diagnostic shows its bytes. (Other
+/// invalid UTF-8, e.g. Latin-1 comments in old cpfg files, is read lossily.)
+fn is_binary(bytes: &[u8]) -> bool {
+    bytes.contains(&0)
 }
 
 /// Every file of one compilation and their statements in include order.
@@ -72,6 +85,11 @@ pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> 
                 path: p.display().to_string(),
                 cause: e.to_string(),
             })?;
+            if is_binary(&text) {
+                return Err(InputError::NotSource {
+                    path: p.display().to_string(),
+                });
+            }
             SourceFile::new(
                 p.display().to_string(),
                 Origin::Disk(p.clone()),
@@ -223,6 +241,16 @@ impl Loader {
             }
         }
         let text = match std::fs::read(&full) {
+            Ok(t) if is_binary(&t) => {
+                self.loaded
+                    .errors
+                    .push(Report::new(ResolveError::IncludeNotSource {
+                        path: path.to_string(),
+                        src: from.named_source(),
+                        span: span.into(),
+                    }));
+                return;
+            }
             Ok(t) => String::from_utf8_lossy(&t).into_owned(),
             Err(e) => {
                 let help = if from.dir().is_some() {
