@@ -178,7 +178,29 @@ impl ParseError {
         let (len, help) = typographic_help(&file.text, at)
             .map(|(len, h)| (len, Some(h)))
             .unwrap_or_else(|| {
-                let h = match file.text[at..].chars().next() {
+                let rest = &file.text[at..];
+                let digit_before = file.text[..at]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_ascii_digit());
+                let h = match rest.chars().next() {
+                    // `0,5`: a decimal comma, as many locales write it.
+                    Some(',')
+                        if digit_before
+                            && rest[1..].starts_with(|c: char| c.is_ascii_digit()) =>
+                    {
+                        Some("a decimal number is written with a point: `0.5`, not `0,5`".to_string())
+                    }
+                    Some('°') => Some(
+                        "angles are in degrees already: write the number without `°` (e.g. `angle: 25.7`)"
+                            .to_string(),
+                    ),
+                    // `#define N 5;`, `Axiom: F;` written C-style.
+                    Some(';') if rest[1..].trim_start_matches([' ', '\t', '\r']).starts_with('\n')
+                        || rest[1..].trim().is_empty() =>
+                    {
+                        Some("a statement ends at the end of its line: remove the `;`".to_string())
+                    }
                     _ if in_define => Some(
                         "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
                             .to_string(),
