@@ -359,7 +359,9 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     if let Some(kw) = HEADERS.iter().find(|k| {
         // `get`: the line may hold non-ASCII text where the keyword would end.
         code.len() > k.len()
-            && code.get(..k.len()).is_some_and(|c| c.eq_ignore_ascii_case(k))
+            && code
+                .get(..k.len())
+                .is_some_and(|c| c.eq_ignore_ascii_case(k))
             && !code[k.len()..].trim_start().starts_with(':')
     }) {
         let typed = &code[..kw.len()];

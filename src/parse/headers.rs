@@ -127,7 +127,10 @@ mod tests {
 
     #[test]
     fn misspelt_headers_are_named_and_others_left_alone() {
-        assert_eq!(found("derivation lenght: 5\n"), ["derivation lenght=derivation length"]);
+        assert_eq!(
+            found("derivation lenght: 5\n"),
+            ["derivation lenght=derivation length"]
+        );
         assert_eq!(found("  Axoim: F\n"), ["Axoim=axiom"]);
         // Headers, productions, short names and comments are not reported.
         assert!(found("Axiom: F\nderivation length: 2\nA : x > 1 --> B\nstem: F\n").is_empty());

@@ -58,7 +58,9 @@ pub enum InputError {
     #[error("{path} is not an L-system source: it holds NUL bytes, as binary and UTF-16 files do")]
     #[diagnostic(
         code(lsys::resolve::input_not_source),
-        help("give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8")
+        help(
+            "give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8"
+        )
     )]
     NotSource { path: String },
 }
