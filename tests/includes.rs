@@ -78,3 +78,48 @@ fn include_dirs_are_searched_after_the_including_folder_and_allowed() {
     assert!(err.contains("--include-dir"), "{err}");
     compile(&root, &[&lib]).unwrap();
 }
+
+/// The command line passes `--include-dir`, `--max-include-depth` and
+/// `--max-nesting` through to the compiler.
+#[test]
+fn the_command_line_options_reach_the_compiler() {
+    let tmp = tempfile::tempdir().unwrap();
+    let lib = tmp.path().join("lib");
+    write(&lib.join("common.lsys"), "#define LEN 3\n");
+    let root = tmp.path().join("grammar/main.lsys");
+    write(
+        &root,
+        "#include \"common.lsys\"\nderivation length: LEN\nAxiom: F((1))\nF --> FF\n",
+    );
+    let lsys = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+            .args(args)
+            .env("NO_COLOR", "1")
+            .output()
+            .unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    let root = root.to_str().unwrap();
+    let lib = lib.to_str().unwrap();
+    let (code, err) = lsys(&["check", root]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("include_not_found"), "{err}");
+    let (code, err) = lsys(&["check", "--include-dir", lib, root]);
+    assert_eq!(code, Some(0), "{err}");
+    let (code, err) = lsys(&[
+        "check",
+        "--include-dir",
+        lib,
+        "--max-include-depth",
+        "1",
+        root,
+    ]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("--max-include-depth"), "{err}");
+    let (code, err) = lsys(&["check", "--include-dir", lib, "--max-nesting", "1", root]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("--max-nesting"), "{err}");
+}
