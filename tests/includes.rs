@@ -123,3 +123,20 @@ fn the_command_line_options_reach_the_compiler() {
     assert_eq!(code, Some(65), "{err}");
     assert!(err.contains("--max-nesting"), "{err}");
 }
+
+/// A file larger than a grammar can be (a log, a disk image) is refused
+/// unread, as the grammar and as an include: nothing is loaded into memory.
+#[test]
+fn huge_files_are_refused_unread() {
+    let tmp = tempfile::tempdir().unwrap();
+    let big = tmp.path().join("big.lsys");
+    let f = std::fs::File::create(&big).unwrap();
+    f.set_len(lsys::resolve::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    let err = compile(&big, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::input_not_source"), "{err}");
+    assert!(err.contains("67108865 bytes long"), "{err}");
+    let root = tmp.path().join("main.lsys");
+    write(&root, "#include \"big.lsys\"\nAxiom: F\n");
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::include_not_source"), "{err}");
+}

@@ -11,15 +11,16 @@ type Src = NamedSource<Arc<String>>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum ResolveError {
-    /// The file holds NUL bytes: a binary (or UTF-16) file. Its text is
-    /// never shown in a diagnostic.
-    #[error("cannot include \"{path}\": it is not an L-system source (it holds NUL bytes, as binary and UTF-16 files do)")]
+    /// The file holds NUL bytes (a binary or UTF-16 file) or is too large
+    /// to be a grammar. Its text is never shown in a diagnostic.
+    #[error("cannot include \"{path}\": it is not an L-system source ({why})")]
     #[diagnostic(
         code(lsys::resolve::include_not_source),
         help("include only grammar text files; a UTF-16 file must be saved as UTF-8")
     )]
     IncludeNotSource {
         path: String,
+        why: String,
         #[source_code]
         src: Src,
         #[label("included here")]

@@ -55,14 +55,37 @@ pub enum InputError {
         help("the standard library has: {available}")
     )]
     UnknownStd { name: String, available: String },
-    #[error("{path} is not an L-system source: it holds NUL bytes, as binary and UTF-16 files do")]
+    #[error("{path} is not an L-system source: {why}")]
     #[diagnostic(
         code(lsys::resolve::input_not_source),
         help(
             "give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8"
         )
     )]
-    NotSource { path: String },
+    NotSource { path: String, why: String },
+}
+
+/// Larger files are not grammars (a log, a disk image): refused unread
+/// rather than loaded whole into memory.
+pub const MAX_SOURCE_BYTES: u64 = 64 << 20;
+
+/// Reads a source file: its bytes, or why it is not an L-system source
+/// (`Ok(Err(..))`), or the I/O error.
+fn read_source(path: &Path) -> std::io::Result<Result<Vec<u8>, String>> {
+    let len = std::fs::metadata(path)?.len();
+    if len > MAX_SOURCE_BYTES {
+        return Ok(Err(format!(
+            "it is {len} bytes long, more than the {} MiB a grammar file may have",
+            MAX_SOURCE_BYTES >> 20
+        )));
+    }
+    let bytes = std::fs::read(path)?;
+    if is_binary(&bytes) {
+        return Ok(Err(
+            "it holds NUL bytes, as binary and UTF-16 files do".to_string()
+        ));
+    }
+    Ok(Ok(bytes))
 }
 
 /// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
@@ -83,15 +106,15 @@ pub struct Loaded {
 pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> {
     let root = match input {
         Input::Path(p) => {
-            let text = std::fs::read(p).map_err(|e| InputError::NotFound {
-                path: p.display().to_string(),
-                cause: e.to_string(),
-            })?;
-            if is_binary(&text) {
-                return Err(InputError::NotSource {
+            let text = read_source(p)
+                .map_err(|e| InputError::NotFound {
                     path: p.display().to_string(),
-                });
-            }
+                    cause: e.to_string(),
+                })?
+                .map_err(|why| InputError::NotSource {
+                    path: p.display().to_string(),
+                    why,
+                })?;
             SourceFile::new(
                 p.display().to_string(),
                 Origin::Disk(p.clone()),
@@ -242,18 +265,19 @@ impl Loader {
                 return;
             }
         }
-        let text = match std::fs::read(&full) {
-            Ok(t) if is_binary(&t) => {
+        let text = match read_source(&full) {
+            Ok(Err(why)) => {
                 self.loaded
                     .errors
                     .push(Report::new(ResolveError::IncludeNotSource {
                         path: path.to_string(),
+                        why,
                         src: from.named_source(),
                         span: span.into(),
                     }));
                 return;
             }
-            Ok(t) => String::from_utf8_lossy(&t).into_owned(),
+            Ok(Ok(t)) => String::from_utf8_lossy(&t).into_owned(),
             Err(e) => {
                 let help = if from.dir().is_some() {
                     format!(

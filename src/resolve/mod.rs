@@ -20,7 +20,7 @@ use miette::Report;
 
 pub use error::ResolveError;
 pub use ir::*;
-pub use load::{Input, InputError, MAX_INCLUDE_DEPTH};
+pub use load::{Input, InputError, MAX_INCLUDE_DEPTH, MAX_SOURCE_BYTES};
 
 use crate::parse::ast;
 use crate::source::{Origin, SourceFile, SourceMap, Span};
