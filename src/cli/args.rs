@@ -168,13 +168,13 @@ pub struct ModelArgs {
 #[derive(Args, Debug)]
 pub struct LookArgs {
     /// Default turning angle in degrees (overrides the file's `angle:`; default 90).
-    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true, value_parser = finite)]
     pub angle: Option<f64>,
     /// Default step length (overrides the file's `step:`; default 1).
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", value_parser = finite)]
     pub step: Option<f64>,
     /// Initial line width, the tube diameter (overrides the file's `width:`; default 0.1).
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", value_parser = finite)]
     pub width: Option<f64>,
     /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
@@ -292,6 +292,15 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(format!("`{s}`: each side must be 1 to 16384 pixels"));
     }
     Ok((w, h))
+}
+
+/// A number that is finite (`--angle nan` would draw nothing sensible).
+fn finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err("must be a finite number".to_string()),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 fn parse_define(s: &str) -> Result<(String, String), String> {
