@@ -336,7 +336,14 @@ fn choose(
         }
         // Exactly one draw per decision.
         let u = st.rng.next_f64();
-        let total: f64 = st.weights.iter().map(|&(_, w)| w).sum();
+        let mut total: f64 = st.weights.iter().map(|&(_, w)| w).sum();
+        if total.is_infinite() {
+            // Finite weights whose sum overflows (`: 1e308` twice): scale
+            // them down so that they still share the draw in proportion.
+            let max = st.weights.iter().map(|&(_, w)| w).fold(0.0, f64::max);
+            st.weights.iter_mut().for_each(|(_, w)| *w /= max);
+            total = st.weights.iter().map(|&(_, w)| w).sum();
+        }
         if total <= 0.0 {
             return Ok(None);
         }
