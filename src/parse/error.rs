@@ -328,6 +328,13 @@ fn line_of(text: &str, at: usize) -> &str {
 /// Characters that arrive by copying from a PDF, with their ASCII forms.
 fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
     let c = text[at..].chars().next()?;
+    if c == '\u{FFFD}' {
+        // What lsys reads in place of bytes that are not UTF-8.
+        return Some((
+            c.len_utf8(),
+            "this byte is not UTF-8 (the file is probably in Latin-1 or another old encoding): save the file as UTF-8, or write the name in ASCII".to_string(),
+        ));
+    }
     let ascii = match c {
         '—' | '–' | '‐' | '‑' => "-",
         '×' | '·' | '∗' => "*",
