@@ -38,12 +38,36 @@ fn fixture_defines(text: &str) -> Vec<(String, String)> {
         .collect()
 }
 
+/// A limit a fixture sets on a `// --max-NAME N` line (so that a fixture
+/// can hit a limit without being huge), e.g. `// --max-triangles 100`.
+fn fixture_limit(text: &str, option: &str) -> Option<usize> {
+    text.lines()
+        .filter_map(|l| l.trim().strip_prefix("// "))
+        .filter_map(|l| l.strip_prefix(option))
+        .find_map(|v| v.trim().parse().ok())
+}
+
+/// Reads a fixture, lossily when it is not UTF-8 (as lsys reads files).
+fn read_fixture(path: &Path) -> String {
+    String::from_utf8_lossy(&std::fs::read(path).unwrap()).into_owned()
+}
+
 /// Compiles a fixture: the compilation, or every diagnostic rendered.
 fn compile(path: &Path) -> Result<pipeline::Compilation, String> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let opts = Options {
+    let text = read_fixture(path);
+    let mut opts = Options {
         defines: fixture_defines(&text),
+        ..Options::default()
     };
+    if let Some(n) = fixture_limit(&text, "--max-include-depth") {
+        opts.max_include_depth = n;
+    }
+    if let Some(n) = fixture_limit(&text, "--max-nesting") {
+        opts.parse.max_nesting = n;
+    }
+    if let Some(n) = fixture_limit(&text, "--max-operators") {
+        opts.parse.max_operators = n;
+    }
     match pipeline::compile(&Input::Path(rel(path).into()), &opts) {
         Ok(c) => Ok(c),
         Err(Failure::Input(e)) => Err(lsys::diag::render_plain(&e)),
@@ -71,9 +95,14 @@ fn warnings(c: &pipeline::Compilation) -> String {
 fn parse() {
     insta::glob!("fixtures/parse/*/*.lsys", |path| {
         let name = rel(path);
-        let text = std::fs::read_to_string(path).unwrap();
+        let text = read_fixture(path);
+        let limits = lsys::parse::Limits {
+            max_nesting: fixture_limit(&text, "--max-nesting").unwrap_or(lsys::parse::MAX_NESTING),
+            max_operators: fixture_limit(&text, "--max-operators")
+                .unwrap_or(lsys::parse::MAX_OPERATORS),
+        };
         let file = SourceFile::new(name.clone(), Origin::Disk(name.clone().into()), text);
-        let (ast, errors) = lsys::parse::parse(0, &file);
+        let (ast, errors) = lsys::parse::parse_limited(0, &file, limits);
         assert_eq!(
             expect_ok(path),
             errors.is_empty(),
@@ -131,8 +160,11 @@ fn derive() {
     insta::glob!("fixtures/derive/*/*.lsys", |path| {
         let c = compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
         let (p, code) = (&c.program, &c.compiled);
+        let text = read_fixture(path);
         let opts = DeriveOptions {
-            max_modules: 10_000,
+            max_modules: fixture_limit(&text, "--max-modules").unwrap_or(10_000),
+            max_params: fixture_limit(&text, "--max-params")
+                .unwrap_or(DeriveOptions::default().max_params),
             ..DeriveOptions::default()
         };
         let mut out = warnings(&c);
@@ -186,12 +218,18 @@ fn derive() {
 #[test]
 fn turtle() {
     insta::glob!("fixtures/turtle/*/*.lsys", |path| {
+        let text = read_fixture(path);
         let out = outcome_or_runtime(path, |c| {
             let opts = lsys::build::BuildOptions {
                 components: lsys::mesh::ComponentSearch {
                     grammar_dir: Some(Path::new(&rel(path)).parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
                     within: Vec::new(),
+                },
+                mesh: lsys::mesh::MeshOptions {
+                    max_triangles: fixture_limit(&text, "--max-triangles")
+                        .unwrap_or(lsys::mesh::MeshOptions::default().max_triangles),
+                    ..Default::default()
                 },
                 ..Default::default()
             };

@@ -79,6 +79,43 @@ pub struct Common {
     /// Override a #define for this run: -D NAME=VALUE (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     pub define: Vec<(String, String)>,
+    #[command(flatten)]
+    pub source: SourceArgs,
+}
+
+/// Where includes may come from and how deep input may nest (see
+/// docs/limits.md).
+#[derive(Args, Debug, Clone)]
+pub struct SourceArgs {
+    /// Also allow and search this folder for `#include "..."` (repeatable; after the including file's folder).
+    #[arg(long = "include-dir", value_name = "DIR")]
+    pub include_dir: Vec<PathBuf>,
+    /// Stop with an error when includes nest deeper than this many files.
+    #[arg(long, value_name = "N", default_value_t = crate::resolve::MAX_INCLUDE_DEPTH)]
+    pub max_include_depth: usize,
+    /// Stop with an error when `(` and `{` nest deeper than this (at most 4096).
+    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_NESTING,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_NESTING_CEILING as u64))]
+    pub max_nesting: usize,
+    /// Stop with an error when one expression has more operators than this (at most 100000).
+    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_OPERATORS,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_OPERATORS_CEILING as u64))]
+    pub max_operators: usize,
+}
+
+impl SourceArgs {
+    /// The compilation options these arguments ask for, with `defines`.
+    pub fn options(&self, defines: &[(String, String)]) -> crate::resolve::Options {
+        crate::resolve::Options {
+            defines: defines.to_vec(),
+            include_dirs: self.include_dir.clone(),
+            max_include_depth: self.max_include_depth,
+            parse: crate::parse::Limits {
+                max_nesting: self.max_nesting,
+                max_operators: self.max_operators,
+            },
+        }
+    }
 }
 
 /// How far and how to derive (shared by `derive`, `build` and `render`).
@@ -134,13 +171,13 @@ pub struct ModelArgs {
 #[derive(Args, Debug)]
 pub struct LookArgs {
     /// Default turning angle in degrees (overrides the file's `angle:`; default 90).
-    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+    #[arg(long, value_name = "DEGREES", allow_negative_numbers = true, value_parser = finite)]
     pub angle: Option<f64>,
     /// Default step length (overrides the file's `step:`; default 1).
-    #[arg(long, value_name = "D")]
+    #[arg(long, value_name = "D", value_parser = finite)]
     pub step: Option<f64>,
     /// Initial line width, the tube diameter (overrides the file's `width:`; default 0.1).
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", value_parser = finite)]
     pub width: Option<f64>,
     /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
@@ -258,6 +295,15 @@ fn parse_size(s: &str) -> Result<(u32, u32), String> {
         return Err(format!("`{s}`: each side must be 1 to 16384 pixels"));
     }
     Ok((w, h))
+}
+
+/// A number that is finite (`--angle nan` would draw nothing sensible).
+fn finite(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err("must be a finite number".to_string()),
+        Err(e) => Err(e.to_string()),
+    }
 }
 
 fn parse_define(s: &str) -> Result<(String, String), String> {

@@ -54,20 +54,18 @@ pub(super) fn report(d: &dyn Diagnostic, color: bool) {
 /// Compiles, printing warnings; on failure prints every diagnostic and
 /// returns the exit code.
 pub(super) fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
-    compile_input(&Input::from_arg(&c.file), &c.file, &c.define, color)
+    let opts = c.source.options(&c.define);
+    compile_input(&Input::from_arg(&c.file), &c.file, &opts, color)
 }
 
-/// Compiles `input` (named `name` in the summary line) with `-D` overrides.
+/// Compiles `input` (named `name` in the summary line) with `opts`.
 pub(super) fn compile_input(
     input: &Input,
     name: &str,
-    defines: &[(String, String)],
+    opts: &Options,
     color: bool,
 ) -> Result<Compilation, i32> {
-    let opts = Options {
-        defines: defines.to_vec(),
-    };
-    match pipeline::compile(input, &opts) {
+    match pipeline::compile(input, opts) {
         Ok(comp) => {
             for w in &comp.warnings {
                 report(w.as_ref(), color);

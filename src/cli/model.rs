@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use super::args::{
     BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
-    ViewArg,
+    SourceArgs, ViewArg,
 };
 use super::commands::{compile_input, report};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
@@ -161,6 +161,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         input,
         name: &name,
         defines: &defines,
+        source: None,
         run: &p.run,
         look: &p.look,
         collisions: true,
@@ -174,6 +175,8 @@ pub(super) struct Job<'a> {
     /// How messages name the grammar.
     name: &'a str,
     defines: &'a [(String, String)],
+    /// `--include-dir`, `--max-include-depth`, ...; `None` takes the defaults.
+    source: Option<&'a SourceArgs>,
     run: &'a DeriveRun,
     look: &'a LookArgs,
     /// Report interpenetrating components.
@@ -186,6 +189,7 @@ pub(super) fn model_job(m: &ModelArgs) -> Job<'_> {
         input: Input::from_arg(&m.common.file),
         name: &m.common.file,
         defines: &m.common.define,
+        source: Some(&m.common.source),
         run: &m.run,
         look: &m.look,
         collisions: m.look.collisions,
@@ -263,7 +267,14 @@ pub(super) fn build_once(
     report_as: Report,
 ) -> Outcome {
     let t0 = Instant::now();
-    let comp = match compile_input(&m.input, m.name, m.defines, color) {
+    let opts = match m.source {
+        Some(s) => s.options(m.defines),
+        None => crate::resolve::Options {
+            defines: m.defines.to_vec(),
+            ..Default::default()
+        },
+    };
+    let comp = match compile_input(&m.input, m.name, &opts, color) {
         Ok(c) => c,
         Err(code) => {
             return Outcome {

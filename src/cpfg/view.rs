@@ -99,7 +99,10 @@ pub fn view_angle(model: &Path) -> Option<f64> {
         let Some((key, rest)) = line.split_once(':') else {
             continue;
         };
-        let value = rest.split_whitespace().next().and_then(|v| v.parse::<f32>().ok());
+        let value = rest
+            .split_whitespace()
+            .next()
+            .and_then(|v| v.parse::<f32>().ok());
         match (key.trim().to_ascii_lowercase().as_str(), value) {
             ("angle factor", Some(n)) if n != 0.0 => angle = Some(f64::from(360.0f32 / n)),
             ("angle increment", Some(d)) => angle = Some(f64::from(d)),

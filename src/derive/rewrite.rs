@@ -402,7 +402,14 @@ fn choose(
         }
         // Exactly one draw per decision.
         let u = st.rng.next_f64();
-        let total: f64 = st.weights.iter().map(|&(_, w)| w).sum();
+        let mut total: f64 = st.weights.iter().map(|&(_, w)| w).sum();
+        if total.is_infinite() {
+            // Finite weights whose sum overflows (`: 1e308` twice): scale
+            // them down so that they still share the draw in proportion.
+            let max = st.weights.iter().map(|&(_, w)| w).fold(0.0, f64::max);
+            st.weights.iter_mut().for_each(|(_, w)| *w /= max);
+            total = st.weights.iter().map(|&(_, w)| w).sum();
+        }
         if total <= 0.0 {
             return Ok(None);
         }
@@ -606,7 +613,10 @@ pub(crate) fn rewrite(
                     } else {
                         None
                     };
-                    rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                    // Up to 100 000 levels deep: never overflow the stack.
+                    stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
+                        rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                    })
                 });
                 st.levels[d] = level;
                 r?;

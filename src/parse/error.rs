@@ -58,14 +58,15 @@ pub enum ParseError {
         offset: usize,
     },
 
-    #[error("{what} is more than {limit}")]
+    #[error("{what} is more than {limit} (the limit set by `{option}`)")]
     #[diagnostic(
         code(lsys::parse::too_deep),
-        help("lsys refuses such input rather than risk running out of stack; split the expression with #defines or a production with fewer levels")
+        help("lsys refuses such input rather than risk running out of stack; split the expression with #defines or a production with fewer levels, or raise the limit with `{option}` (see docs/limits.md)")
     )]
     TooDeep {
         what: String,
         limit: usize,
+        option: String,
         #[source_code]
         src: NamedSource<Arc<String>>,
         #[label("here")]
@@ -83,6 +84,21 @@ pub enum ParseError {
         #[source_code]
         src: NamedSource<Arc<String>>,
         #[label("a comment begins here, right after a module")]
+        span: SourceSpan,
+        offset: usize,
+    },
+
+    #[error("`{typed}:` is not a header; it would be read as a production")]
+    #[diagnostic(
+        code(lsys::parse::misspelt_header),
+        help("did you mean `{header}:`? (if this is a production, write it with an arrow: `{typed} --> ...`)")
+    )]
+    MisspeltHeader {
+        typed: String,
+        header: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("not a header keyword")]
         span: SourceSpan,
         offset: usize,
     },
@@ -110,6 +126,7 @@ impl ParseError {
             | ParseError::BadNumber { offset, .. }
             | ParseError::BadTableDim { offset, .. }
             | ParseError::TooDeep { offset, .. }
+            | ParseError::MisspeltHeader { offset, .. }
             | ParseError::SlashComment { offset, .. } => *offset,
         }
     }
@@ -161,7 +178,29 @@ impl ParseError {
         let (len, help) = typographic_help(&file.text, at)
             .map(|(len, h)| (len, Some(h)))
             .unwrap_or_else(|| {
-                let h = match file.text[at..].chars().next() {
+                let rest = &file.text[at..];
+                let digit_before = file.text[..at]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_ascii_digit());
+                let h = match rest.chars().next() {
+                    // `0,5`: a decimal comma, as many locales write it.
+                    Some(',')
+                        if digit_before
+                            && rest[1..].starts_with(|c: char| c.is_ascii_digit()) =>
+                    {
+                        Some("a decimal number is written with a point: `0.5`, not `0,5`".to_string())
+                    }
+                    Some('°') => Some(
+                        "angles are in degrees already: write the number without `°` (e.g. `angle: 25.7`)"
+                            .to_string(),
+                    ),
+                    // `#define N 5;`, `Axiom: F;` written C-style.
+                    Some(';') if rest[1..].trim_start_matches([' ', '\t', '\r']).starts_with('\n')
+                        || rest[1..].trim().is_empty() =>
+                    {
+                        Some("a statement ends at the end of its line: remove the `;`".to_string())
+                    }
                     _ if in_define => Some(
                         "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
                             .to_string(),
@@ -289,6 +328,13 @@ fn line_of(text: &str, at: usize) -> &str {
 /// Characters that arrive by copying from a PDF, with their ASCII forms.
 fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
     let c = text[at..].chars().next()?;
+    if c == '\u{FFFD}' {
+        // What lsys reads in place of bytes that are not UTF-8.
+        return Some((
+            c.len_utf8(),
+            "this byte is not UTF-8 (the file is probably in Latin-1 or another old encoding): save the file as UTF-8, or write the name in ASCII".to_string(),
+        ));
+    }
     let ascii = match c {
         '—' | '–' | '‐' | '‑' => "-",
         '×' | '·' | '∗' => "*",
@@ -312,14 +358,17 @@ fn typographic_help(text: &str, at: usize) -> Option<(usize, String)> {
 }
 
 fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
-    let before = &line[..col.min(line.len())];
+    let before = line.get(..col.min(line.len())).unwrap_or(line);
     let code = line.trim_start();
     if line.contains("=>") {
         return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
     }
     if let Some(kw) = HEADERS.iter().find(|k| {
+        // `get`: the line may hold non-ASCII text where the keyword would end.
         code.len() > k.len()
-            && code[..k.len()].eq_ignore_ascii_case(k)
+            && code
+                .get(..k.len())
+                .is_some_and(|c| c.eq_ignore_ascii_case(k))
             && !code[k.len()..].trim_start().starts_with(':')
     }) {
         let typed = &code[..kw.len()];

@@ -10,6 +10,7 @@ pub mod ast;
 mod block;
 mod error;
 mod expr;
+mod headers;
 mod lower;
 
 use pest::Parser;
@@ -23,17 +24,41 @@ use crate::source::{FileId, SourceFile, Span};
 #[grammar = "../grammar/lsys.pest"]
 pub(crate) struct LsysParser;
 
-/// Deepest nesting of `(` and `{` a file may have.
+/// Deepest nesting of `(` and `{` a file may have (`--max-nesting`).
 pub const MAX_NESTING: usize = 256;
 /// Most operators one expression (a parenthesised argument list or a
-/// `#define` line) may have.
+/// `#define` line) may have (`--max-operators`).
 pub const MAX_OPERATORS: usize = 2000;
+/// The options above may raise their limits this far and no further: the
+/// CLI's 256 MiB stack holds this much recursion with room to spare.
+pub const MAX_NESTING_CEILING: usize = 4096;
+pub const MAX_OPERATORS_CEILING: usize = 100_000;
+
+/// How deep and how long input the parser accepts (see [`too_deep`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Limits {
+    /// Deepest nesting of `(` and `{` (`--max-nesting`).
+    pub max_nesting: usize,
+    /// Most operators in one expression (`--max-operators`).
+    pub max_operators: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            max_nesting: MAX_NESTING,
+            max_operators: MAX_OPERATORS,
+        }
+    }
+}
 
 /// Finds input deep enough to exhaust the stack of the recursive parts of
 /// the compiler (the PEG, the Pratt parser, resolve and folding), before
 /// any of them runs: nesting of `(` and `{` deeper than [`MAX_NESTING`],
 /// or an expression with more than [`MAX_OPERATORS`] operators.
-fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
+fn too_deep(file: &SourceFile, file_id: FileId, limits: Limits) -> Option<ParseError> {
+    let max_nesting = limits.max_nesting.min(MAX_NESTING_CEILING);
+    let max_operators = limits.max_operators.min(MAX_OPERATORS_CEILING);
     let text = file.text.as_str();
     let b = text.as_bytes();
     let (mut depth, mut ops, mut in_define) = (0usize, 0usize, false);
@@ -41,10 +66,11 @@ fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
     let mut i = 0;
     while i < b.len() {
         let c = b[i];
-        let err = |what: &str, limit: usize| {
+        let err = |what: &str, limit: usize, option: &str| {
             Some(ParseError::TooDeep {
                 what: what.to_string(),
                 limit,
+                option: option.to_string(),
                 src: file.named_source(),
                 span: Span::new(file_id, i, i + 1).into(),
                 offset: i,
@@ -78,8 +104,12 @@ fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
             }
             b'(' | b'{' => {
                 depth += 1;
-                if depth > MAX_NESTING {
-                    return err("nesting of parentheses and braces", MAX_NESTING);
+                if depth > max_nesting {
+                    return err(
+                        "nesting of parentheses and braces",
+                        max_nesting,
+                        "--max-nesting",
+                    );
                 }
             }
             b')' | b'}' => {
@@ -93,8 +123,12 @@ fn too_deep(file: &SourceFile, file_id: FileId) -> Option<ParseError> {
                 if depth > 0 || in_define =>
             {
                 ops += 1;
-                if ops > MAX_OPERATORS {
-                    return err("the number of operators in one expression", MAX_OPERATORS);
+                if ops > max_operators {
+                    return err(
+                        "the number of operators in one expression",
+                        max_operators,
+                        "--max-operators",
+                    );
                 }
             }
             _ => {}
@@ -137,11 +171,21 @@ fn slash_comments(file: &SourceFile, file_id: FileId) -> Vec<ParseError> {
 /// Parses one file. Always returns a tree (of the statements that parsed)
 /// together with its errors and warnings (see [`crate::diag::is_error`]).
 pub fn parse(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>) {
-    if let Some(e) = too_deep(file, file_id) {
+    parse_limited(file_id, file, Limits::default())
+}
+
+/// [`parse`] with the nesting and expression limits of `limits`.
+pub fn parse_limited(
+    file_id: FileId,
+    file: &SourceFile,
+    limits: Limits,
+) -> (ast::File, Vec<ParseError>) {
+    if let Some(e) = too_deep(file, file_id, limits) {
         return (ast::File { items: Vec::new() }, vec![e]);
     }
     let (file_ast, mut errors) = parse_statements(file_id, file);
     errors.extend(slash_comments(file, file_id));
+    errors.extend(headers::misspelt_headers(file, file_id));
     (file_ast, errors)
 }
 
@@ -201,7 +245,7 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
 
 /// Parses the value of a `-D NAME=VALUE` override or a REPL expression.
 pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<ParseError>> {
-    if let Some(e) = too_deep(file, file_id) {
+    if let Some(e) = too_deep(file, file_id, Limits::default()) {
         return Err(Box::new(e));
     }
     let text = file.text.as_str();
@@ -229,7 +273,7 @@ pub fn parse_define_value(
     file_id: FileId,
     file: &SourceFile,
 ) -> Result<Result<Vec<ast::Expr>, ast::Expr>, Box<ParseError>> {
-    if let Some(e) = too_deep(file, file_id) {
+    if let Some(e) = too_deep(file, file_id, Limits::default()) {
         return Err(Box::new(e));
     }
     match LsysParser::parse(Rule::define_value, file.text.as_str()) {

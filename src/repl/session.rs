@@ -257,6 +257,7 @@ impl Session {
     ) -> Result<Compilation, String> {
         let opts = Options {
             defines: overrides.to_vec(),
+            ..Options::default()
         };
         match pipeline::compile(&source.input(text), &opts) {
             Ok(c) => Ok(c),

@@ -22,11 +22,13 @@ pub(crate) struct Preprocessed {
     pub ids: HashMap<FileId, usize>,
 }
 
-/// Finds `#include "x"` files beside the including file, inside the root
-/// folder (links followed), as the loader does for `.lsys` files.
+/// Finds `#include "x"` files beside the including file, then in the
+/// `--include-dir`s, inside the allowed folders (links followed), as the
+/// loader does for `.lsys` files.
 struct IncludeFiles<'a> {
-    root_dir: &'a Path,
-    root_shown: &'a Path,
+    roots: &'a [PathBuf],
+    roots_shown: &'a [PathBuf],
+    include_dirs: &'a [PathBuf],
 }
 
 impl preprocess::Resolver for IncludeFiles<'_> {
@@ -41,18 +43,38 @@ impl preprocess::Resolver for IncludeFiles<'_> {
             .parent()
             .map(Path::to_path_buf)
             .unwrap_or_default();
-        let full = base.join(name);
+        let beside = base.join(name);
+        let full = if beside.exists() {
+            beside
+        } else {
+            self.include_dirs
+                .iter()
+                .map(|d| d.join(name))
+                .find(|p| p.exists())
+                .unwrap_or(beside)
+        };
         if let Ok(real) = std::fs::canonicalize(&full) {
-            if !real.starts_with(self.root_dir) {
+            if !self.roots.iter().any(|r| real.starts_with(r)) {
+                let shown: Vec<String> = self
+                    .roots_shown
+                    .iter()
+                    .map(|p| p.display().to_string())
+                    .collect();
                 return Err(format!(
-                    "{} is not inside {} (links are followed); copy the file into that folder or below it",
+                    "{} is not inside {} (links are followed); copy the file into that folder or below it, or name its folder with --include-dir",
                     full.display(),
-                    self.root_shown.display()
+                    shown.join(" or ")
                 ));
             }
         }
         let text =
             std::fs::read(&full).map_err(|e| format!("cannot read {}: {e}", full.display()))?;
+        if text.contains(&0) {
+            return Err(format!(
+                "{} holds NUL bytes (a binary or UTF-16 file), so it is not read",
+                full.display()
+            ));
+        }
         Ok(RawFile {
             name: full.display().to_string(),
             key: full,
@@ -80,11 +102,18 @@ impl Loader {
         };
         let opts = preprocess::Options {
             defines: defines.to_vec(),
+            max_include_depth: self.max_depth,
             ..Default::default()
         };
+        let (roots, shown, dirs) = (
+            self.roots.clone(),
+            self.roots_shown.clone(),
+            self.include_dirs.clone(),
+        );
         let mut files = IncludeFiles {
-            root_dir: &self.root_dir.clone(),
-            root_shown: &self.root_shown.clone(),
+            roots: &roots,
+            roots_shown: &shown,
+            include_dirs: &dirs,
         };
         let (out, errors) = preprocess::preprocess(raw, &mut files, &opts);
         for e in errors {

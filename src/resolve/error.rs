@@ -11,6 +11,22 @@ type Src = NamedSource<Arc<String>>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum ResolveError {
+    /// The file holds NUL bytes (a binary or UTF-16 file) or is too large
+    /// to be a grammar. Its text is never shown in a diagnostic.
+    #[error("cannot include \"{path}\": it is not an L-system source ({why})")]
+    #[diagnostic(
+        code(lsys::resolve::include_not_source),
+        help("include only grammar text files; a UTF-16 file must be saved as UTF-8")
+    )]
+    IncludeNotSource {
+        path: String,
+        why: String,
+        #[source_code]
+        src: Src,
+        #[label("included here")]
+        span: SourceSpan,
+    },
+
     #[error("cannot include \"{path}\": {cause}")]
     #[diagnostic(code(lsys::resolve::include_not_found))]
     IncludeNotFound {
@@ -61,10 +77,10 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
-    #[error("includes nested deeper than {limit} files")]
+    #[error("includes nested deeper than {limit} files (the limit)")]
     #[diagnostic(
         code(lsys::resolve::include_depth),
-        help("the include chain is longer than any grammar needs; look for a file that includes a chain of generated files")
+        help("this include would be file {} of the chain; look for a file that includes a chain of generated files, or raise the limit with `--max-include-depth N`", limit + 1)
     )]
     IncludeDepth {
         limit: usize,

@@ -13,7 +13,7 @@ use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
 use crate::stdlib;
 
 /// Includes nested deeper than this are refused (a runaway generator, not
-/// a grammar).
+/// a grammar); `--max-include-depth` changes it.
 pub const MAX_INCLUDE_DEPTH: usize = 64;
 
 /// What to compile.
@@ -55,6 +55,44 @@ pub enum InputError {
         help("the standard library has: {available}")
     )]
     UnknownStd { name: String, available: String },
+    #[error("{path} is not an L-system source: {why}")]
+    #[diagnostic(
+        code(lsys::resolve::input_not_source),
+        help(
+            "give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8"
+        )
+    )]
+    NotSource { path: String, why: String },
+}
+
+/// Larger files are not grammars (a log, a disk image): refused unread
+/// rather than loaded whole into memory.
+pub const MAX_SOURCE_BYTES: u64 = 64 << 20;
+
+/// Reads a source file: its bytes, or why it is not an L-system source
+/// (`Ok(Err(..))`), or the I/O error.
+fn read_source(path: &Path) -> std::io::Result<Result<Vec<u8>, String>> {
+    let len = std::fs::metadata(path)?.len();
+    if len > MAX_SOURCE_BYTES {
+        return Ok(Err(format!(
+            "it is {len} bytes long, more than the {} MiB a grammar file may have",
+            MAX_SOURCE_BYTES >> 20
+        )));
+    }
+    let bytes = std::fs::read(path)?;
+    if is_binary(&bytes) {
+        return Ok(Err(
+            "it holds NUL bytes, as binary and UTF-16 files do".to_string()
+        ));
+    }
+    Ok(Ok(bytes))
+}
+
+/// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
+/// file is refused unread, so that no diagnostic shows its bytes. (Other
+/// invalid UTF-8, e.g. Latin-1 comments in old cpfg files, is read lossily.)
+fn is_binary(bytes: &[u8]) -> bool {
+    bytes.contains(&0)
 }
 
 /// Every file of one compilation and their statements in include order.
@@ -69,14 +107,20 @@ pub struct Loaded {
 }
 
 /// Loads `input` and what it includes. A cpfg file (`.l`) goes through the
-/// C preprocessor first, with `defines` (`-D`) defined before its first line.
-pub fn load(input: &Input, defines: &[(String, String)]) -> Result<Loaded, InputError> {
+/// C preprocessor first, with the `-D` definitions defined before its
+/// first line.
+pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> {
     let root = match input {
         Input::Path(p) => {
-            let text = std::fs::read(p).map_err(|e| InputError::NotFound {
-                path: p.display().to_string(),
-                cause: e.to_string(),
-            })?;
+            let text = read_source(p)
+                .map_err(|e| InputError::NotFound {
+                    path: p.display().to_string(),
+                    cause: e.to_string(),
+                })?
+                .map_err(|why| InputError::NotSource {
+                    path: p.display().to_string(),
+                    why,
+                })?;
             SourceFile::new(
                 p.display().to_string(),
                 Origin::Disk(p.clone()),
@@ -106,6 +150,16 @@ pub fn load(input: &Input, defines: &[(String, String)]) -> Result<Loaded, Input
     }
     .filter(|d| !d.as_os_str().is_empty())
     .unwrap_or_else(|| PathBuf::from("."));
+    // `--include-dir` folders are allowed roots too (a missing one
+    // allows nothing: it cannot be canonicalised, so nothing starts with it).
+    let mut roots = vec![std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone())];
+    roots.extend(
+        opts.include_dirs
+            .iter()
+            .filter_map(|d| std::fs::canonicalize(d).ok()),
+    );
+    let mut shown = vec![root_dir];
+    shown.extend(opts.include_dirs.iter().cloned());
     let mut loader = Loader {
         loaded: Loaded {
             sources: SourceMap::new(),
@@ -115,12 +169,15 @@ pub fn load(input: &Input, defines: &[(String, String)]) -> Result<Loaded, Input
             preprocessed: false,
         },
         stack: Vec::new(),
-        root_dir: std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone()),
-        root_shown: root_dir,
+        roots,
+        roots_shown: shown,
+        include_dirs: opts.include_dirs.clone(),
+        max_depth: opts.max_include_depth,
+        limits: opts.parse,
         pre: None,
     };
     let root = if root.name.ends_with(".l") {
-        loader.preprocess(root, defines)
+        loader.preprocess(root, &opts.defines)
     } else {
         root
     };
@@ -136,10 +193,17 @@ pub(super) struct Loader {
     pub(super) loaded: Loaded,
     /// The include chain being loaded: (file, its identity for cycles).
     stack: Vec<(FileId, String)>,
-    /// Every included file must resolve (links followed) inside this.
-    pub(super) root_dir: PathBuf,
-    /// The same folder as the user named it, for messages.
-    pub(super) root_shown: PathBuf,
+    /// Every included file must resolve (links followed) inside one of
+    /// these: the top-level file's folder, then the `--include-dir`s.
+    pub(super) roots: Vec<PathBuf>,
+    /// The same folders as the user named them, for messages.
+    pub(super) roots_shown: Vec<PathBuf>,
+    /// `--include-dir`: searched after the including file's folder.
+    pub(super) include_dirs: Vec<PathBuf>,
+    /// `--max-include-depth`.
+    pub(super) max_depth: usize,
+    /// `--max-nesting`, `--max-operators`.
+    limits: parse::Limits,
     /// A cpfg root's preprocessed files, and which file id holds which.
     pub(super) pre: Option<super::cpp_load::Preprocessed>,
 }
@@ -159,7 +223,7 @@ impl Loader {
     fn file(&mut self, id: FileId) {
         let file = self.loaded.sources.get(id).clone();
         self.stack.push((id, Self::identity(&file)));
-        let (ast, errors) = parse::parse(id, &file);
+        let (ast, errors) = parse::parse_limited(id, &file, self.limits);
         for e in errors {
             if crate::diag::is_error(&e) {
                 self.loaded.errors.push(Report::new(e));
@@ -186,11 +250,28 @@ impl Loader {
 
     fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
         let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
-        let full = base.join(path);
+        let mut full = base.join(path);
+        // Not beside the including file: the first `--include-dir` that has it.
+        if !full.exists() {
+            if let Some(found) = self
+                .include_dirs
+                .iter()
+                .map(|d| d.join(path))
+                .find(|p| p.exists())
+            {
+                full = found;
+            }
+        }
         if let Ok(real) = std::fs::canonicalize(&full) {
             // `real` is only compared, never shown: messages keep the
             // user's own relative paths.
-            if !real.starts_with(&self.root_dir) {
+            if !self.roots.iter().any(|r| real.starts_with(r)) {
+                let inside = self
+                    .roots_shown
+                    .iter()
+                    .map(|d| d.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" or ");
                 self.loaded
                     .errors
                     .push(Report::new(ResolveError::IncludeOutside {
@@ -198,20 +279,30 @@ impl Loader {
                         src: from.named_source(),
                         span: span.into(),
                         help: format!(
-                            "{} is not inside {} (links are followed); copy the file into that folder or below it",
+                            "{} is not inside {inside} (links are followed); copy the file into that folder or below it, or allow its folder with `--include-dir DIR`",
                             full.display(),
-                            self.root_shown.display()
                         ),
                     }));
                 return;
             }
         }
-        let text = match std::fs::read(&full) {
-            Ok(t) => String::from_utf8_lossy(&t).into_owned(),
+        let text = match read_source(&full) {
+            Ok(Err(why)) => {
+                self.loaded
+                    .errors
+                    .push(Report::new(ResolveError::IncludeNotSource {
+                        path: path.to_string(),
+                        why,
+                        src: from.named_source(),
+                        span: span.into(),
+                    }));
+                return;
+            }
+            Ok(Ok(t)) => String::from_utf8_lossy(&t).into_owned(),
             Err(e) => {
                 let help = if from.dir().is_some() {
                     format!(
-                        "the path is relative to the including file's folder; lsys looked for {}",
+                        "the path is relative to the including file's folder (then to each `--include-dir`); lsys looked for {}",
                         full.display()
                     )
                 } else {
@@ -273,11 +364,11 @@ impl Loader {
                 }));
             return;
         }
-        if self.stack.len() >= MAX_INCLUDE_DEPTH {
+        if self.stack.len() >= self.max_depth {
             self.loaded
                 .errors
                 .push(Report::new(ResolveError::IncludeDepth {
-                    limit: MAX_INCLUDE_DEPTH,
+                    limit: self.max_depth,
                     src: from.named_source(),
                     span: span.into(),
                 }));

@@ -22,16 +22,35 @@ use miette::Report;
 
 pub use error::ResolveError;
 pub use ir::*;
-pub use load::{Input, InputError, MAX_INCLUDE_DEPTH};
+pub use load::{Input, InputError, MAX_INCLUDE_DEPTH, MAX_SOURCE_BYTES};
 
 use crate::parse::ast;
 use crate::source::{Origin, SourceFile, SourceMap, Span};
 
 /// Options of one compilation.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// `-D NAME=VALUE` overrides, in command-line order (the last wins).
     pub defines: Vec<(String, String)>,
+    /// `--include-dir DIR`: where `#include "f"` looks after the including
+    /// file's folder; files below them may be included too.
+    pub include_dirs: Vec<std::path::PathBuf>,
+    /// Longest chain of nested includes (`--max-include-depth`).
+    pub max_include_depth: usize,
+    /// Nesting and expression limits of the parser (`--max-nesting`,
+    /// `--max-operators`).
+    pub parse: crate::parse::Limits,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            defines: Vec::new(),
+            include_dirs: Vec::new(),
+            max_include_depth: MAX_INCLUDE_DEPTH,
+            parse: crate::parse::Limits::default(),
+        }
+    }
 }
 
 /// A resolved grammar and the warnings found on the way.
@@ -48,9 +67,12 @@ pub struct Failure {
 
 /// Resolves `input`. `Err(InputError)` when the root cannot be read at all.
 pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure>, InputError> {
-    let loaded = load::load(input, &opts.defines)?;
+    let loaded = load::load(input, opts)?;
     // A cpfg file's -D definitions went to the preprocessor.
-    let no_defines = Options::default();
+    let no_defines = Options {
+        defines: Vec::new(),
+        ..opts.clone()
+    };
     let opts = if loaded.preprocessed {
         &no_defines
     } else {

@@ -76,7 +76,11 @@ impl Resolver {
         if s.turtle.dialect_given().is_none() {
             turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
         }
-        if let Some(Some(span)) = self.symbols.get("?E").map(|id| self.symbols.list[id as usize].span) {
+        if let Some(Some(span)) = self
+            .symbols
+            .get("?E")
+            .map(|id| self.symbols.list[id as usize].span)
+        {
             self.warn(ResolveError::Environment {
                 src: self.sources.named_source(span),
                 span: span.into(),

@@ -19,6 +19,17 @@ pub enum TurtleError {
         value: f64,
     },
 
+    #[error("after module {index} of the string, `{text}`, the turtle's position or width is beyond the range of the model's numbers (about ±3.4e38)")]
+    #[diagnostic(
+        code(lsys::turtle::overflow),
+        help("the steps, angles or scale factors grow without bound; check the production that writes `{symbol}`, or derive fewer steps")
+    )]
+    Overflow {
+        index: usize,
+        text: String,
+        symbol: String,
+    },
+
     #[error("module {index} of the string is a `]` with no `[` before it")]
     #[diagnostic(
         code(lsys::turtle::unbalanced_bracket),

@@ -236,6 +236,21 @@ fn interpret_with(
                 Act::Command(a) => t.apply(a, sym, args, i)?,
                 Act::Place => t.place(sym, args, i),
             }
+            // The model is in 32-bit floats: steps that add up past their
+            // range would reach the exporter as infinities.
+            let f = &t.state.frame;
+            let finite = f.pos.is_finite()
+                && f.h.is_finite()
+                && f.u.is_finite()
+                && f.l.is_finite()
+                && t.state.width.is_finite();
+            if !finite {
+                return Err(TurtleError::Overflow {
+                    index: i + 1,
+                    text: module_text(&program.symbols, sym, args),
+                    symbol: program.symbols.name(sym).to_string(),
+                });
+            }
         }
         i += 1;
     }

@@ -1,0 +1,30 @@
+//! Fuzz target: any bytes -> parse, resolve, bytecode, with every
+//! diagnostic rendered. No input may panic.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use lsys::pipeline::{self, Failure};
+use lsys::resolve::{Input, Options};
+
+fuzz_target!(|data: &[u8]| {
+    let input = Input::Text {
+        name: "fuzz.lsys".into(),
+        text: String::from_utf8_lossy(data).into_owned(),
+    };
+    match pipeline::compile(&input, &Options::default()) {
+        Ok(c) => {
+            for w in &c.warnings {
+                let _ = lsys::diag::render_plain(w.as_ref());
+            }
+            let _ = lsys::bytecode::disasm(&c.program, &c.compiled);
+        }
+        Err(Failure::Input(e)) => {
+            let _ = lsys::diag::render_plain(&e);
+        }
+        Err(Failure::Diagnostics { diagnostics }) => {
+            for d in &diagnostics {
+                let _ = lsys::diag::render_plain(d.as_ref());
+            }
+        }
+    }
+});

@@ -1,0 +1,142 @@
+//! `#include` confinement on real folders: a symbolic link that leads out
+//! of the grammar's folder is refused without showing the target's text,
+//! and `--include-dir` folders are searched and allowed.
+
+use std::path::Path;
+
+use lsys::pipeline::{self, Failure};
+use lsys::resolve::{Input, Options};
+
+fn compile(root: &Path, include_dirs: &[&Path]) -> Result<String, String> {
+    let opts = Options {
+        include_dirs: include_dirs.iter().map(|d| d.to_path_buf()).collect(),
+        ..Options::default()
+    };
+    match pipeline::compile(&Input::Path(root.to_path_buf()), &opts) {
+        Ok(c) => Ok(c
+            .program
+            .defines
+            .iter()
+            .map(|d| format!("{}={:?};", d.name, d.value))
+            .collect()),
+        Err(Failure::Input(e)) => Err(lsys::diag::render_plain(&e)),
+        Err(Failure::Diagnostics { diagnostics }) => Err(diagnostics
+            .iter()
+            .map(|d| lsys::diag::render_plain(d.as_ref()))
+            .collect()),
+    }
+}
+
+fn write(path: &Path, text: &str) {
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    std::fs::write(path, text).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+fn a_link_out_of_the_folder_is_refused_and_its_text_not_shown() {
+    let tmp = tempfile::tempdir().unwrap();
+    let secret = tmp.path().join("elsewhere/secret.txt");
+    write(&secret, "password: hunter2\n");
+    let root = tmp.path().join("grammar/main.lsys");
+    write(&root, "#include \"inc/params.lsys\"\nAxiom: F\n");
+    std::fs::create_dir_all(tmp.path().join("grammar/inc")).unwrap();
+    std::os::unix::fs::symlink(&secret, tmp.path().join("grammar/inc/params.lsys")).unwrap();
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::include_outside"), "{err}");
+    assert!(!err.contains("hunter2"), "{err}");
+    // Allowing the folder with --include-dir lets it in (and it is then an
+    // ordinary, if broken, source).
+    let err = compile(&root, &[&tmp.path().join("elsewhere")]).unwrap_err();
+    assert!(!err.contains("include_outside"), "{err}");
+}
+
+#[test]
+fn include_dirs_are_searched_after_the_including_folder_and_allowed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let lib = tmp.path().join("lib");
+    write(&lib.join("common.lsys"), "#define LEN 3\n");
+    write(&lib.join("local.lsys"), "#define WHERE 2\n");
+    let root = tmp.path().join("grammar/main.lsys");
+    write(
+        &root,
+        "#include \"common.lsys\"\n#include \"local.lsys\"\nderivation length: LEN\nAxiom: F\n",
+    );
+    // Beside the grammar wins over the include folder.
+    write(&tmp.path().join("grammar/local.lsys"), "#define WHERE 1\n");
+
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::include_not_found"), "{err}");
+    let ok = compile(&root, &[&lib]).unwrap();
+    assert_eq!(ok, "LEN=Some(3.0);WHERE=Some(1.0);");
+
+    // A path that climbs out of the grammar's folder is fine when it lands
+    // in an --include-dir, refused otherwise.
+    write(&root, "#include \"../lib/common.lsys\"\nAxiom: F\n");
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::include_outside"), "{err}");
+    assert!(err.contains("--include-dir"), "{err}");
+    compile(&root, &[&lib]).unwrap();
+}
+
+/// The command line passes `--include-dir`, `--max-include-depth` and
+/// `--max-nesting` through to the compiler.
+#[test]
+fn the_command_line_options_reach_the_compiler() {
+    let tmp = tempfile::tempdir().unwrap();
+    let lib = tmp.path().join("lib");
+    write(&lib.join("common.lsys"), "#define LEN 3\n");
+    let root = tmp.path().join("grammar/main.lsys");
+    write(
+        &root,
+        "#include \"common.lsys\"\nderivation length: LEN\nAxiom: F((1))\nF --> FF\n",
+    );
+    let lsys = |args: &[&str]| {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+            .args(args)
+            .env("NO_COLOR", "1")
+            .output()
+            .unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    };
+    let root = root.to_str().unwrap();
+    let lib = lib.to_str().unwrap();
+    let (code, err) = lsys(&["check", root]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("include_not_found"), "{err}");
+    let (code, err) = lsys(&["check", "--include-dir", lib, root]);
+    assert_eq!(code, Some(0), "{err}");
+    let (code, err) = lsys(&[
+        "check",
+        "--include-dir",
+        lib,
+        "--max-include-depth",
+        "1",
+        root,
+    ]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("--max-include-depth"), "{err}");
+    let (code, err) = lsys(&["check", "--include-dir", lib, "--max-nesting", "1", root]);
+    assert_eq!(code, Some(65), "{err}");
+    assert!(err.contains("--max-nesting"), "{err}");
+}
+
+/// A file larger than a grammar can be (a log, a disk image) is refused
+/// unread, as the grammar and as an include: nothing is loaded into memory.
+#[test]
+fn huge_files_are_refused_unread() {
+    let tmp = tempfile::tempdir().unwrap();
+    let big = tmp.path().join("big.lsys");
+    let f = std::fs::File::create(&big).unwrap();
+    f.set_len(lsys::resolve::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    let err = compile(&big, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::input_not_source"), "{err}");
+    assert!(err.contains("67108865 bytes long"), "{err}");
+    let root = tmp.path().join("main.lsys");
+    write(&root, "#include \"big.lsys\"\nAxiom: F\n");
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::resolve::include_not_source"), "{err}");
+}
