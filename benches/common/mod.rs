@@ -14,6 +14,7 @@ pub fn compile(input: Input, defines: &[(&str, &str)]) -> Compilation {
             .iter()
             .map(|(k, v)| (k.to_string(), v.to_string()))
             .collect(),
+        ..Options::default()
     };
     match pipeline::compile(&input, &opts) {
         Ok(c) => c,
