@@ -2,35 +2,49 @@
 //! up U vectors (H × L = U), with the rotations of the turtle commands.
 //! Input: rotation angles in degrees; output: the moved frame.
 
-use glam::{Quat, Vec3};
+use glam::{DQuat, DVec3};
 
 /// World up: the reference for "roll to horizontal" (`@v`, cpfg's `$`).
-pub const WORLD_UP: Vec3 = Vec3::Y;
+pub const WORLD_UP: DVec3 = DVec3::Y;
 
 /// Position and orientation. The start frame is cpfg's: heading up the y
 /// axis, left along −x, up toward the viewer (+z).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
-    pub pos: Vec3,
-    pub h: Vec3,
-    pub l: Vec3,
-    pub u: Vec3,
+    pub pos: DVec3,
+    pub h: DVec3,
+    pub l: DVec3,
+    pub u: DVec3,
+    /// 1 for the paper's right-handed frame (H × L = U), -1 for cpfg's,
+    /// which starts with U = −z (H × L = −U).
+    pub hand: f64,
 }
 
 impl Default for Frame {
     fn default() -> Self {
         Frame {
-            pos: Vec3::ZERO,
-            h: Vec3::Y,
-            l: Vec3::NEG_X,
-            u: Vec3::Z,
+            pos: DVec3::ZERO,
+            h: DVec3::Y,
+            l: DVec3::NEG_X,
+            u: DVec3::Z,
+            hand: 1.0,
         }
     }
 }
 
 impl Frame {
+    /// cpfg's start frame: as the default, but with U toward −z, so that
+    /// rotations written in H, L and U mirror the model in z as cpfg does.
+    pub fn cpfg() -> Frame {
+        Frame {
+            u: DVec3::NEG_Z,
+            hand: -1.0,
+            ..Frame::default()
+        }
+    }
+
     /// `+(θ)`: turn left about U (H toward L); negative θ turns right.
-    pub fn turn(&mut self, degrees: f32) {
+    pub fn turn(&mut self, degrees: f64) {
         let (s, c) = degrees.to_radians().sin_cos();
         let (h, l) = (self.h, self.l);
         self.h = h * c + l * s;
@@ -38,7 +52,7 @@ impl Frame {
     }
 
     /// `&(θ)`: pitch down about L (H away from U); negative θ pitches up.
-    pub fn pitch(&mut self, degrees: f32) {
+    pub fn pitch(&mut self, degrees: f64) {
         let (s, c) = degrees.to_radians().sin_cos();
         let (h, u) = (self.h, self.u);
         self.h = h * c - u * s;
@@ -46,7 +60,7 @@ impl Frame {
     }
 
     /// `\(θ)`: roll left about H (U toward L); negative θ rolls right.
-    pub fn roll(&mut self, degrees: f32) {
+    pub fn roll(&mut self, degrees: f64) {
         let (s, c) = degrees.to_radians().sin_cos();
         let (l, u) = (self.l, self.u);
         self.u = u * c + l * s;
@@ -59,56 +73,56 @@ impl Frame {
         let l = WORLD_UP.cross(self.h);
         if l.length_squared() > 1e-12 {
             self.l = l.normalize();
-            self.u = self.h.cross(self.l);
+            self.u = self.h.cross(self.l) * self.hand;
         }
     }
 
     /// Rotates the whole frame by the smallest rotation taking H to `dir`.
-    pub fn rotate_heading_to(&mut self, dir: Vec3) {
+    pub fn rotate_heading_to(&mut self, dir: DVec3) {
         let dir = dir.normalize_or_zero();
-        if dir == Vec3::ZERO {
+        if dir == DVec3::ZERO {
             return;
         }
-        let q = Quat::from_rotation_arc(self.h, dir);
+        let q = DQuat::from_rotation_arc(self.h, dir);
         self.h = dir;
         self.l = (q * self.l).normalize();
-        self.u = self.h.cross(self.l);
+        self.u = self.h.cross(self.l) * self.hand;
     }
 
     /// Sets H (and U when given), keeping the frame orthonormal.
-    pub fn set_heading(&mut self, h: Vec3, u: Option<Vec3>) {
+    pub fn set_heading(&mut self, h: DVec3, u: Option<DVec3>) {
         let h = h.normalize_or_zero();
-        if h == Vec3::ZERO {
+        if h == DVec3::ZERO {
             return;
         }
         match u {
             Some(u) if u.cross(h).length_squared() > 1e-12 => {
                 self.h = h;
-                self.l = u.cross(h).normalize();
-                self.u = h.cross(self.l);
+                self.l = (u.cross(h) * self.hand).normalize();
+                self.u = h.cross(self.l) * self.hand;
             }
             _ => self.rotate_heading_to(h),
         }
     }
 
     /// Tropism (ABOP §2.2): bends H toward `t` by `e·|H × t|` radians.
-    pub fn bend(&mut self, t: Vec3, e: f32) {
+    pub fn bend(&mut self, t: DVec3, e: f64) {
         let axis = self.h.cross(t);
         let len = axis.length();
         if len < 1e-9 || e == 0.0 {
             return;
         }
-        let q = Quat::from_axis_angle(axis / len, e * len);
+        let q = DQuat::from_axis_angle(axis / len, e * len);
         self.h = (q * self.h).normalize();
         self.l = (q * self.l).normalize();
-        self.u = self.h.cross(self.l);
+        self.u = self.h.cross(self.l) * self.hand;
     }
 
     /// Undoes the drift of many small rotations.
     pub fn orthonormalize(&mut self) {
         self.h = self.h.normalize();
-        self.u = self.h.cross(self.l).normalize();
-        self.l = self.u.cross(self.h);
+        self.u = (self.h.cross(self.l) * self.hand).normalize();
+        self.l = self.u.cross(self.h) * self.hand;
     }
 }
 
@@ -116,7 +130,7 @@ impl Frame {
 mod tests {
     use super::*;
 
-    fn close(a: Vec3, b: Vec3) -> bool {
+    fn close(a: DVec3, b: DVec3) -> bool {
         (a - b).length() < 1e-5
     }
 
@@ -124,7 +138,7 @@ mod tests {
     fn turn_left_moves_heading_toward_left() {
         let mut f = Frame::default();
         f.turn(90.0);
-        assert!(close(f.h, Vec3::NEG_X), "{:?}", f.h);
+        assert!(close(f.h, DVec3::NEG_X), "{:?}", f.h);
         assert!(close(f.h.cross(f.l), f.u));
     }
 
@@ -132,7 +146,7 @@ mod tests {
     fn pitch_down_moves_heading_away_from_up() {
         let mut f = Frame::default();
         f.pitch(90.0);
-        assert!(close(f.h, Vec3::NEG_Z), "{:?}", f.h);
+        assert!(close(f.h, DVec3::NEG_Z), "{:?}", f.h);
         assert!(close(f.h.cross(f.l), f.u));
     }
 
@@ -140,8 +154,8 @@ mod tests {
     fn roll_left_tilts_up_toward_left() {
         let mut f = Frame::default();
         f.roll(90.0);
-        assert!(close(f.u, Vec3::NEG_X), "{:?}", f.u);
-        assert!(close(f.h, Vec3::Y));
+        assert!(close(f.u, DVec3::NEG_X), "{:?}", f.u);
+        assert!(close(f.h, DVec3::Y));
         assert!(close(f.h.cross(f.l), f.u));
     }
 
@@ -157,11 +171,28 @@ mod tests {
     }
 
     #[test]
+    fn cpfg_frame_is_left_handed_and_stays_so() {
+        let mut f = Frame::cpfg();
+        assert!(close(f.h.cross(f.l), -f.u));
+        f.turn(30.0);
+        f.pitch(40.0);
+        f.roll(25.0);
+        f.bend(DVec3::NEG_Y, 0.3);
+        f.roll_to_horizontal();
+        f.orthonormalize();
+        assert!(close(f.h.cross(f.l), -f.u), "{f:?}");
+        // Pitching down from the start moves H toward +z (away from U).
+        let mut g = Frame::cpfg();
+        g.pitch(90.0);
+        assert!(close(g.h, DVec3::Z), "{:?}", g.h);
+    }
+
+    #[test]
     fn tropism_bends_toward_the_vector() {
         let mut f = Frame::default();
         f.turn(90.0);
-        let before = f.h.dot(Vec3::NEG_Y);
-        f.bend(Vec3::NEG_Y, 0.2);
-        assert!(f.h.dot(Vec3::NEG_Y) > before);
+        let before = f.h.dot(DVec3::NEG_Y);
+        f.bend(DVec3::NEG_Y, 0.2);
+        assert!(f.h.dot(DVec3::NEG_Y) > before);
     }
 }

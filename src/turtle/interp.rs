@@ -2,7 +2,7 @@
 //! mapped once to an [`Act`] through the command table and the file's
 //! dialect, then the string is walked left to right with a branch stack.
 
-use glam::{Mat4, Vec3, Vec4};
+use glam::{DVec3, Mat4, Vec3, Vec4};
 
 use super::commands::{lookup, Action};
 use super::dialect::Dialect;
@@ -143,7 +143,7 @@ pub fn query_values(
             2 => f.l,
             _ => f.u,
         };
-        out.push((offset, arity.min(3), [v.x as f64, v.y as f64, v.z as f64]));
+        out.push((offset, arity.min(3), [v.x, v.y, v.z]));
     })
     // A string between steps may end inside a polygon; the frames up to
     // the end are what the queries need.
@@ -177,7 +177,11 @@ fn interpret_with(
         symbols: &program.symbols,
         drawing: Drawing::default(),
         state: State {
-            frame: Frame::default(),
+            frame: if opts.dialect == Dialect::Cpfg {
+                Frame::cpfg()
+            } else {
+                Frame::default()
+            },
             width: opts.width,
             colour: 0,
             scale: 1.0,
@@ -239,7 +243,8 @@ fn interpret_with(
             // The model is in 32-bit floats: steps that add up past their
             // range would reach the exporter as infinities.
             let f = &t.state.frame;
-            let finite = f.pos.is_finite()
+            // The frame computes in f64; the model is stored in f32.
+            let finite = f.pos.as_vec3().is_finite()
                 && f.h.is_finite()
                 && f.u.is_finite()
                 && f.l.is_finite()
@@ -301,21 +306,21 @@ impl Turtle<'_> {
             }
             Turn(sign) => {
                 let a = self.angle(args);
-                self.state.frame.turn(sign * a)
+                self.state.frame.turn(f64::from(sign * a))
             }
             Pitch(sign) => {
                 let a = self.angle(args);
-                self.state.frame.pitch(sign * a)
+                self.state.frame.pitch(f64::from(sign * a))
             }
             Roll(sign) => {
                 let a = self.angle(args);
-                self.state.frame.roll(sign * a)
+                self.state.frame.roll(f64::from(sign * a))
             }
             TurnAround => s.frame.turn(180.0),
             RollAround => s.frame.roll(180.0),
             PitchAround => s.frame.pitch(180.0),
             RollHorizontal => s.frame.roll_to_horizontal(),
-            HeadingUp => s.frame.rotate_heading_to(Vec3::Y),
+            HeadingUp => s.frame.rotate_heading_to(DVec3::Y),
             Push => {
                 self.stack.push(self.state);
                 // A branch draws its own tubes; the parent's chain resumes
@@ -350,11 +355,11 @@ impl Turtle<'_> {
                 None => s.colour = s.colour.saturating_add(1),
             },
             PolyStart => {
-                let start = s.frame.pos;
+                let start = s.frame.pos.as_vec3();
                 self.polygons.push((index, vec![start]));
             }
             PolyVertex => {
-                let p = s.frame.pos;
+                let p = s.frame.pos.as_vec3();
                 if let Some((_, poly)) = self.polygons.last_mut() {
                     push_vertex(poly, p);
                 }
@@ -379,20 +384,19 @@ impl Turtle<'_> {
                 if d > 0.0 {
                     self.drawing.shapes.push(super::drawing::Shape {
                         kind,
-                        centre: s.frame.pos,
-                        normal: s.frame.h,
+                        centre: s.frame.pos.as_vec3(),
+                        normal: s.frame.h.as_vec3(),
                         radius: d * 0.5,
                         colour: s.colour,
                     });
                 }
             }
             MoveTo => {
-                s.frame.pos = Vec3::new(args[0] as f32, args[1] as f32, args[2] as f32);
+                s.frame.pos = DVec3::new(args[0], args[1], args[2]);
                 s.chain = None;
             }
             SetHeading => {
-                let v =
-                    |k: usize| Vec3::new(args[k] as f32, args[k + 1] as f32, args[k + 2] as f32);
+                let v = |k: usize| DVec3::new(args[k], args[k + 1], args[k + 2]);
                 let up = (args.len() >= 6).then(|| v(3));
                 s.frame.set_heading(v(0), up);
                 s.chain = None;
@@ -448,9 +452,9 @@ impl Turtle<'_> {
 
     fn forward(&mut self, d: f32, draw: bool, vertex: bool) {
         let s = &mut self.state;
-        let from = s.frame.pos;
-        s.frame.pos += s.frame.h * d;
-        let to = s.frame.pos;
+        let from = s.frame.pos.as_vec3();
+        s.frame.pos += s.frame.h * f64::from(d);
+        let to = s.frame.pos.as_vec3();
         if !self.polygons.is_empty() {
             // Inside a polygon moves trace its outline instead of drawing.
             if vertex {
@@ -463,7 +467,7 @@ impl Turtle<'_> {
             let point = TubePoint {
                 pos: to,
                 radius,
-                up: s.frame.u,
+                up: s.frame.u.as_vec3(),
             };
             match s.chain {
                 Some(c)
@@ -479,7 +483,7 @@ impl Turtle<'_> {
                             TubePoint {
                                 pos: from,
                                 radius,
-                                up: s.frame.u,
+                                up: s.frame.u.as_vec3(),
                             },
                             point,
                         ],
@@ -491,7 +495,7 @@ impl Turtle<'_> {
             s.chain = None;
         }
         if s.elasticity != 0.0 {
-            s.frame.bend(s.tropism, s.elasticity);
+            s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));
         }
     }
 
@@ -514,25 +518,28 @@ impl Turtle<'_> {
             return;
         }
         let mut points = vec![TubePoint {
-            pos: cps[0].frame.pos,
+            pos: cps[0].frame.pos.as_vec3(),
             radius: cps[0].radius,
-            up: cps[0].frame.u,
+            up: cps[0].frame.u.as_vec3(),
         }];
         for w in cps.windows(2) {
             let (a, b) = (w[0], w[1]);
-            let dist = a.frame.pos.distance(b.frame.pos);
-            let (m0, m1) = (a.frame.h * dist, b.frame.h * dist);
+            let (ap, bp) = (a.frame.pos.as_vec3(), b.frame.pos.as_vec3());
+            let (ah, bh) = (a.frame.h.as_vec3(), b.frame.h.as_vec3());
+            let (au, bu) = (a.frame.u.as_vec3(), b.frame.u.as_vec3());
+            let dist = ap.distance(bp);
+            let (m0, m1) = (ah * dist, bh * dist);
             for step in 1..=b.segments {
                 let t = step as f32 / b.segments as f32;
                 let (t2, t3) = (t * t, t * t * t);
-                let pos = a.frame.pos * (2.0 * t3 - 3.0 * t2 + 1.0)
+                let pos = ap * (2.0 * t3 - 3.0 * t2 + 1.0)
                     + m0 * (t3 - 2.0 * t2 + t)
-                    + b.frame.pos * (-2.0 * t3 + 3.0 * t2)
+                    + bp * (-2.0 * t3 + 3.0 * t2)
                     + m1 * (t3 - t2);
                 points.push(TubePoint {
                     pos,
                     radius: a.radius + (b.radius - a.radius) * t,
-                    up: a.frame.u.lerp(b.frame.u, t).normalize_or(a.frame.u),
+                    up: au.lerp(bu, t).normalize_or(au),
                 });
             }
         }
@@ -560,11 +567,12 @@ impl Turtle<'_> {
             return;
         }
         let f = &self.state.frame;
+        let (fl, fh, fu, fp) = (f.l.as_vec3(), f.h.as_vec3(), f.u.as_vec3(), f.pos.as_vec3());
         let transform = Mat4::from_cols(
-            (f.l * s.x).extend(0.0),
-            (f.h * s.y).extend(0.0),
-            (-f.u * s.z).extend(0.0),
-            Vec4::from((f.pos + f.h * (s.y * 0.5), 1.0)),
+            (fl * s.x).extend(0.0),
+            (fh * s.y).extend(0.0),
+            (-fu * s.z).extend(0.0),
+            Vec4::from((fp + fh * (s.y * 0.5), 1.0)),
         );
         self.drawing.placements.push(Placement {
             symbol: sym,
