@@ -143,6 +143,22 @@ pub fn run<S: Sink>(
             stack[sp - 1] = $f(a, b);
         }};
     }
+    // A jump backwards is a loop's round: count them (cpfg's `while`).
+    macro_rules! jump {
+        ($t:expr) => {{
+            let t = $t as usize;
+            if t < pc {
+                rounds += 1;
+                if rounds > MAX_LOOP_ITERATIONS {
+                    return Err(Fault {
+                        kind: FaultKind::LoopLimit,
+                        span: chunk.spans[pc - 1],
+                    });
+                }
+            }
+            pc = t;
+        }};
+    }
     loop {
         let op = code[pc];
         pc += 1;
@@ -184,18 +200,7 @@ pub fn run<S: Sink>(
             Op::Ge => bin!(|a, b| b2f(a >= b)),
             Op::Eq => bin!(|a, b| b2f(a == b)),
             Op::Ne => bin!(|a, b| b2f(a != b)),
-            Op::Jump(t) => {
-                if (t as usize) < pc {
-                    rounds += 1;
-                    if rounds > MAX_LOOP_ITERATIONS {
-                        return Err(Fault {
-                            kind: FaultKind::LoopLimit,
-                            span: chunk.spans[pc - 1],
-                        });
-                    }
-                }
-                pc = t as usize
-            }
+            Op::Jump(t) => jump!(t),
             Op::JumpIfFalse(t) => {
                 sp -= 1;
                 if stack[sp] == 0.0 {
@@ -205,16 +210,7 @@ pub fn run<S: Sink>(
             Op::JumpIfTrue(t) => {
                 sp -= 1;
                 if stack[sp] != 0.0 {
-                    if (t as usize) < pc {
-                        rounds += 1;
-                        if rounds > MAX_LOOP_ITERATIONS {
-                            return Err(Fault {
-                                kind: FaultKind::LoopLimit,
-                                span: chunk.spans[pc - 1],
-                            });
-                        }
-                    }
-                    pc = t as usize;
+                    jump!(t);
                 }
             }
             Op::Call(f) => {

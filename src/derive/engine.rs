@@ -7,11 +7,9 @@ use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
 use super::fast::Plan;
-use super::rewrite::{
-    check_limits, fault_error, rewrite, rewrite_recursive, run_hook, store_params, Site, State,
-    Tables,
-};
+use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
 use super::rng::{Rand48, DEFAULT_SEED};
+use super::run::{run_hook, store_params};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
 use crate::resolve::{Program, Table};
@@ -224,7 +222,7 @@ impl<'p> Derivation<'p> {
         for (at, n, v) in vals {
             self.cur.params[at..at + n].copy_from_slice(&v[..n]);
         }
-        super::rewrite::store_params(&self.tab, &mut self.cur, 0);
+        store_params(&self.tab, &mut self.cur, 0);
     }
 
     fn with_fast_plan(mut self) -> Derivation<'p> {

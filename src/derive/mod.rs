@@ -61,6 +61,7 @@ mod matching;
 mod parallel;
 mod rewrite;
 pub mod rng;
+mod run;
 pub mod store;
 mod template;
 

@@ -11,7 +11,8 @@ use super::engine::DeriveOptions;
 use super::error::{DepthWarning, DeriveError, Src};
 use super::matching::{match_at, Bound, Input, Rules};
 use super::rng::Rand48;
-use super::store::{head_arity, head_sym, ContextIndex, ModuleStore, MAX_SYMBOLS};
+use super::run::run_successor;
+use super::store::{head_arity, head_sym, rest_of_branch, ContextIndex, ModuleStore, MAX_SYMBOLS};
 use crate::bytecode::vm::{self, NoSink};
 use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
 use crate::resolve::{Program, Table, CLOSE_BRACKET, OPEN_BRACKET};
@@ -61,17 +62,6 @@ pub(crate) struct Tables<'p> {
     pub(crate) cut: Option<u32>,
     /// The alphabet has cpfg query modules to fill after each step.
     pub(crate) has_queries: bool,
-}
-
-/// Round the parameters written since `from` to `f32`, when the dialect
-/// stores them so.
-#[inline]
-pub(crate) fn store_params(tab: &Tables, out: &mut ModuleStore, from: usize) {
-    if tab.f32_params {
-        for v in &mut out.params[from..] {
-            *v = *v as f32 as f64;
-        }
-    }
 }
 
 impl<'p> Tables<'p> {
@@ -504,7 +494,6 @@ pub(crate) fn rewrite(
 ) -> Result<(), Fail> {
     let rules = &tab.rules[table_index(t)];
     let codes = tab.compiled.table(t);
-    let consts = &tab.compiled.consts[..];
     let max_depth = match t {
         Table::Main => None,
         Table::Decomposition => Some(tab.program.decomposition_depth),
@@ -535,20 +524,9 @@ pub(crate) fn rewrite(
         if t == Table::Main && tab.cut == Some(head_sym(h)) && head_arity(h) == 0 {
             // cpfg's cut: drop `%` and the rest of its branch, up to (not
             // including) the `]` that closes it.
-            let mut depth = 0usize;
-            while i < n {
-                let s = head_sym(heads[i]);
-                if s == OPEN_BRACKET {
-                    depth += 1;
-                } else if s == CLOSE_BRACKET {
-                    if depth == 0 {
-                        break;
-                    }
-                    depth -= 1;
-                }
-                off += head_arity(heads[i]);
-                i += 1;
-            }
+            let (end, skipped) = rest_of_branch(heads, i);
+            i = end;
+            off += skipped;
             continue;
         }
         let Some((p, bound)) = choose(tab, st, t, &inp, i, off)? else {
@@ -565,18 +543,7 @@ pub(crate) fn rewrite(
         let succ = &codes[p].succ;
         match max_depth {
             None => {
-                let from = out.params.len();
-                let r = vm::run(
-                    succ,
-                    consts,
-                    &tab.compiled.functions,
-                    b,
-                    &mut st.vars,
-                    &mut st.stack,
-                    &mut st.rng,
-                    out,
-                );
-                store_params(tab, out, from);
+                let r = run_successor(tab, st, succ, b, out);
                 st.binds = binds;
                 r.map_err(|f| fault_error(tab, f, site, st.step))?;
             }
@@ -593,18 +560,8 @@ pub(crate) fn rewrite(
                 }
                 let mut level = mem::take(&mut st.levels[d]);
                 level.store.clear();
-                let r = vm::run(
-                    succ,
-                    consts,
-                    &tab.compiled.functions,
-                    b,
-                    &mut st.vars,
-                    &mut st.stack,
-                    &mut st.rng,
-                    &mut level.store,
-                )
-                .map_err(|f| fault_error(tab, f, site, st.step));
-                store_params(tab, &mut level.store, 0);
+                let r = run_successor(tab, st, succ, b, &mut level.store)
+                    .map_err(|f| fault_error(tab, f, site, st.step));
                 st.binds = binds;
                 let r = r.and_then(|_| {
                     let idx = if rules.has_context {
@@ -647,28 +604,4 @@ pub(crate) fn rewrite_recursive(
         None
     };
     rewrite(tab, st, t, input, idx, 0, out)
-}
-
-/// Run one of the L-system's statement blocks, if it has it.
-pub(crate) fn run_hook(
-    tab: &Tables,
-    st: &mut State,
-    name: &'static str,
-    chunk: Option<&Chunk>,
-) -> Result<(), Fail> {
-    let Some(chunk) = chunk else {
-        return Ok(());
-    };
-    vm::run(
-        chunk,
-        &tab.compiled.consts,
-        &tab.compiled.functions,
-        &[],
-        &mut st.vars,
-        &mut st.stack,
-        &mut st.rng,
-        &mut NoSink,
-    )
-    .map(|_| ())
-    .map_err(|f| fault_error(tab, f, Site::Hook(name), st.step))
 }

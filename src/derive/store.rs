@@ -315,6 +315,28 @@ impl ContextIndex {
     }
 }
 
+/// From module `i`, the index of the `]` that closes the current branch
+/// (or the end of the string) and the number of parameter values passed
+/// over: what cpfg's cut `%` removes.
+pub fn rest_of_branch(heads: &[u32], mut i: usize) -> (usize, usize) {
+    let mut depth = 0usize;
+    let mut params = 0;
+    while i < heads.len() {
+        let s = head_sym(heads[i]);
+        if s == OPEN_BRACKET {
+            depth += 1;
+        } else if s == CLOSE_BRACKET {
+            if depth == 0 {
+                break;
+            }
+            depth -= 1;
+        }
+        params += head_arity(heads[i]);
+        i += 1;
+    }
+    (i, params)
+}
+
 #[cfg(test)]
 mod tests {
     use super::write_f64;

@@ -176,7 +176,7 @@ pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> 
         limits: opts.parse,
         pre: None,
     };
-    let root = if root.name.ends_with(".l") {
+    let root = if crate::cpfg::is_model_file(&root.name) {
         loader.preprocess(root, &opts.defines)
     } else {
         root

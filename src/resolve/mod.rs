@@ -165,7 +165,7 @@ impl Resolver {
     }
 
     fn run(&mut self, items: Vec<(u32, ast::Item)>, opts: &Options) -> Option<Program> {
-        self.cpfg = self.sources.get(0).name.ends_with(".l");
+        self.cpfg = crate::cpfg::is_model_file(&self.sources.get(0).name);
         self.collect_defines(&items);
         let element_overrides = self.apply_overrides(opts);
         self.evaluate_tables(&element_overrides);

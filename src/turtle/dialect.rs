@@ -37,7 +37,7 @@ impl Dialect {
     /// The dialect of a file that does not say: cpfg for cpfg's own `.l`
     /// files, the paper's otherwise.
     pub fn for_file_name(name: &str) -> Dialect {
-        if name.ends_with(".l") {
+        if crate::cpfg::is_model_file(name) {
             Dialect::Cpfg
         } else {
             Dialect::Paper

@@ -9,7 +9,7 @@ use super::dialect::Dialect;
 use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
-use crate::derive::store::{head_arity, head_sym};
+use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols, TurtleSettings};
 
@@ -218,22 +218,9 @@ fn interpret_with(
             if act == Act::Command(Action::Cut) {
                 // Skip to the `]` that ends this branch (or the end), and
                 // let that `]` pop the branch as usual.
-                let mut depth = 0usize;
-                let mut j = i + 1;
-                while j < heads.len() {
-                    let s = head_sym(heads[j]);
-                    if s == crate::resolve::ir::OPEN_BRACKET {
-                        depth += 1;
-                    } else if s == crate::resolve::ir::CLOSE_BRACKET {
-                        if depth == 0 {
-                            break;
-                        }
-                        depth -= 1;
-                    }
-                    offset += head_arity(heads[j]);
-                    j += 1;
-                }
-                i = j;
+                let (end, skipped) = rest_of_branch(heads, i + 1);
+                i = end;
+                offset += skipped;
                 continue;
             }
             match act {
