@@ -149,7 +149,7 @@ fn model(
     let string = interpreted.as_ref().unwrap_or(string);
     let t1 = Instant::now();
     observe(Stage::Interpret);
-    let topts = TurtleOptions::new(&program.turtle, opts.angle, opts.step, opts.width);
+    let topts = TurtleOptions::new(program, opts.angle, opts.step, opts.width);
     let drawing = turtle::interpret(program, string, &topts)?;
     let t2 = Instant::now();
     observe(Stage::Mesh);

@@ -22,6 +22,7 @@ pub mod cpfg;
 pub mod derive;
 pub mod diag;
 pub mod export;
+pub mod lang;
 pub mod mesh;
 pub mod pailou;
 pub mod parse;

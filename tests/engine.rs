@@ -411,6 +411,7 @@ fn program(src: &str) -> Program {
         decomposition_depth: 16,
         homomorphism_depth: 16,
         defines: Vec::new(),
+        profile: Default::default(),
         turtle: Default::default(),
         tables: Vec::new(),
         vars: Vec::new(),

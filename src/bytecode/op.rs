@@ -209,7 +209,7 @@ pub struct Compiled {
     /// `resolve::Hooks`); `None` where the grammar has none.
     pub hooks: HookCode,
     /// cpfg's view-file functions, for [`Op::Spline`].
-    pub functions: Vec<crate::cpfg::spline::SplineFn>,
+    pub functions: Vec<crate::lang::spline::SplineFn>,
     /// Deepest stack of any chunk: the VM's stack size.
     pub max_stack: usize,
 }

@@ -5,9 +5,10 @@
 //! production and the step).
 
 use super::op::{Chunk, Op};
-use crate::cpfg::spline::SplineFn;
-use crate::derive::rng::Rand48;
-use crate::resolve::{Func, RandFn, SymId};
+use crate::lang::builtins::{call, table_offset, RandFn};
+use crate::lang::rng::Rand48;
+use crate::lang::spline::SplineFn;
+use crate::resolve::SymId;
 use crate::source::Span;
 
 /// Where [`Op::Emit`] writes modules.
@@ -41,6 +42,14 @@ pub enum FaultKind {
     LoopLimit,
 }
 
+fn b2f(b: bool) -> f64 {
+    if b {
+        1.0
+    } else {
+        0.0
+    }
+}
+
 /// Backward jumps one run of a chunk may take: a loop that has not ended
 /// after this many rounds is taken to be endless.
 pub const MAX_LOOP_ITERATIONS: u64 = 10_000_000;
@@ -50,67 +59,6 @@ pub const MAX_LOOP_ITERATIONS: u64 = 10_000_000;
 pub struct Fault {
     pub kind: FaultKind,
     pub span: Span,
-}
-
-#[inline]
-fn b2f(b: bool) -> f64 {
-    if b {
-        1.0
-    } else {
-        0.0
-    }
-}
-
-/// Apply a builtin to its arguments (`b` unused for unary functions).
-pub fn call(f: Func, a: f64, b: f64) -> f64 {
-    match f {
-        Func::Sin => a.to_radians().sin(),
-        Func::Cos => a.to_radians().cos(),
-        Func::Tan => a.to_radians().tan(),
-        Func::Asin => a.asin().to_degrees(),
-        Func::Acos => a.acos().to_degrees(),
-        Func::Atan => a.atan().to_degrees(),
-        Func::Atan2 => a.atan2(b).to_degrees(),
-        Func::Sqrt => a.sqrt(),
-        Func::Exp => a.exp(),
-        Func::Log => a.ln(),
-        Func::Floor => a.floor(),
-        Func::Ceil => a.ceil(),
-        Func::Trunc => a.trunc(),
-        Func::Abs => a.abs(),
-        Func::Sign => {
-            if a > 0.0 {
-                1.0
-            } else if a < 0.0 {
-                -1.0
-            } else if a.is_nan() {
-                a
-            } else {
-                0.0
-            }
-        }
-        Func::Min => a.min(b),
-        Func::Max => a.max(b),
-        Func::Ran => unreachable!("ran has its own instruction"),
-    }
-}
-
-/// Row-major offset of the element at `idx` in a table whose dimensions
-/// are `(first index, count)`. `Err(k)`: index k is outside its range or
-/// not a whole number. Constant folding and the VM both use it, so both
-/// agree on every lookup.
-#[inline]
-pub fn table_offset(bounds: impl Iterator<Item = (f64, f64)>, idx: &[f64]) -> Result<usize, usize> {
-    let mut flat = 0usize;
-    for (k, ((lo, len), &v)) in bounds.zip(idx).enumerate() {
-        let off = v - lo;
-        // `off < len` is false for NaN, so NaN indices fail too.
-        if !(off >= 0.0 && off < len && off.fract() == 0.0) {
-            return Err(k);
-        }
-        flat = flat * len as usize + off as usize;
-    }
-    Ok(flat)
 }
 
 /// Run `chunk`. `stack` must hold at least `chunk.max_stack` values,

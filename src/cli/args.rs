@@ -114,6 +114,7 @@ impl SourceArgs {
                 max_nesting: self.max_nesting,
                 max_operators: self.max_operators,
             },
+            dialect: None,
         }
     }
 }

@@ -29,7 +29,7 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         Command::Render(r) => super::model::render_cmd(r, color),
         Command::Pailou(p) => super::model::pailou_cmd(p, color),
         Command::Commands => {
-            emit_stdout(|out| out.write_all(crate::turtle::commands::help_text().as_bytes()))
+            emit_stdout(|out| out.write_all(crate::lang::commands::help_text().as_bytes()))
         }
         Command::Watch(b) => super::watch::watch_cmd(b, color),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {

@@ -9,7 +9,7 @@
 use std::fs;
 use std::path::{Path, PathBuf};
 
-use super::spline::{parse_func, parse_gallery, SplineFn};
+use crate::lang::spline::{parse_func, parse_gallery, SplineFn};
 
 /// The view file cpfg would read for `model`, if there is one.
 pub fn find_view_file(model: &Path) -> Option<PathBuf> {

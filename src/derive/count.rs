@@ -19,10 +19,10 @@ use super::engine::{Derivation, DeriveOptions};
 use super::error::DeriveError;
 use super::fast::{choose, Plan};
 use super::rewrite::Tables;
-use super::rng::Rand48;
 use super::store::{head_arity, head_sym, ModuleStore};
 use crate::bytecode::vm;
 use crate::bytecode::Compiled;
+use crate::lang::rng::Rand48;
 use crate::resolve::Program;
 
 /// Distinct (module, remaining steps) pairs remembered; beyond this the

@@ -8,10 +8,10 @@ use std::mem;
 use super::error::{DepthWarning, DeriveError};
 use super::fast::Plan;
 use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
-use super::rng::{Rand48, DEFAULT_SEED};
 use super::run::{run_hook, store_params};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
+use crate::lang::rng::{Rand48, DEFAULT_SEED};
 use crate::resolve::{Program, Table};
 
 /// Limits and seed of a derivation.
@@ -195,7 +195,7 @@ impl<'p> Derivation<'p> {
             return;
         }
         let program = self.tab.program;
-        let opts = crate::turtle::TurtleOptions::new(&program.turtle, None, None, None);
+        let opts = crate::turtle::TurtleOptions::new(program, None, None, None);
         let own = crate::turtle::query_values(program, &self.cur, &opts);
         // The turtle draws the homomorphism's output; the queries in it are
         // those of the string, in the same order, unless the homomorphism

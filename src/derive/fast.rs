@@ -22,12 +22,11 @@
 //! same state), producing exactly the diagnostic it always did.
 
 use super::rewrite::Tables;
-use super::rng::Rand48;
 use super::store::{head_arity, head_sym, ModuleStore};
 use super::template::{Cond, Succ};
 use crate::bytecode::vm::{self, NoSink, Sink};
 use crate::bytecode::{Chunk, CondCode, Op, ProdCode};
-use crate::turtle::Dialect;
+use crate::lang::rng::Rand48;
 
 /// Instructions the fast path may run. Everything here is a pure function
 /// of the bindings and the constant pool (no generator, no state), so the
@@ -110,7 +109,7 @@ impl Plan {
         // production, run its code": other dialects may add rules of their
         // own to the general engine (cpfg's `%` cuts, parameters stored
         // as f32) that no instruction shows.
-        if !matches!(tab.program.turtle.dialect, Dialect::Paper) {
+        if !tab.program.profile.fast_path {
             return None;
         }
         let consts = &tab.compiled.consts;

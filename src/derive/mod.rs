@@ -60,15 +60,14 @@ mod fast;
 mod matching;
 mod parallel;
 mod rewrite;
-pub mod rng;
 mod run;
 pub mod store;
 mod template;
 
+pub use crate::lang::rng::{Rand48, DEFAULT_SEED};
 pub use count::{count, Counts};
 pub use engine::{
     derive, derive_each, homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted,
 };
 pub use error::{DepthWarning, DeriveError};
-pub use rng::{Rand48, DEFAULT_SEED};
 pub use store::{ContextIndex, Module, ModuleStore};

@@ -10,11 +10,11 @@ use std::sync::Arc;
 use super::engine::DeriveOptions;
 use super::error::{DepthWarning, DeriveError, Src};
 use super::matching::{match_at, Bound, Input, Rules};
-use super::rng::Rand48;
 use super::run::run_successor;
 use super::store::{head_arity, head_sym, rest_of_branch, ContextIndex, ModuleStore, MAX_SYMBOLS};
 use crate::bytecode::vm::{self, NoSink};
 use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
+use crate::lang::rng::Rand48;
 use crate::resolve::{Program, Table, CLOSE_BRACKET, OPEN_BRACKET};
 use crate::source::Span;
 
@@ -77,8 +77,11 @@ impl<'p> Tables<'p> {
                 limit: MAX_SYMBOLS,
             }));
         }
-        let cpfg = program.turtle.dialect == crate::turtle::Dialect::Cpfg;
-        let cut = program.symbols.get("%").filter(|_| cpfg);
+        let profile = program.profile;
+        let cut = program
+            .symbols
+            .get("%")
+            .filter(|_| profile.cut_in_rewriting);
         let mut rules = TABLES.map(|t| {
             let never: Vec<bool> = compiled
                 .table(t)
@@ -99,12 +102,13 @@ impl<'p> Tables<'p> {
             skip: (0..nsyms as u32)
                 .map(|s| {
                     program.skips_in_context(s)
-                        && (cpfg || (s != OPEN_BRACKET && s != CLOSE_BRACKET))
+                        && (profile.context_through_brackets
+                            || (s != OPEN_BRACKET && s != CLOSE_BRACKET))
                 })
                 .collect(),
             max_modules: opts.max_modules,
             max_params: opts.max_params.min(u32::MAX as usize),
-            f32_params: cpfg,
+            f32_params: profile.f32_params,
             cut,
             has_queries: program.symbols.list.iter().any(|s| {
                 s.kind == crate::resolve::SymbolKind::Query

@@ -5,8 +5,8 @@
 
 use std::collections::HashSet;
 
+use crate::lang as turtle;
 use crate::parse::ast::TokKind;
-use crate::turtle;
 
 /// One piece of a split run.
 #[derive(Clone, Debug, PartialEq)]

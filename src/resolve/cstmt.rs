@@ -34,7 +34,7 @@ pub(crate) struct Vars {
     pub array_ids: HashMap<String, u32>,
     pub hooks: Hooks,
     /// The view file's functions, read at the first `func` call.
-    pub functions: Option<Vec<crate::cpfg::spline::SplineFn>>,
+    pub functions: Option<Vec<crate::lang::spline::SplineFn>>,
 }
 
 impl Vars {

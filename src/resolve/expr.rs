@@ -544,7 +544,7 @@ impl Resolver {
     fn view_functions(
         &mut self,
         span: crate::source::Span,
-    ) -> Option<Vec<crate::cpfg::spline::SplineFn>> {
+    ) -> Option<Vec<crate::lang::spline::SplineFn>> {
         if let Some(f) = &self.vars.functions {
             return Some(f.clone());
         }

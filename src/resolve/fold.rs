@@ -2,7 +2,7 @@
 //! every constant sub-expression computed. Arithmetic is IEEE f64, the same
 //! operations the VM performs, so a folded value is exactly
 //! what the VM would have computed (functions go through the VM's own
-//! table, `bytecode::vm::call`).
+//! table, `lang::builtins::call`).
 
 use super::error::ResolveError;
 use super::ir::{BinOp, Expr, ExprKind, TableDef, UnOp};
@@ -59,7 +59,7 @@ pub fn fold(e: Expr, sources: &SourceMap, tables: &[TableDef]) -> Result<Expr, B
             match consts {
                 // The VM's own function table, so a folded value is bit for bit
                 // what the VM computes at run time.
-                Some(vals) if f.is_pure() => ExprKind::Num(crate::bytecode::vm::call(
+                Some(vals) if f.is_pure() => ExprKind::Num(crate::lang::builtins::call(
                     f,
                     vals[0],
                     vals.get(1).copied().unwrap_or(0.0),
@@ -81,7 +81,7 @@ pub fn fold(e: Expr, sources: &SourceMap, tables: &[TableDef]) -> Result<Expr, B
                 })
                 .collect();
             match consts {
-                Some(idx) => match crate::bytecode::vm::table_offset(t.bounds(), &idx) {
+                Some(idx) => match crate::lang::builtins::table_offset(t.bounds(), &idx) {
                     Ok(at) => ExprKind::Num(t.values[at]),
                     Err(k) => {
                         return Err(Box::new(ResolveError::TableIndex {

@@ -99,27 +99,6 @@ pub enum ExprKind {
     Spline(u32, Box<Expr>),
 }
 
-/// cpfg's random distributions beyond `ran`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RandFn {
-    /// `nran(mean, sd)`: normal.
-    Nran,
-    /// `bran(a, b)`: beta.
-    Bran,
-    /// `biran(n, p)`: binomial.
-    Biran,
-}
-
-impl RandFn {
-    pub fn name(self) -> &'static str {
-        match self {
-            RandFn::Nran => "nran",
-            RandFn::Bran => "bran",
-            RandFn::Biran => "biran",
-        }
-    }
-}
-
 /// A cpfg C-like statement, resolved.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Stmt {
@@ -189,95 +168,7 @@ pub enum UnOp {
 /// Binary operators: the parser's enum, used unchanged by every stage.
 pub use crate::parse::ast::BinaryOp as BinOp;
 
-/// Built-in functions. Trigonometry works in degrees, as in cpfg.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Func {
-    Sin,
-    Cos,
-    Tan,
-    Asin,
-    Acos,
-    Atan,
-    Atan2,
-    Sqrt,
-    Exp,
-    Log,
-    Floor,
-    Ceil,
-    Trunc,
-    Abs,
-    Sign,
-    Min,
-    Max,
-    /// `ran(x)`: uniform in [0, x) from the derivation's seeded generator.
-    Ran,
-}
-
-impl Func {
-    pub const ALL: [Func; 18] = [
-        Func::Sin,
-        Func::Cos,
-        Func::Tan,
-        Func::Asin,
-        Func::Acos,
-        Func::Atan,
-        Func::Atan2,
-        Func::Sqrt,
-        Func::Exp,
-        Func::Log,
-        Func::Floor,
-        Func::Ceil,
-        Func::Trunc,
-        Func::Abs,
-        Func::Sign,
-        Func::Min,
-        Func::Max,
-        Func::Ran,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            Func::Sin => "sin",
-            Func::Cos => "cos",
-            Func::Tan => "tan",
-            Func::Asin => "asin",
-            Func::Acos => "acos",
-            Func::Atan => "atan",
-            Func::Atan2 => "atan2",
-            Func::Sqrt => "sqrt",
-            Func::Exp => "exp",
-            Func::Log => "log",
-            Func::Floor => "floor",
-            Func::Ceil => "ceil",
-            Func::Trunc => "trunc",
-            Func::Abs => "abs",
-            Func::Sign => "sign",
-            Func::Min => "min",
-            Func::Max => "max",
-            Func::Ran => "ran",
-        }
-    }
-
-    pub fn arity(self) -> usize {
-        match self {
-            Func::Atan2 | Func::Min | Func::Max => 2,
-            _ => 1,
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<Func> {
-        // cpfg writes C's name for the absolute value.
-        if name == "fabs" {
-            return Some(Func::Abs);
-        }
-        Func::ALL.into_iter().find(|f| f.name() == name)
-    }
-
-    /// Whether the result depends on state (so it must never be folded).
-    pub fn is_pure(self) -> bool {
-        self != Func::Ran
-    }
-}
+pub use crate::lang::builtins::{Func, RandFn};
 
 /// One module of a predecessor or context pattern.
 #[derive(Clone, Debug, PartialEq)]
@@ -404,7 +295,9 @@ pub struct Program {
     pub decomposition_depth: u32,
     pub homomorphism_depth: u32,
     pub defines: Vec<DefineInfo>,
-    /// The turtle headers (`angle:`, `dialect:`, ...).
+    /// The language profile the loader decided (dialect and all it implies).
+    pub profile: crate::lang::Profile,
+    /// The turtle headers (`angle:`, `step:`, ...).
     pub turtle: TurtleSettings,
     /// Tables (`#define NAME[dims] {...}`), indexed by [`ExprKind::Index`].
     pub tables: Vec<TableDef>,
@@ -415,7 +308,7 @@ pub struct Program {
     pub arrays: Vec<ArrayInfo>,
     pub hooks: Hooks,
     /// The functions of a cpfg model's view file (`func(id, x)`).
-    pub functions: Vec<crate::cpfg::spline::SplineFn>,
+    pub functions: Vec<crate::lang::spline::SplineFn>,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.
@@ -461,8 +354,6 @@ impl TableDef {
 /// that the command line and the turtle's defaults can fill in.
 #[derive(Clone, Debug, Default)]
 pub struct TurtleSettings {
-    /// `dialect:`, or the default for the file's name.
-    pub dialect: crate::turtle::Dialect,
     /// `angle:` in degrees.
     pub angle: Option<f64>,
     /// `step:`.

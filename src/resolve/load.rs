@@ -104,6 +104,8 @@ pub struct Loaded {
     /// The files went through the C preprocessor (a cpfg `.l` root), which
     /// took the `-D` definitions.
     pub preprocessed: bool,
+    /// The language profile, decided here once for the whole model.
+    pub profile: crate::lang::Profile,
 }
 
 /// Loads `input` and what it includes. A cpfg file (`.l`) goes through the
@@ -141,6 +143,7 @@ pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> 
             text.clone(),
         ),
     };
+    let profile = crate::lang::Profile::decide(&root.name, &root.text, opts.dialect);
     // Includes stay inside the top-level file's folder (or, for text and
     // library grammars, the working folder): a grammar from someone else
     // cannot read ../../etc/passwd, nor show its lines in a diagnostic.
@@ -167,6 +170,7 @@ pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> 
             errors: Vec::new(),
             warnings: Vec::new(),
             preprocessed: false,
+            profile,
         },
         stack: Vec::new(),
         roots,
@@ -176,7 +180,7 @@ pub fn load(input: &Input, opts: &super::Options) -> Result<Loaded, InputError> 
         limits: opts.parse,
         pre: None,
     };
-    let root = if crate::cpfg::is_model_file(&root.name) {
+    let root = if profile.cpfg_model_file {
         loader.preprocess(root, &opts.defines)
     } else {
         root

@@ -40,6 +40,9 @@ pub struct Options {
     /// Nesting and expression limits of the parser (`--max-nesting`,
     /// `--max-operators`).
     pub parse: crate::parse::Limits,
+    /// `--dialect`: overrides the profile the file's name and `dialect:`
+    /// header would give.
+    pub dialect: Option<crate::lang::Dialect>,
 }
 
 impl Default for Options {
@@ -49,6 +52,7 @@ impl Default for Options {
             include_dirs: Vec::new(),
             max_include_depth: MAX_INCLUDE_DEPTH,
             parse: crate::parse::Limits::default(),
+            dialect: None,
         }
     }
 }
@@ -90,7 +94,7 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         tables: Vec::new(),
         table_ids: HashMap::new(),
         vars: cstmt::Vars::default(),
-        cpfg: false,
+        profile: loaded.profile,
         warned_at: Default::default(),
         strings: Vec::new(),
     };
@@ -148,7 +152,7 @@ pub(crate) struct Resolver {
     /// as cpfg's scanner reads them, turtle commands may carry parameters
     /// the turtle ignores, and unknown `@` commands are kept as inert
     /// modules (with a warning).
-    pub cpfg: bool,
+    pub profile: crate::lang::Profile,
     /// Unknown `@` commands already warned about (one warning per name).
     pub warned_at: std::collections::HashSet<String>,
     /// Strings given as module parameters, numbered from 1 as cpfg does.
@@ -165,7 +169,6 @@ impl Resolver {
     }
 
     fn run(&mut self, items: Vec<(u32, ast::Item)>, opts: &Options) -> Option<Program> {
-        self.cpfg = crate::cpfg::is_model_file(&self.sources.get(0).name);
         self.collect_defines(&items);
         let element_overrides = self.apply_overrides(opts);
         self.evaluate_tables(&element_overrides);

@@ -7,9 +7,9 @@ use super::error::ResolveError;
 use super::expr::{suggest, Scope};
 use super::ir::*;
 use super::Resolver;
+use crate::lang as turtle;
 use crate::parse::ast::{self, HeaderKind, Item, ModuleTok, PatTok, TokKind};
 use crate::source::Span;
-use crate::turtle;
 
 /// A module token split into one module, with its arguments (only the last
 /// piece of a run carries the run's argument list).
@@ -29,7 +29,7 @@ impl Resolver {
                 Item::Production(p) => {
                     for t in &p.pred {
                         if let PatTok::Module(m) = t {
-                            if self.cpfg && m.kind == TokKind::Word {
+                            if self.profile.cpfg_names && m.kind == TokKind::Word {
                                 // cpfg's names are single characters.
                                 for c in m.text.chars() {
                                     preds.push((c.to_string(), m.span));
@@ -98,7 +98,7 @@ impl Resolver {
         let pieces: Vec<Piece> = if tok.kind == TokKind::At {
             let p = self.alphabet.split(&tok.text, tok.kind);
             if p[0].fallback {
-                if self.cpfg {
+                if self.profile.cpfg_names {
                     // cpfg has more `@` commands than the turtle draws
                     // (textures, contours, ...): keep it, drawing nothing.
                     self.unknown_turtle_warning(tok);
@@ -235,7 +235,7 @@ impl Resolver {
                     .is_some_and(|a| a.counts.contains(&n));
                 // cpfg reads the parameters a command knows and ignores
                 // the rest (`+(20,0)`).
-                let too_many = n > c.max_args as usize && !self.cpfg;
+                let too_many = n > c.max_args as usize && !self.profile.cpfg_names;
                 if !declared && (n < c.min_args as usize || too_many) {
                     let expected = range_text(c.min_args as usize, c.max_args as usize);
                     self.error(ResolveError::Arity {
@@ -332,7 +332,11 @@ impl Resolver {
                     }
                     // cpfg: `=` in a right context skips the rest of the
                     // branch (`F > [+D=]`), which the `]` after it does here.
-                    if self.cpfg && allow_brackets && m.kind == TokKind::Punct && m.text == "=" {
+                    if self.profile.cpfg_names
+                        && allow_brackets
+                        && m.kind == TokKind::Punct
+                        && m.text == "="
+                    {
                         continue;
                     }
                     if m.kind == TokKind::Punct && m.text == "*" {
@@ -344,15 +348,16 @@ impl Resolver {
                         });
                         continue;
                     }
-                    let pieces = if whole_words && m.kind == TokKind::Word && !self.cpfg {
-                        vec![Split {
-                            name: m.text.clone(),
-                            span: m.span,
-                            args: m.args.as_deref(),
-                        }]
-                    } else {
-                        self.split(m)
-                    };
+                    let pieces =
+                        if whole_words && m.kind == TokKind::Word && !self.profile.cpfg_names {
+                            vec![Split {
+                                name: m.text.clone(),
+                                span: m.span,
+                                args: m.args.as_deref(),
+                            }]
+                        } else {
+                            self.split(m)
+                        };
                     for s in pieces {
                         let sym = self.intern(&s.name, Some(s.span));
                         let first = params.len() as u16;

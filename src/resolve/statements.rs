@@ -73,9 +73,6 @@ impl Resolver {
         };
         let defines = self.define_infos();
         let mut turtle = std::mem::take(&mut s.turtle.settings);
-        if s.turtle.dialect_given().is_none() {
-            turtle.dialect = crate::turtle::Dialect::for_file_name(&self.sources.get(0).name);
-        }
         if let Some(Some(span)) = self
             .symbols
             .get("?E")
@@ -87,7 +84,7 @@ impl Resolver {
             });
         }
         // A cpfg model's turning angle is in its view file.
-        if self.cpfg && turtle.angle.is_none() {
+        if self.profile.cpfg_model_file && turtle.angle.is_none() {
             if let crate::source::Origin::Disk(p) = &self.sources.get(0).origin {
                 turtle.angle = crate::cpfg::view::view_angle(p);
             }
@@ -113,6 +110,7 @@ impl Resolver {
                 .get(&Table::Homomorphism)
                 .map_or(DEFAULT_DEPTH, |d| d.0),
             defines,
+            profile: self.profile,
             turtle,
             tables: std::mem::take(&mut self.tables),
             vars: vars.vars,

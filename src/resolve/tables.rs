@@ -105,7 +105,7 @@ impl Resolver {
             let t = &self.tables[id as usize];
             let idx: Vec<f64> = o.at.iter().map(|&i| i as f64).collect();
             let at = (idx.len() == t.dims.len())
-                .then(|| crate::bytecode::vm::table_offset(t.bounds(), &idx).ok())
+                .then(|| crate::lang::builtins::table_offset(t.bounds(), &idx).ok())
                 .flatten();
             match at {
                 Some(at) => {

@@ -6,9 +6,9 @@ use super::error::ResolveError;
 use super::expr::Scope;
 use super::ir::TurtleSettings;
 use super::Resolver;
+use crate::lang::Dialect;
 use crate::parse::ast::{self, HeaderKind};
 use crate::source::Span;
-use crate::turtle::Dialect;
 
 /// The settings gathered so far and where each was first given.
 #[derive(Default)]
@@ -19,12 +19,6 @@ pub(super) struct TurtleHeaders {
     width: Option<Span>,
     dialect: Option<Span>,
     colours: Vec<(usize, Span)>,
-}
-
-impl TurtleHeaders {
-    pub fn dialect_given(&self) -> Option<Span> {
-        self.dialect
-    }
 }
 
 impl Resolver {
@@ -64,7 +58,8 @@ impl Resolver {
             HeaderKind::Dialect(name, span) => {
                 if self.once(h, "dialect:", &mut t.dialect, "a file has one dialect") {
                     match Dialect::from_name(name) {
-                        Some(d) => t.settings.dialect = d,
+                        // The loader decided the profile from this header.
+                        Some(_) => {}
                         None => self.error(ResolveError::BadValue {
                             what: "dialect".to_string(),
                             why: format!("`{name}` is not a dialect"),

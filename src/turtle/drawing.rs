@@ -34,15 +34,7 @@ pub struct Polygon {
     pub points: Vec<Vec3>,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ShapeKind {
-    /// `@O`: a sphere.
-    Sphere,
-    /// `@o`: a filled disc facing the heading.
-    Disc,
-    /// `@c`: a circle (a thin ring) facing the heading.
-    Circle,
-}
+pub use crate::lang::commands::ShapeKind;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Shape {

@@ -4,19 +4,19 @@
 
 use glam::{DVec3, Mat4, Vec3, Vec4};
 
-use super::commands::{lookup, Action};
-use super::dialect::Dialect;
 use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
-use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols, TurtleSettings};
+use crate::lang::commands::{lookup, Action};
+use crate::lang::{Dialect, Profile};
+use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols};
 
 /// Defaults the turtle starts from.
 #[derive(Clone, Debug)]
 pub struct TurtleOptions {
-    pub dialect: Dialect,
+    pub profile: Profile,
     /// Turning angle of `+`, `&`, ... without a parameter, in degrees.
     pub angle: f32,
     /// Length of `F`, `f`, ... without a parameter.
@@ -35,13 +35,14 @@ const DEFAULT_GC_SEGMENTS: usize = 8;
 impl TurtleOptions {
     /// The file's headers, each overridden by the command line when given.
     pub fn new(
-        file: &TurtleSettings,
+        program: &Program,
         angle: Option<f64>,
         step: Option<f64>,
         width: Option<f64>,
     ) -> Self {
+        let file = &program.turtle;
         TurtleOptions {
-            dialect: file.dialect,
+            profile: program.profile,
             angle: angle.or(file.angle).unwrap_or(DEFAULT_ANGLE) as f32,
             step: step.or(file.step).unwrap_or(1.0) as f32,
             width: width.or(file.width).unwrap_or(DEFAULT_WIDTH) as f32,
@@ -170,14 +171,14 @@ fn interpret_with(
         .symbols
         .list
         .iter()
-        .map(|s| act_of(&s.name, s.kind, opts.dialect))
+        .map(|s| act_of(&s.name, s.kind, opts.profile.dialect))
         .collect();
     let mut t = Turtle {
         opts,
         symbols: &program.symbols,
         drawing: Drawing::default(),
         state: State {
-            frame: if opts.dialect == Dialect::Cpfg {
+            frame: if opts.profile.cpfg_turtle {
                 Frame::cpfg()
             } else {
                 Frame::default()
@@ -390,7 +391,7 @@ impl Turtle<'_> {
             }
             // cpfg writes `@Ts(movement, e)`: the first parameter picks one
             // of its tropisms, the second is the elasticity (none: 0).
-            Elasticity if self.opts.dialect == Dialect::Cpfg => {
+            Elasticity if self.opts.profile.cpfg_turtle => {
                 s.elasticity = args.get(1).map_or(0.0, |&e| e as f32)
             }
             Elasticity => s.elasticity = args.first().map_or(0.0, |&e| e as f32),

@@ -1,10 +1,6 @@
 //! Turtle: the command table that the checker, help text and the 3D turtle
 //! all read, and the turtle itself. Input: a derived module string; output:
 //! strokes, polygons and component placements handed to the mesh builder.
-pub mod commands;
-pub mod dialect;
-pub use commands::{lookup, Command, COMMANDS};
-pub use dialect::Dialect;
 pub mod drawing;
 pub mod error;
 pub mod frame;

@@ -4,8 +4,17 @@
 //! `@Gs` is one command) and to check parameter counts, the turtle reads
 //! the action, and `lsys commands` prints it.
 
-use super::dialect::Dialect;
-use super::drawing::ShapeKind;
+use super::profile::Dialect;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShapeKind {
+    /// `@O`: a sphere.
+    Sphere,
+    /// `@o`: a filled disc facing the heading.
+    Disc,
+    /// `@c`: a circle (a thin ring) facing the heading.
+    Circle,
+}
 
 /// What the turtle does for a command.
 #[derive(Clone, Copy, Debug, PartialEq)]
