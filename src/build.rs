@@ -10,6 +10,7 @@ use thiserror::Error;
 use crate::derive::{self, DepthWarning, DeriveError, DeriveOptions, ModuleStore};
 use crate::mesh::{self, ComponentSearch, MeshError, MeshOptions, Palette, Scene};
 use crate::pipeline::Compilation;
+use crate::simulation::Simulation;
 use crate::turtle::{self, Drawing, TurtleError, TurtleOptions};
 
 /// Everything a build can be told besides the grammar.
@@ -99,11 +100,9 @@ pub fn build_observed(
     let (program, compiled) = (&comp.program, &comp.compiled);
     let t0 = Instant::now();
     let steps = opts.steps.unwrap_or(program.derivation_length);
-    let mut d = derive::Derivation::new(program, compiled, opts.derive.clone())?;
-    for done in 0..steps {
-        observe(Stage::Derive { done, of: steps });
-        d.step()?;
-    }
+    let mut sim = Simulation::new(program, compiled, opts.derive.clone(), steps)?;
+    sim.run(&mut |done, of| observe(Stage::Derive { done, of }))?;
+    let d = sim.into_derivation();
     let warnings = d.warnings().to_vec();
     let step = d.step_number();
     let string = d.into_current();

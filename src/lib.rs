@@ -31,6 +31,7 @@ pub mod preprocess;
 pub mod progress;
 pub mod repl;
 pub mod resolve;
+pub mod simulation;
 pub mod source;
 pub mod stdlib;
 pub mod turtle;

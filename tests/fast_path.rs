@@ -161,7 +161,7 @@ fn seeded_stochastic_decomposition_keeps_its_numbers() {
 fn counts_agree(text: &str, steps: u32) -> bool {
     let c = compile(text);
     let counted = lsys::derive::count(&c.program, &c.compiled, opts(), steps).unwrap();
-    let s = lsys::derive::derive(&c.program, &c.compiled, opts(), steps).unwrap();
+    let s = lsys::simulation::derive(&c.program, &c.compiled, opts(), steps).unwrap();
     let want: Vec<u64> = s
         .counts(c.program.symbols.len())
         .into_iter()

@@ -169,7 +169,8 @@ fn derive() {
         };
         let mut out = warnings(&c);
         let mut run = || -> Result<derive::Derivation, derive::DeriveError> {
-            let mut d = derive::Derivation::new(p, code, opts.clone())?;
+            let steps = p.derivation_length;
+            let mut d = lsys::simulation::Simulation::new(p, code, opts.clone(), steps)?;
             out.push_str(&format!("0: {}\n", d.current().display(&p.symbols)));
             for _ in 0..p.derivation_length {
                 d.step()?;
@@ -179,7 +180,8 @@ fn derive() {
                     d.current().display(&p.symbols)
                 ));
             }
-            Ok(d)
+            d.finish()?;
+            Ok(d.into_derivation())
         };
         match run() {
             Ok(d) => {
@@ -328,7 +330,7 @@ fn abop_examples() {
         |path| {
             let c =
                 compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
-            let s = derive::derive(
+            let s = lsys::simulation::derive(
                 &c.program,
                 &c.compiled,
                 DeriveOptions::default(),

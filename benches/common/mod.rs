@@ -49,7 +49,7 @@ pub fn big() -> DeriveOptions {
 
 /// Derive `steps` steps of `c`.
 pub fn run(c: &Compilation, steps: u32) -> ModuleStore {
-    derive::derive(&c.program, &c.compiled, big(), steps).expect("workload derives")
+    lsys::simulation::derive(&c.program, &c.compiled, big(), steps).expect("workload derives")
 }
 
 /// A rayon pool of `n` threads (1: the single-threaded figures).

@@ -12,6 +12,7 @@ use crate::derive::{self, DeriveOptions, ModuleStore};
 use crate::pipeline::{self, Compilation, Failure};
 use crate::progress::Progress;
 use crate::resolve::{Input, Options};
+use crate::simulation::Simulation;
 
 /// Runs `cmd`. `color` is for diagnostics on standard error; the REPL
 /// decides for standard output itself unless `repl_color` says.
@@ -150,7 +151,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
             out.write_all(b"\n").map_err(Outcome::Io)
         };
         let mut deriv =
-            derive::Derivation::new(program, compiled, opts.clone()).map_err(Outcome::Derive)?;
+            Simulation::new(program, compiled, opts.clone(), steps).map_err(Outcome::Derive)?;
         if d.every {
             line(deriv.current(), 0, out)?;
         }
@@ -162,8 +163,9 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
                 line(deriv.current(), deriv.step_number(), out)?;
             }
         }
+        deriv.finish().map_err(Outcome::Derive)?;
         drop(progress);
-        for w in deriv.warnings() {
+        for w in deriv.derivation().warnings() {
             report(w, color);
         }
         if !d.every {

@@ -101,8 +101,6 @@ impl<'p> Derivation<'p> {
         d.fast = Plan::new(&d.tab);
         d.decompose()?;
         mem::swap(&mut d.cur, &mut d.next);
-        // cpfg interprets the axiom too before the first step reads it.
-        d.fill_queries();
         Ok(d)
     }
 
@@ -123,9 +121,23 @@ impl<'p> Derivation<'p> {
         Ok(())
     }
 
-    /// One parallel rewriting step with the main productions, then the
-    /// decomposition.
+    /// One whole step as far as derivation goes: [`rewrite_step`]
+    /// (`StartEach:`, the main productions, the decomposition), then
+    /// [`end_each`]. Nothing answers query modules and `End:` never runs
+    /// here: that is the simulation loop's (`crate::simulation`), which
+    /// knows the target step count and the environments.
+    ///
+    /// [`rewrite_step`]: Derivation::rewrite_step
+    /// [`end_each`]: Derivation::end_each
     pub fn step(&mut self) -> Result<(), DeriveError> {
+        self.rewrite_step()?;
+        self.end_each()
+    }
+
+    /// `StartEach:`, one parallel rewriting step with the main
+    /// productions, then the decomposition; the result becomes the current
+    /// string.
+    pub fn rewrite_step(&mut self) -> Result<(), DeriveError> {
         self.st.step = self.steps + 1;
         let hooks = &self.tab.compiled.hooks;
         run_hook(
@@ -156,13 +168,34 @@ impl<'p> Derivation<'p> {
         self.decompose()?;
         mem::swap(&mut self.cur, &mut self.next);
         self.steps += 1;
-        self.fill_queries();
+        Ok(())
+    }
+
+    /// The `EndEach:` block of the step just rewritten.
+    pub fn end_each(&mut self) -> Result<(), DeriveError> {
         let hooks = &self.tab.compiled.hooks;
         run_hook(&self.tab, &mut self.st, "EndEach", hooks.end_each.as_ref())?;
-        if self.steps == self.tab.program.derivation_length {
-            run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
-        }
         Ok(())
+    }
+
+    /// The `End:` block: once, after the last step the caller runs.
+    pub fn end(&mut self) -> Result<(), DeriveError> {
+        let hooks = &self.tab.compiled.hooks;
+        run_hook(&self.tab, &mut self.st, "End", hooks.end.as_ref())?;
+        Ok(())
+    }
+
+    /// Whether the alphabet has query modules (`?P`, `?H`, ...) that
+    /// something must answer after each step.
+    pub fn has_queries(&self) -> bool {
+        self.tab.has_queries
+    }
+
+    /// After parameters of the current string were overwritten (query
+    /// answers): store them as the profile stores parameters (f32 in
+    /// cpfg's).
+    pub fn parameters_changed(&mut self) {
+        store_params(&self.tab, &mut self.cur, 0);
     }
 
     /// The main-table rewrite of [`step`](Derivation::step) by the general
@@ -185,44 +218,6 @@ impl<'p> Derivation<'p> {
             &mut self.next,
         )?;
         Ok(())
-    }
-
-    /// cpfg's query modules (`?P(x,y,z)`, `?H`, `?L`, `?U`): an
-    /// interpretation of the string sets their parameters to the turtle's
-    /// position and orientation where they stand, after every step.
-    fn fill_queries(&mut self) {
-        if !self.tab.has_queries {
-            return;
-        }
-        let program = self.tab.program;
-        let opts = crate::turtle::TurtleOptions::new(program, None, None, None);
-        let own = crate::turtle::query_values(program, &self.cur, &opts);
-        // The turtle draws the homomorphism's output; the queries in it are
-        // those of the string, in the same order, unless the homomorphism
-        // rewrites query modules too (then the string is interpreted as it
-        // stands).
-        let drawn = if program.homomorphism.is_empty() {
-            None
-        } else {
-            self.homomorphism().ok().and_then(|h| {
-                let v = crate::turtle::query_values(program, &h.modules, &opts).ok()?;
-                Some(v)
-            })
-        };
-        // A string the turtle refuses (a NaN parameter) keeps its values.
-        let Ok(own) = own else { return };
-        let vals: Vec<(usize, usize, [f64; 3])> = match drawn {
-            Some(d) if d.len() == own.len() => own
-                .iter()
-                .zip(d)
-                .map(|(o, d)| (o.0, o.1.min(d.1), d.2))
-                .collect(),
-            _ => own,
-        };
-        for (at, n, v) in vals {
-            self.cur.params[at..at + n].copy_from_slice(&v[..n]);
-        }
-        store_params(&self.tab, &mut self.cur, 0);
     }
 
     fn with_fast_plan(mut self) -> Derivation<'p> {
@@ -405,32 +400,4 @@ pub fn homomorphism(
         modules: out,
         warnings: st.warnings,
     })
-}
-
-/// Derive `steps` steps and return the final string.
-pub fn derive(
-    program: &Program,
-    compiled: &Compiled,
-    opts: DeriveOptions,
-    steps: u32,
-) -> Result<ModuleStore, DeriveError> {
-    derive_each(program, compiled, opts, steps, |_, _| {})
-}
-
-/// Derive `steps` steps, calling `each(step, string)` for the axiom
-/// (step 0) and after every step (`--every`); returns the final string.
-pub fn derive_each<F: FnMut(u32, &ModuleStore)>(
-    program: &Program,
-    compiled: &Compiled,
-    opts: DeriveOptions,
-    steps: u32,
-    mut each: F,
-) -> Result<ModuleStore, DeriveError> {
-    let mut d = Derivation::new(program, compiled, opts)?;
-    each(0, d.current());
-    for _ in 0..steps {
-        d.step()?;
-        each(d.step_number(), d.current());
-    }
-    Ok(d.into_current())
 }

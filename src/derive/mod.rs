@@ -66,8 +66,6 @@ mod template;
 
 pub use crate::lang::rng::{Rand48, DEFAULT_SEED};
 pub use count::{count, Counts};
-pub use engine::{
-    derive, derive_each, homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted,
-};
+pub use engine::{homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted};
 pub use error::{DepthWarning, DeriveError};
 pub use store::{ContextIndex, Module, ModuleStore};

@@ -105,6 +105,12 @@ impl ModuleStore {
         &self.params
     }
 
+    /// All parameters, to overwrite in place (an environment answering
+    /// query modules); the modules themselves cannot change.
+    pub fn params_mut(&mut self) -> &mut [f64] {
+        &mut self.params
+    }
+
     /// Iterate over the modules in order.
     pub fn iter(&self) -> Iter<'_> {
         Iter {

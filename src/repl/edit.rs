@@ -9,10 +9,10 @@
 use super::session::{Out, Session};
 use super::{grammar, show};
 use crate::bytecode::one_line;
-use crate::derive::Derivation;
 use crate::parse::ast::{HeaderKind, Item};
 use crate::pipeline::Compilation;
 use crate::resolve::{Cond, Expr, ExprKind, PatItem, PatModule, Production, Table};
+use crate::simulation::Simulation;
 use crate::source::{Origin, SourceFile};
 
 impl Session {
@@ -163,7 +163,7 @@ impl Session {
         let (source, text) = self.base();
         let (probe, _) = grammar::set_axiom(&text, &modules.replace('\n', " "));
         let comp = self.compile(&source, &probe, &self.overrides)?;
-        let mut d = Derivation::new(&comp.program, &comp.compiled, self.opts.clone())
+        let mut d = Simulation::new(&comp.program, &comp.compiled, self.opts.clone(), 1)
             .map_err(|e| crate::diag::render(&e, self.color))?;
         d.step().map_err(|e| crate::diag::render(&e, self.color))?;
         Ok(show::abbreviate(

@@ -18,10 +18,11 @@ use miette::Report;
 
 use super::input::{self, Kind};
 use super::{commands, show};
-use crate::derive::{Checkpoint, Derivation, DeriveOptions, ModuleStore};
+use crate::derive::{Checkpoint, DeriveOptions, ModuleStore};
 use crate::pipeline::{self, Compilation, Failure};
 use crate::progress::Progress;
 use crate::resolve::{Input, Options};
+use crate::simulation::Simulation;
 
 /// A command's result: its text, or the text of what went wrong.
 pub type Out = Result<String, String>;
@@ -461,8 +462,10 @@ impl Session {
         })?;
         let (program, compiled) = (&g.comp.program, &g.comp.compiled);
         if history.is_empty() {
-            let d = Derivation::new(program, compiled, opts.clone()).map_err(|e| render(&e))?;
-            history.push(Some(d.checkpoint()));
+            let end = program.derivation_length;
+            let d =
+                Simulation::new(program, compiled, opts.clone(), end).map_err(|e| render(&e))?;
+            history.push(Some(d.derivation().checkpoint()));
             *pos = 0;
         }
         let t = target as usize;
@@ -475,8 +478,9 @@ impl Session {
             .find(|&i| history[i].is_some())
             .expect("step 0 is always kept");
         let cp = history[start].as_ref().expect("found above");
+        let end = program.derivation_length;
         let mut d =
-            Derivation::resume(program, compiled, opts.clone(), cp).map_err(|e| render(&e))?;
+            Simulation::resume(program, compiled, opts.clone(), end, cp).map_err(|e| render(&e))?;
         *pos = start as u32;
         let bar = Progress::new(*progress);
         let total = target - start as u32;
@@ -493,7 +497,7 @@ impl Session {
             if history.len() <= s {
                 history.resize(s + 1, None);
             }
-            history[s] = Some(d.checkpoint());
+            history[s] = Some(d.derivation().checkpoint());
             *pos = s as u32;
             trim(history, *pos as usize);
         }

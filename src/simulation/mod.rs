@@ -1,0 +1,215 @@
+//! The simulation loop: a compiled grammar and a target step count in, the
+//! derived string of every step out. One place owns the loop
+//!
+//! ```text
+//! Start:, axiom, decomposition -> environments answer queries
+//! for each step up to the target:
+//!     StartEach:, productions, decomposition -> environments answer -> EndEach:
+//! End: once, after the last step run
+//! ```
+//!
+//! Derive knows nothing of the turtle and the turtle nothing of derive:
+//! what answers query modules between steps is an [`Environment`] plugged
+//! in here. The turtle's own answers to cpfg's `?P`, `?H`, `?L`, `?U`
+//! ([`TurtleQueries`]) are the first one, and the one every simulation of
+//! a grammar with query modules gets.
+
+mod environment;
+mod queries;
+
+pub use environment::{Environment, StepContext};
+pub use queries::TurtleQueries;
+
+use crate::bytecode::Compiled;
+use crate::derive::{Checkpoint, Derivation, DeriveError, DeriveOptions, ModuleStore};
+use crate::resolve::Program;
+
+/// A derivation driven to a target step count, with the environments that
+/// answer its query modules.
+pub struct Simulation<'p> {
+    derivation: Derivation<'p>,
+    program: &'p Program,
+    compiled: &'p Compiled,
+    opts: DeriveOptions,
+    target: u32,
+    environments: Vec<Box<dyn Environment + 'p>>,
+    ended: bool,
+}
+
+impl<'p> Simulation<'p> {
+    /// `Start:`, the axiom and its decomposition, then the environments'
+    /// answers for the axiom (cpfg interprets the axiom too before the
+    /// first step reads it). `target` is the step after which `End:` runs
+    /// (normally `-n`, else the file's `derivation length:`). A grammar
+    /// with query modules gets [`TurtleQueries`].
+    pub fn new(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+    ) -> Result<Simulation<'p>, DeriveError> {
+        let derivation = Derivation::new(program, compiled, opts.clone())?;
+        Simulation::around(derivation, program, compiled, opts, target)
+    }
+
+    /// Continues from `cp` (see [`Derivation::resume`]); the environments
+    /// are not asked again about the checkpoint's string.
+    pub fn resume(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+        cp: &Checkpoint,
+    ) -> Result<Simulation<'p>, DeriveError> {
+        let derivation = Derivation::resume(program, compiled, opts.clone(), cp)?;
+        let mut s = Simulation::bare(derivation, program, compiled, opts, target);
+        s.ended = cp.step >= target && target > 0;
+        Ok(s)
+    }
+
+    fn bare(
+        derivation: Derivation<'p>,
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+    ) -> Simulation<'p> {
+        let mut environments: Vec<Box<dyn Environment + 'p>> = Vec::new();
+        if derivation.has_queries() {
+            environments.push(Box::new(TurtleQueries));
+        }
+        Simulation {
+            derivation,
+            program,
+            compiled,
+            opts,
+            target,
+            environments,
+            ended: false,
+        }
+    }
+
+    fn around(
+        derivation: Derivation<'p>,
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+    ) -> Result<Simulation<'p>, DeriveError> {
+        let mut s = Simulation::bare(derivation, program, compiled, opts, target);
+        s.answer()?;
+        Ok(s)
+    }
+
+    /// Adds an environment; it answers after the ones already there,
+    /// starting with the next step.
+    pub fn with_environment(mut self, env: Box<dyn Environment + 'p>) -> Simulation<'p> {
+        self.environments.push(env);
+        self
+    }
+
+    /// Every environment answers the queries of the current string.
+    fn answer(&mut self) -> Result<(), DeriveError> {
+        if self.environments.is_empty() {
+            return Ok(());
+        }
+        let ctx = StepContext {
+            program: self.program,
+            compiled: self.compiled,
+            opts: &self.opts,
+            step: self.derivation.step_number(),
+        };
+        for env in &mut self.environments {
+            env.answer(&ctx, self.derivation.current_mut())?;
+        }
+        self.derivation.parameters_changed();
+        Ok(())
+    }
+
+    /// One step: `StartEach:`, productions, decomposition, the
+    /// environments' answers, `EndEach:`, and `End:` when this was the
+    /// target step.
+    pub fn step(&mut self) -> Result<(), DeriveError> {
+        self.derivation.rewrite_step()?;
+        self.answer()?;
+        self.derivation.end_each()?;
+        if self.derivation.step_number() == self.target {
+            self.finish()?;
+        }
+        Ok(())
+    }
+
+    /// Steps until the target, telling `observe(done, target)` before each.
+    /// `End:` has run once when this returns (also for a target of 0).
+    pub fn run(&mut self, observe: &mut dyn FnMut(u32, u32)) -> Result<(), DeriveError> {
+        while self.derivation.step_number() < self.target {
+            observe(self.derivation.step_number(), self.target);
+            self.step()?;
+        }
+        self.finish()
+    }
+
+    /// `End:`, unless it already ran.
+    pub fn finish(&mut self) -> Result<(), DeriveError> {
+        if !self.ended {
+            self.ended = true;
+            self.derivation.end()?;
+        }
+        Ok(())
+    }
+
+    /// The step after which `End:` runs.
+    pub fn target(&self) -> u32 {
+        self.target
+    }
+
+    /// The derivation underneath (the current string, warnings, ...).
+    pub fn derivation(&self) -> &Derivation<'p> {
+        &self.derivation
+    }
+
+    /// The current string.
+    pub fn current(&self) -> &ModuleStore {
+        self.derivation.current()
+    }
+
+    /// Steps done so far (0: the axiom).
+    pub fn step_number(&self) -> u32 {
+        self.derivation.step_number()
+    }
+
+    /// Ends the simulation, keeping the derivation (its string, warnings).
+    pub fn into_derivation(self) -> Derivation<'p> {
+        self.derivation
+    }
+}
+
+/// Derives `steps` steps (`End:` after the last) and returns the final
+/// string.
+pub fn derive(
+    program: &Program,
+    compiled: &Compiled,
+    opts: DeriveOptions,
+    steps: u32,
+) -> Result<ModuleStore, DeriveError> {
+    derive_each(program, compiled, opts, steps, |_, _| {})
+}
+
+/// Derives `steps` steps, calling `each(step, string)` for the axiom
+/// (step 0) and after every step (`--every`); returns the final string.
+pub fn derive_each<F: FnMut(u32, &ModuleStore)>(
+    program: &Program,
+    compiled: &Compiled,
+    opts: DeriveOptions,
+    steps: u32,
+    mut each: F,
+) -> Result<ModuleStore, DeriveError> {
+    let mut s = Simulation::new(program, compiled, opts, steps)?;
+    each(0, s.current());
+    while s.step_number() < steps {
+        s.step()?;
+        each(s.step_number(), s.current());
+    }
+    s.finish()?;
+    Ok(s.into_derivation().into_current())
+}

@@ -1,0 +1,104 @@
+//! The simulation loop: `End:` runs once after the step the user asked
+//! for, environments answer query modules between steps through the
+//! `Environment` seam, and options reach grammar components.
+
+use std::process::{Command, Output};
+
+use lsys::derive::{DeriveError, DeriveOptions, ModuleStore};
+use lsys::simulation::{Environment, Simulation, StepContext};
+
+fn lsys(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+const END_FIXTURE: &str = "tests/fixtures/simulation/end_after_target.lsys";
+
+#[test]
+fn end_runs_after_the_step_count_given_on_the_command_line() {
+    // The fixture's End: reads sq[n - 6]: in range only after step 6.
+    let o = lsys(&["derive", END_FIXTURE, "-n", "6"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "A(6)");
+}
+
+#[test]
+fn end_runs_after_the_files_derivation_length_without_n() {
+    let o = lsys(&["derive", END_FIXTURE]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(65), "{err}");
+    assert!(err.contains("in the `End:` block at step 3"), "{err}");
+}
+
+#[test]
+fn end_runs_once_when_the_target_is_zero() {
+    // With no step at all End: still runs, once, after the axiom: n is 0,
+    // so sq[-6] fails at step 0.
+    let o = lsys(&["derive", END_FIXTURE, "-n", "0"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("in the `End:` block at step 0"), "{err}");
+}
+
+/// An environment that answers every `?P(x)` with the step number and
+/// counts how often it was asked.
+struct StepCounter<'a> {
+    calls: &'a std::cell::Cell<u32>,
+}
+
+impl Environment for StepCounter<'_> {
+    fn answer(
+        &mut self,
+        ctx: &StepContext<'_>,
+        string: &mut ModuleStore,
+    ) -> Result<(), DeriveError> {
+        self.calls.set(self.calls.get() + 1);
+        let q = ctx.program.symbols.get("?P").expect("the grammar has ?P");
+        let mut at = 0;
+        let offsets: Vec<(usize, usize)> = string
+            .iter()
+            .map(|m| {
+                let here = (at, m.params.len());
+                at += m.params.len();
+                (m.sym as usize, here.0)
+            })
+            .filter(|&(s, _)| s == q as usize)
+            .collect();
+        for (_, off) in offsets {
+            string.params_mut()[off] = f64::from(ctx.step) * 10.0;
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn an_environment_answers_after_the_axiom_and_every_step_before_end_each() {
+    // cpfg's query module ?P answered by a custom environment (after the
+    // turtle's own answer, so the custom one wins); B copies the answer.
+    let text = "Lsystem: 1\nderivation length: 2\nAxiom: A ?P(0,0,0)\n\
+                ?P(x,y,z) --> ?P(x,y,z) B(x)\nendlsystem\n";
+    let c = lsys::pipeline::compile(
+        &lsys::resolve::Input::Text {
+            name: "q.l".into(),
+            text: text.into(),
+        },
+        &Default::default(),
+    )
+    .unwrap_or_else(|_| panic!("compiles"));
+    let calls = std::cell::Cell::new(0);
+    let mut sim = Simulation::new(&c.program, &c.compiled, DeriveOptions::default(), 2)
+        .unwrap()
+        .with_environment(Box::new(StepCounter { calls: &calls }));
+    // The environment was added after the axiom's answer: it is asked from
+    // step 1 on.
+    sim.run(&mut |_, _| {}).unwrap();
+    assert_eq!(calls.get(), 2);
+    let s = sim.current().display(&c.program.symbols);
+    // Step 1 read the turtle's answer for the axiom (0), step 2 this
+    // environment's answer for step 1 (10), each new B written just after
+    // ?P; the final ?P holds 20.
+    assert_eq!(s, "A ?P(20,0,0) B(10) B(0)");
+}
