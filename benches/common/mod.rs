@@ -2,7 +2,7 @@
 //! `benches/grammars/` (or the standard library / Pailou generator).
 #![allow(dead_code)]
 
-use lsys::derive::{self, DeriveOptions, ModuleStore};
+use lsys::derive::{DeriveOptions, ModuleStore};
 use lsys::pipeline::{self, Compilation};
 use lsys::resolve::{Input, Options};
 
