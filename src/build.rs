@@ -13,9 +13,16 @@ use crate::pipeline::Compilation;
 use crate::simulation::Simulation;
 use crate::turtle::{self, Drawing, TurtleError, TurtleOptions};
 
-/// Everything a build can be told besides the grammar.
+/// Everything a build can be told besides the grammar: one value that
+/// travels from the front end into the grammar and every grammar
+/// component it places.
 #[derive(Clone, Debug, Default)]
 pub struct BuildOptions {
+    /// The compilation options the grammar was compiled with: `-D`
+    /// (namespaced ones, `TM.NTL=5`, are for grammar components), include
+    /// folders, parser limits, dialect override. Grammar components are
+    /// compiled with these, their own namespace's defines applied.
+    pub source: crate::resolve::Options,
     /// Derivation steps; `None` takes the file's `derivation length:`.
     pub steps: Option<u32>,
     pub derive: DeriveOptions,
@@ -25,6 +32,46 @@ pub struct BuildOptions {
     pub width: Option<f64>,
     pub components: ComponentSearch,
     pub mesh: MeshOptions,
+}
+
+impl BuildOptions {
+    /// The options grammar component `name` is built with: the same seed,
+    /// limits, include folders, component folders and mesh options; its
+    /// own `-D name.X=V` as `-D X=V` (and `name.A.X` as `A.X`, for the
+    /// components it places); its own `derivation length:` and turtle
+    /// headers rather than the outer command line's `-n`, `--angle`, ...
+    pub fn for_component(&self, name: &str, search: ComponentSearch) -> BuildOptions {
+        BuildOptions {
+            source: self.source.for_namespace(name),
+            steps: None,
+            angle: None,
+            step: None,
+            width: None,
+            components: search,
+            ..self.clone()
+        }
+    }
+}
+
+/// Grammar components built by this crate's own pipeline, with the outer
+/// build's options (see [`BuildOptions::for_component`]).
+struct SubGrammars<'a> {
+    opts: &'a BuildOptions,
+}
+
+impl mesh::GrammarComponents for SubGrammars<'_> {
+    fn scene(
+        &mut self,
+        name: &str,
+        input: &crate::resolve::Input,
+        search: &ComponentSearch,
+    ) -> Result<Scene, String> {
+        let opts = self.opts.for_component(name, search.clone());
+        let comp = crate::pipeline::compile(input, &opts.source).map_err(|f| f.render_plain())?;
+        build(&comp, &opts)
+            .map(|b| b.scene)
+            .map_err(|e| crate::diag::render_plain(&e))
+    }
 }
 
 /// Wall-clock time per stage.
@@ -153,7 +200,15 @@ fn model(
     let t2 = Instant::now();
     observe(Stage::Mesh);
     let palette = Palette::new(&program.turtle.palette);
-    let scene = mesh::build_scene(program, &drawing, &palette, &opts.components, &opts.mesh)?;
+    let mut grammars = SubGrammars { opts };
+    let scene = mesh::build_scene(
+        program,
+        &drawing,
+        &palette,
+        &opts.components,
+        &opts.mesh,
+        &mut grammars,
+    )?;
     let t3 = Instant::now();
     Ok(Built {
         scene,

@@ -1,11 +1,13 @@
-//! The front half of the compiler in one call: input -> parse -> resolve ->
-//! bytecode, with every diagnostic collected. The CLI, the tests and the
-//! REPL all go through here.
+//! The front half of the compiler in one call: input -> load -> parse ->
+//! resolve -> bytecode, with every diagnostic collected. The CLI, the
+//! tests, the REPL and the library API all go through here.
 
-use miette::Report;
+use miette::{Diagnostic, Report};
+use thiserror::Error;
 
 use crate::bytecode::{self, Compiled};
-use crate::resolve::{self, Input, InputError, Options, Program};
+use crate::diag::Diagnostics;
+use crate::resolve::{self, Input, Options, Program, SymbolKind};
 
 /// A grammar ready to derive.
 pub struct Compilation {
@@ -15,24 +17,31 @@ pub struct Compilation {
     pub warnings: Vec<Report>,
 }
 
-/// Why a grammar did not compile.
-pub enum Failure {
-    /// The root input could not be read (exit code 66).
-    Input(InputError),
-    /// The grammar has errors; all of them, with any warnings.
-    Diagnostics { diagnostics: Vec<Report> },
+/// A `-D NS.NAME=VALUE` whose namespace is no component of the grammar.
+#[derive(Debug, Error, Diagnostic)]
+#[error("`-D {name}`: the grammar places no component `~{namespace}`")]
+#[diagnostic(code(lsys::options::unknown_namespace), help("{help}"))]
+pub struct UnknownNamespace {
+    pub name: String,
+    pub namespace: String,
+    pub help: String,
 }
 
-pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
-    let resolved = match resolve::resolve(input, opts) {
-        Err(e) => return Err(Failure::Input(e)),
-        Ok(Err(f)) => {
-            return Err(Failure::Diagnostics {
-                diagnostics: f.diagnostics,
-            })
-        }
+/// Compiles `input`. Defines without a namespace are this grammar's;
+/// namespaced ones (`TM.NTL=5`) are kept for its grammar components and
+/// must name a component the grammar places.
+pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Diagnostics> {
+    let (own, namespaced) = opts.split_defines();
+    let own_opts = Options {
+        defines: own,
+        ..opts.clone()
+    };
+    let resolved = match resolve::resolve(input, &own_opts) {
+        Err(e) => return Err(Diagnostics::input(e)),
+        Ok(Err(f)) => return Err(Diagnostics::new(f.diagnostics)),
         Ok(Ok(r)) => r,
     };
+    check_namespaces(&resolved.program, &namespaced)?;
     match bytecode::compile(&resolved.program) {
         Ok(compiled) => Ok(Compilation {
             program: resolved.program,
@@ -42,7 +51,51 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
         Err(e) => {
             let mut diagnostics = vec![Report::new(e)];
             diagnostics.extend(resolved.warnings);
-            Err(Failure::Diagnostics { diagnostics })
+            Err(Diagnostics::new(diagnostics))
         }
+    }
+}
+
+fn check_namespaces(program: &Program, namespaced: &[(String, String)]) -> Result<(), Diagnostics> {
+    let components: Vec<&str> = program
+        .symbols
+        .list
+        .iter()
+        .filter(|s| s.kind == SymbolKind::Component)
+        .map(|s| s.name.trim_start_matches('~'))
+        .collect();
+    let unknown: Vec<Report> = namespaced
+        .iter()
+        .filter_map(|(name, _)| {
+            let ns = name.split('.').next().unwrap_or_default();
+            if components.contains(&ns) {
+                return None;
+            }
+            let help = if components.is_empty() {
+                "this grammar places no components; write `-D NAME=VALUE` for its own defines"
+                    .to_string()
+            } else {
+                let near = components
+                    .iter()
+                    .min_by_key(|c| strsim::levenshtein(c, ns))
+                    .filter(|c| strsim::levenshtein(c, ns) <= 2)
+                    .map(|c| format!("did you mean `{c}`? "))
+                    .unwrap_or_default();
+                format!(
+                    "{near}a namespace names a component the grammar places: {}",
+                    components.join(", ")
+                )
+            };
+            Some(Report::new(UnknownNamespace {
+                name: name.clone(),
+                namespace: ns.to_string(),
+                help,
+            }))
+        })
+        .collect();
+    if unknown.is_empty() {
+        Ok(())
+    } else {
+        Err(Diagnostics::new(unknown))
     }
 }

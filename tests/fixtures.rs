@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use lsys::derive::{self, DeriveOptions};
-use lsys::pipeline::{self, Failure};
+use lsys::pipeline;
 use lsys::resolve::{Input, Options};
 use lsys::source::{Origin, SourceFile};
 
@@ -70,11 +70,7 @@ fn compile(path: &Path) -> Result<pipeline::Compilation, String> {
     }
     match pipeline::compile(&Input::Path(rel(path).into()), &opts) {
         Ok(c) => Ok(c),
-        Err(Failure::Input(e)) => Err(lsys::diag::render_plain(&e)),
-        Err(Failure::Diagnostics { diagnostics, .. }) => Err(diagnostics
-            .iter()
-            .map(|d| lsys::diag::render_plain(d.as_ref()))
-            .collect()),
+        Err(d) => Err(d.render_plain()),
     }
 }
 

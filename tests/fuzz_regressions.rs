@@ -7,7 +7,7 @@
 use lsys::build::{self, BuildOptions};
 use lsys::derive::DeriveOptions;
 use lsys::mesh::MeshOptions;
-use lsys::pipeline::{self, Failure};
+use lsys::pipeline;
 use lsys::resolve::{Input, Options};
 use lsys::source::{Origin, SourceFile};
 
@@ -23,14 +23,8 @@ fn run(bytes: &[u8]) {
     };
     let c = match pipeline::compile(&input, &Options::default()) {
         Ok(c) => c,
-        Err(Failure::Input(e)) => {
-            lsys::diag::render_plain(&e);
-            return;
-        }
-        Err(Failure::Diagnostics { diagnostics }) => {
-            for d in &diagnostics {
-                lsys::diag::render_plain(d.as_ref());
-            }
+        Err(d) => {
+            d.render_plain();
             return;
         }
     };

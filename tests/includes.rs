@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use lsys::pipeline::{self, Failure};
+use lsys::pipeline;
 use lsys::resolve::{Input, Options};
 
 fn compile(root: &Path, include_dirs: &[&Path]) -> Result<String, String> {
@@ -19,11 +19,7 @@ fn compile(root: &Path, include_dirs: &[&Path]) -> Result<String, String> {
             .iter()
             .map(|d| format!("{}={:?};", d.name, d.value))
             .collect()),
-        Err(Failure::Input(e)) => Err(lsys::diag::render_plain(&e)),
-        Err(Failure::Diagnostics { diagnostics }) => Err(diagnostics
-            .iter()
-            .map(|d| lsys::diag::render_plain(d.as_ref()))
-            .collect()),
+        Err(d) => Err(d.render_plain()),
     }
 }
 

@@ -3,7 +3,7 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lsys::pipeline::{self, Failure};
+use lsys::pipeline;
 use lsys::resolve::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
@@ -18,13 +18,8 @@ fuzz_target!(|data: &[u8]| {
             }
             let _ = lsys::bytecode::disasm(&c.program, &c.compiled);
         }
-        Err(Failure::Input(e)) => {
-            let _ = lsys::diag::render_plain(&e);
-        }
-        Err(Failure::Diagnostics { diagnostics }) => {
-            for d in &diagnostics {
-                let _ = lsys::diag::render_plain(d.as_ref());
-            }
+        Err(d) => {
+            let _ = d.render_plain();
         }
     }
 });

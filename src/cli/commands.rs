@@ -9,7 +9,7 @@ use miette::Diagnostic;
 use super::args::{Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::derive::{self, DeriveOptions, ModuleStore};
-use crate::pipeline::{self, Compilation, Failure};
+use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
 use crate::resolve::{Input, Options};
 use crate::simulation::Simulation;
@@ -73,18 +73,13 @@ pub(super) fn compile_input(
             }
             Ok(comp)
         }
-        Err(Failure::Input(e)) => {
-            report(&e, color);
+        Err(d) if d.is_input_error() => {
+            eprint!("{}", d.render(color));
             Err(EX_NOINPUT)
         }
-        Err(Failure::Diagnostics { diagnostics, .. }) => {
-            let errors = diagnostics
-                .iter()
-                .filter(|d| crate::diag::is_error(d.as_ref()))
-                .count();
-            for d in &diagnostics {
-                report(d.as_ref(), color);
-            }
+        Err(diagnostics) => {
+            let errors = diagnostics.error_count();
+            eprint!("{}", diagnostics.render(color));
             eprintln!(
                 "{}: {errors} error{}",
                 name,

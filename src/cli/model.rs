@@ -207,7 +207,7 @@ pub(super) fn format_of(out: &Path) -> Result<Format, String> {
 }
 
 /// The options of a build from the command line.
-fn options(m: &Job) -> BuildOptions {
+fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
     let grammar_dir = match &m.input {
         Input::Path(p) => Some(
             p.parent()
@@ -218,6 +218,7 @@ fn options(m: &Job) -> BuildOptions {
         _ => None,
     };
     BuildOptions {
+        source,
         steps: m.run.steps,
         derive: DeriveOptions {
             seed: m.run.seed,
@@ -235,6 +236,17 @@ fn options(m: &Job) -> BuildOptions {
         mesh: MeshOptions {
             sides: m.look.facets,
             max_triangles: m.look.max_triangles,
+        },
+    }
+}
+
+/// The compilation options of a job from the command line.
+fn source_options(m: &Job) -> crate::resolve::Options {
+    match m.source {
+        Some(s) => s.options(m.defines),
+        None => crate::resolve::Options {
+            defines: m.defines.to_vec(),
+            ..Default::default()
         },
     }
 }
@@ -267,13 +279,7 @@ pub(super) fn build_once(
     report_as: Report,
 ) -> Outcome {
     let t0 = Instant::now();
-    let opts = match m.source {
-        Some(s) => s.options(m.defines),
-        None => crate::resolve::Options {
-            defines: m.defines.to_vec(),
-            ..Default::default()
-        },
-    };
+    let opts = source_options(m);
     let comp = match compile_input(&m.input, m.name, &opts, color) {
         Ok(c) => c,
         Err(code) => {
@@ -309,7 +315,9 @@ fn build_compiled(
 ) -> i32 {
     let parse = t0.elapsed();
     let progress = Progress::new(true);
-    let built = match build::build_observed(comp, &options(m), &mut |s| progress.stage(s)) {
+    let built = match build::build_observed(comp, &options(m, source_options(m)), &mut |s| {
+        progress.stage(s)
+    }) {
         Ok(b) => b,
         Err(e) => {
             drop(progress);

@@ -80,6 +80,7 @@ pub fn build_scene(
     palette: &Palette,
     search: &ComponentSearch,
     opts: &MeshOptions,
+    grammars: &mut dyn super::GrammarComponents,
 ) -> Result<Scene, MeshError> {
     let mut b = Builder {
         palette,
@@ -129,7 +130,7 @@ pub fn build_scene(
             None => {
                 let symbol = &program.symbols.list[p.symbol as usize];
                 let name = symbol.name.trim_start_matches('~');
-                let c = match search.load(name, &mut b.scene.materials) {
+                let c = match search.load(name, &mut b.scene.materials, grammars) {
                     Ok(c) => c?,
                     Err(searched) => {
                         return Err(missing(program, p.symbol, name, &searched));

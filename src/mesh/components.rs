@@ -78,6 +78,7 @@ impl ComponentSearch {
         &self,
         name: &str,
         materials: &mut Vec<Material>,
+        grammars: &mut dyn super::subgrammar::GrammarComponents,
     ) -> Result<Result<Component, MeshError>, Vec<PathBuf>> {
         Ok(match self.find(name)? {
             Found::File(path) => match std::fs::read(&path) {
@@ -104,7 +105,7 @@ impl ComponentSearch {
                 origin: "built-in (procedural)".to_string(),
             }),
             Found::Grammar(input) => {
-                super::subgrammar::grammar_component(name, &input, self, materials)
+                super::subgrammar::grammar_component(name, &input, self, materials, grammars)
             }
         })
     }
@@ -306,7 +307,7 @@ mod tests {
             dirs: vec![PathBuf::from("/nowhere/extra")],
             within: Vec::new(),
         };
-        let Err(tried) = s.load("Nope", &mut Vec::new()) else {
+        let Err(tried) = s.load("Nope", &mut Vec::new(), &mut super::super::NoGrammars) else {
             panic!("found a component that does not exist");
         };
         assert_eq!(

@@ -11,10 +11,32 @@ use glam::Mat3;
 
 use super::components::{normalise, ComponentSearch};
 use super::error::MeshError;
-use super::scene::{Component, Material, Part, TriMesh};
-use crate::build::{self, BuildOptions};
-use crate::pipeline::{self, Failure};
-use crate::resolve::{Input, Options};
+use super::scene::{Component, Material, Part, Scene, TriMesh};
+use crate::resolve::Input;
+
+/// Compiles, derives and builds a grammar used as a component. Mesh only
+/// merges and places what it returns: the compiler lives above mesh
+/// (`crate::build` implements this with the outer build's options, so
+/// `-D TM.NAME=...`, `--seed` and the limits reach the component).
+pub trait GrammarComponents {
+    /// The scene of grammar `name` read from `input`, built with `search`
+    /// for its own components. `Err` holds the rendered diagnostics.
+    fn scene(
+        &mut self,
+        name: &str,
+        input: &Input,
+        search: &ComponentSearch,
+    ) -> Result<Scene, String>;
+}
+
+/// For builds that must not nest grammars (none is found).
+pub struct NoGrammars;
+
+impl GrammarComponents for NoGrammars {
+    fn scene(&mut self, name: &str, _: &Input, _: &ComponentSearch) -> Result<Scene, String> {
+        Err(format!("grammar component `{name}` cannot be built here"))
+    }
+}
 
 /// Grammar components nested deeper than this are refused.
 pub const MAX_NESTING: usize = 8;
@@ -24,6 +46,7 @@ pub fn grammar_component(
     input: &Input,
     search: &ComponentSearch,
     materials: &mut Vec<Material>,
+    grammars: &mut dyn GrammarComponents,
 ) -> Result<Component, MeshError> {
     let origin = match input {
         Input::Path(p) | Input::Edited { path: p, .. } => p.display().to_string(),
@@ -43,35 +66,17 @@ pub fn grammar_component(
             chain.join(" -> ~")
         )));
     }
-    let comp = match pipeline::compile(input, &Options::default()) {
-        Ok(c) => c,
-        Err(Failure::Input(e)) => return Err(fail(crate::diag::render_plain(&e))),
-        Err(Failure::Diagnostics { diagnostics }) => {
-            return Err(fail(
-                diagnostics
-                    .iter()
-                    .map(|d| crate::diag::render_plain(d.as_ref()))
-                    .collect(),
-            ))
-        }
-    };
     let mut within = search.within.clone();
     within.push(name.to_string());
-    let opts = BuildOptions {
-        components: ComponentSearch {
-            grammar_dir: match input {
-                Input::Path(p) | Input::Edited { path: p, .. } => {
-                    p.parent().map(|d| d.to_path_buf())
-                }
-                _ => None,
-            },
-            dirs: search.dirs.clone(),
-            within,
+    let inner = ComponentSearch {
+        grammar_dir: match input {
+            Input::Path(p) | Input::Edited { path: p, .. } => p.parent().map(|d| d.to_path_buf()),
+            _ => None,
         },
-        ..Default::default()
+        dirs: search.dirs.clone(),
+        within,
     };
-    let built = build::build(&comp, &opts).map_err(|e| fail(crate::diag::render_plain(&e)))?;
-    let scene = built.scene;
+    let scene = grammars.scene(name, input, &inner).map_err(fail)?;
     // The grammar's own colours become materials of the outer scene (the
     // same colour once).
     let map: Vec<usize> = scene
@@ -129,8 +134,7 @@ pub fn grammar_component(
         .collect();
     if parts.is_empty() {
         return Err(fail(format!(
-            "it draws nothing (its string of {} modules has no drawing command)",
-            built.modules
+            "it draws nothing (no drawing command in its string)"
         )));
     }
     normalise(&mut parts);

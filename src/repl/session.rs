@@ -14,12 +14,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use miette::Report;
-
 use super::input::{self, Kind};
 use super::{commands, show};
 use crate::derive::{Checkpoint, DeriveOptions, ModuleStore};
-use crate::pipeline::{self, Compilation, Failure};
+use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
 use crate::resolve::{Input, Options};
 use crate::simulation::Simulation;
@@ -262,13 +260,10 @@ impl Session {
         };
         match pipeline::compile(&source.input(text), &opts) {
             Ok(c) => Ok(c),
-            Err(Failure::Input(e)) => Err(crate::diag::render(&e, self.color)),
-            Err(Failure::Diagnostics { diagnostics }) => {
-                let errors = diagnostics
-                    .iter()
-                    .filter(|d| crate::diag::is_error(d.as_ref()))
-                    .count();
-                let mut out = self.render_all(&diagnostics);
+            Err(d) if d.is_input_error() => Err(d.render(self.color)),
+            Err(diagnostics) => {
+                let errors = diagnostics.error_count();
+                let mut out = diagnostics.render(self.color);
                 out.push_str(&format!(
                     "{}: {errors} error{}",
                     source.name(),
@@ -277,13 +272,6 @@ impl Session {
                 Err(out)
             }
         }
-    }
-
-    fn render_all(&self, diagnostics: &[Report]) -> String {
-        diagnostics
-            .iter()
-            .map(|d| crate::diag::render(d.as_ref(), self.color))
-            .collect()
     }
 
     /// The working grammar's source and text (nothing yet: an empty scratch).

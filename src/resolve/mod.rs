@@ -57,6 +57,32 @@ impl Default for Options {
     }
 }
 
+impl Options {
+    /// The options of grammar component `name`: its own namespaced
+    /// defines (`name.X=V` becomes `X=V`, `name.A.X=V` becomes `A.X=V`),
+    /// everything else the same.
+    pub fn for_namespace(&self, name: &str) -> Options {
+        let prefix = format!("{name}.");
+        Options {
+            defines: self
+                .defines
+                .iter()
+                .filter_map(|(n, v)| Some((n.strip_prefix(&prefix)?.to_string(), v.clone())))
+                .collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The defines for this grammar itself (no namespace), and the
+    /// namespaced ones (`TM.NTL`), which are for its grammar components.
+    pub fn split_defines(&self) -> (Vec<(String, String)>, Vec<(String, String)>) {
+        self.defines
+            .iter()
+            .cloned()
+            .partition(|(n, _)| !n.contains('.'))
+    }
+}
+
 /// A resolved grammar and the warnings found on the way.
 pub struct Resolved {
     pub program: Program,
