@@ -1,11 +1,12 @@
-//! The front half of the compiler in one call: input -> parse -> resolve ->
-//! bytecode, with every diagnostic collected. The CLI, the tests and the
+//! The front half of the compiler in one call: input -> load (and parse)
+//! -> resolve -> bytecode, with every diagnostic collected. The CLI, the tests and the
 //! REPL all go through here.
 
 use miette::Report;
 
 use crate::bytecode::{self, Compiled};
-use crate::resolve::{self, Input, InputError, Options, Program};
+use crate::load::{self, Input, InputError};
+use crate::resolve::{self, Options, Program};
 
 /// A grammar ready to derive.
 pub struct Compilation {
@@ -24,14 +25,14 @@ pub enum Failure {
 }
 
 pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Failure> {
-    let resolved = match resolve::resolve(input, opts) {
-        Err(e) => return Err(Failure::Input(e)),
-        Ok(Err(f)) => {
+    let loaded = load::load(input, opts).map_err(Failure::Input)?;
+    let resolved = match resolve::resolve(loaded, opts) {
+        Err(f) => {
             return Err(Failure::Diagnostics {
                 diagnostics: f.diagnostics,
             })
         }
-        Ok(Ok(r)) => r,
+        Ok(r) => r,
     };
     match bytecode::compile(&resolved.program) {
         Ok(compiled) => Ok(Compilation {

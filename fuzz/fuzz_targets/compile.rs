@@ -3,8 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use lsys::load::{Input, Options};
 use lsys::pipeline::{self, Failure};
-use lsys::resolve::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {

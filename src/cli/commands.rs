@@ -9,9 +9,9 @@ use miette::Diagnostic;
 use super::args::{Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::derive::{self, DeriveOptions, ModuleStore};
+use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation, Failure};
 use crate::progress::Progress;
-use crate::resolve::{Input, Options};
 
 /// Runs `cmd`. `color` is for diagnostics on standard error; the REPL
 /// decides for standard output itself unless `repl_color` says.

@@ -13,8 +13,8 @@ use super::components::{normalise, ComponentSearch};
 use super::error::MeshError;
 use super::scene::{Component, Material, Part, TriMesh};
 use crate::build::{self, BuildOptions};
+use crate::load::{Input, Options};
 use crate::pipeline::{self, Failure};
-use crate::resolve::{Input, Options};
 
 /// Grammar components nested deeper than this are refused.
 pub const MAX_NESTING: usize = 8;

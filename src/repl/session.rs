@@ -19,9 +19,9 @@ use miette::Report;
 use super::input::{self, Kind};
 use super::{commands, show};
 use crate::derive::{Checkpoint, Derivation, DeriveOptions, ModuleStore};
+use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation, Failure};
 use crate::progress::Progress;
-use crate::resolve::{Input, Options};
 
 /// A command's result: its text, or the text of what went wrong.
 pub type Out = Result<String, String>;
