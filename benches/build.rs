@@ -7,9 +7,9 @@ mod common;
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
 use lsys::build::{self, BuildOptions};
+use lsys::load::Input;
 use lsys::pailou::{self, PailouType};
 use lsys::pipeline::Compilation;
-use lsys::resolve::Input;
 
 fn main() {
     divan::main();

@@ -63,7 +63,7 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
     fn scene(
         &mut self,
         name: &str,
-        input: &crate::resolve::Input,
+        input: &crate::load::Input,
         search: &ComponentSearch,
     ) -> Result<Scene, String> {
         let opts = self.opts.for_component(name, search.clone());

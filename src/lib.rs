@@ -2,8 +2,10 @@
 //!
 //! ```text
 //! source (.lsys, #include'd files, std library embedded in the binary)
+//!   -> load       every file the model reads: root, includes (cpfg .l through
+//!                 the C preprocessor), view and function files; each parsed
 //!   -> parse      pest grammar (grammar/lsys.pest) -> AST with spans
-//!   -> resolve    #define/#include, alphabet, names, arity, constant folding
+//!   -> resolve    #define, alphabet, names, arity, constant folding (no I/O)
 //!   -> bytecode   productions -> documented instructions (+ spans), disassembler
 //!   -> derive     parallel rewriting over a flat module store
 //!   -> turtle     module string -> strokes, polygons and component placements
@@ -18,11 +20,11 @@
 pub mod build;
 pub mod bytecode;
 pub mod cli;
-pub mod cpfg;
 pub mod derive;
 pub mod diag;
 pub mod export;
 pub mod lang;
+pub mod load;
 pub mod mesh;
 pub mod pailou;
 pub mod parse;

@@ -7,7 +7,8 @@ use thiserror::Error;
 
 use crate::bytecode::{self, Compiled};
 use crate::diag::Diagnostics;
-use crate::resolve::{self, Input, Options, Program, SymbolKind};
+use crate::load::{self, Input};
+use crate::resolve::{self, Options, Program, SymbolKind};
 
 /// A grammar ready to derive.
 pub struct Compilation {
@@ -36,10 +37,10 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Diagnostics
         defines: own,
         ..opts.clone()
     };
-    let resolved = match resolve::resolve(input, &own_opts) {
-        Err(e) => return Err(Diagnostics::input(e)),
-        Ok(Err(f)) => return Err(Diagnostics::new(f.diagnostics)),
-        Ok(Ok(r)) => r,
+    let loaded = load::load(input, &own_opts).map_err(Diagnostics::input)?;
+    let resolved = match resolve::resolve(loaded, &own_opts) {
+        Err(f) => return Err(Diagnostics::new(f.diagnostics)),
+        Ok(r) => r,
     };
     check_namespaces(&resolved.program, &namespaced)?;
     match bytecode::compile(&resolved.program) {

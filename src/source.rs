@@ -151,6 +151,18 @@ impl SourceMap {
         &self.files
     }
 
+    /// The files read from disk, in load order: what a model depends on
+    /// (text from memory and the standard library is not on disk).
+    pub fn disk_paths(&self) -> Vec<PathBuf> {
+        self.files
+            .iter()
+            .filter_map(|f| match &f.origin {
+                Origin::Disk(p) => Some(p.clone()),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// The source text a span points into.
     pub fn slice(&self, span: Span) -> &str {
         let f = self.get(span.file);

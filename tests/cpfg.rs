@@ -84,3 +84,56 @@ fn query_modules_context_through_brackets_and_cuts() {
     );
     insta::assert_snapshot!(text);
 }
+
+/// Every file a cpfg model read is in its source map, so `lsys watch`
+/// sees them: the model, its view file and the function files the view
+/// file names (read before resolve starts).
+#[test]
+fn the_files_a_model_read_include_its_view_and_function_files() {
+    use lsys::load::{Input, Options};
+    let root = fixture("funcs").join("plant.l");
+    let comp = match lsys::pipeline::compile(&Input::Path(root.clone()), &Options::default()) {
+        Ok(c) => c,
+        Err(_) => panic!("the funcs model compiles"),
+    };
+    let read = comp.program.sources.disk_paths();
+    let dir = fixture("funcs");
+    for f in ["plant.l", "plant.v", "ramp.func", "more.fset"] {
+        assert!(read.contains(&dir.join(f)), "{f} not in {read:?}");
+    }
+}
+
+/// An error in a function file points at its line in that file; it is
+/// reported where the model calls `func`.
+#[test]
+fn a_broken_function_file_points_at_its_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(
+        dir.join("plant.l"),
+        "Lsystem: 1\nderivation length: 1\nAxiom: A(0)\nA(t) --> F(func(1, t))\nendlsystem\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("plant.v"),
+        "angle factor: 30\nfunction: bad.func\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("bad.func"), "fver 1 1\nname: bad\nsamples: many\n").unwrap();
+    let out = lsys(dir, &["check", "plant.l"]);
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("lsys::load::function_file"), "{stderr}");
+    assert!(stderr.contains("bad.func:3:"), "{stderr}");
+    // A function file the view file names but that is missing: the view
+    // file's line.
+    std::fs::write(
+        dir.join("plant.v"),
+        "angle factor: 30\nfunction: gone.func\n",
+    )
+    .unwrap();
+    let out = lsys(dir, &["check", "plant.l"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("lsys::load::view_file"), "{stderr}");
+    assert!(stderr.contains("plant.v:2:"), "{stderr}");
+}

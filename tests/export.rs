@@ -481,8 +481,8 @@ fn empty_scene_exports_valid_empty_files() {
 /// package, or `std:NAME`).
 fn built(arg: &str) -> Scene {
     let input = match arg.strip_prefix("std:") {
-        Some(_) => lsys::resolve::Input::from_arg(arg),
-        None => lsys::resolve::Input::Path(Path::new(env!("CARGO_MANIFEST_DIR")).join(arg)),
+        Some(_) => lsys::load::Input::from_arg(arg),
+        None => lsys::load::Input::Path(Path::new(env!("CARGO_MANIFEST_DIR")).join(arg)),
     };
     let Ok(comp) = lsys::pipeline::compile(&input, &Default::default()) else {
         panic!("{arg} does not compile");

@@ -3,8 +3,8 @@
 //! errors, and the fallback for grammars the fast path does not take.
 
 use lsys::derive::{Derivation, DeriveOptions};
+use lsys::load::{Input, Options};
 use lsys::pipeline::{self, Compilation};
-use lsys::resolve::{Input, Options};
 
 fn compile(text: &str) -> Compilation {
     let input = Input::Text {

@@ -6,8 +6,8 @@
 use std::path::Path;
 
 use lsys::derive::{self, DeriveOptions};
+use lsys::load::{Input, Options};
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
 use lsys::source::{Origin, SourceFile};
 
 /// The fixture's path relative to the package, so snapshots do not depend

@@ -6,9 +6,9 @@
 
 use lsys::build::{self, BuildOptions};
 use lsys::derive::DeriveOptions;
+use lsys::load::{Input, Options};
 use lsys::mesh::MeshOptions;
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
 use lsys::source::{Origin, SourceFile};
 
 fn run(bytes: &[u8]) {

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
+use lsys::load::{Input, Options};
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
 
 fn compile(root: &Path, include_dirs: &[&Path]) -> Result<String, String> {
     let opts = Options {
@@ -127,7 +127,7 @@ fn huge_files_are_refused_unread() {
     let tmp = tempfile::tempdir().unwrap();
     let big = tmp.path().join("big.lsys");
     let f = std::fs::File::create(&big).unwrap();
-    f.set_len(lsys::resolve::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    f.set_len(lsys::load::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
     let err = compile(&big, &[]).unwrap_err();
     assert!(err.contains("lsys::resolve::input_not_source"), "{err}");
     assert!(err.contains("67108865 bytes long"), "{err}");
@@ -135,4 +135,23 @@ fn huge_files_are_refused_unread() {
     write(&root, "#include \"big.lsys\"\nAxiom: F\n");
     let err = compile(&root, &[]).unwrap_err();
     assert!(err.contains("lsys::resolve::include_not_source"), "{err}");
+}
+
+/// A cpfg file's includes go through the C preprocessor, which finds them
+/// with the same finder: a file over the limit is refused unread there too.
+#[test]
+fn huge_cpfg_includes_are_refused_unread() {
+    let tmp = tempfile::tempdir().unwrap();
+    let big = tmp.path().join("big.h");
+    let f = std::fs::File::create(&big).unwrap();
+    f.set_len(lsys::load::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    let root = tmp.path().join("main.l");
+    write(
+        &root,
+        "#include \"big.h\"\nLsystem: 1\nAxiom: F\nendlsystem\n",
+    );
+    let err = compile(&root, &[]).unwrap_err();
+    assert!(err.contains("lsys::preprocess::include_not_found"), "{err}");
+    assert!(err.contains("67108865 bytes"), "{err}");
+    assert!(err.contains("not an L-system source"), "{err}");
 }

@@ -81,7 +81,7 @@ fn an_environment_answers_after_the_axiom_and_every_step_before_end_each() {
     let text = "Lsystem: 1\nderivation length: 2\nAxiom: A ?P(0,0,0)\n\
                 ?P(x,y,z) --> ?P(x,y,z) B(x)\nendlsystem\n";
     let c = lsys::pipeline::compile(
-        &lsys::resolve::Input::Text {
+        &lsys::load::Input::Text {
             name: "q.l".into(),
             text: text.into(),
         },

@@ -3,8 +3,8 @@
 #![allow(dead_code)]
 
 use lsys::derive::{DeriveOptions, ModuleStore};
+use lsys::load::{Input, Options};
 use lsys::pipeline::{self, Compilation};
-use lsys::resolve::{Input, Options};
 
 /// Compile `input` with `-D` overrides; panics on any error (the
 /// workloads are fixed).

@@ -5,9 +5,9 @@
 use libfuzzer_sys::fuzz_target;
 use lsys::build::{self, BuildOptions};
 use lsys::derive::DeriveOptions;
+use lsys::load::{Input, Options};
 use lsys::mesh::MeshOptions;
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {

@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
+use lsys::load::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {

@@ -5,8 +5,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use lsys::derive::{self, DeriveOptions};
+use lsys::load::{Input, Options};
 use lsys::pipeline;
-use lsys::resolve::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {

@@ -91,7 +91,7 @@ pub struct SourceArgs {
     #[arg(long = "include-dir", value_name = "DIR")]
     pub include_dir: Vec<PathBuf>,
     /// Stop with an error when includes nest deeper than this many files.
-    #[arg(long, value_name = "N", default_value_t = crate::resolve::MAX_INCLUDE_DEPTH)]
+    #[arg(long, value_name = "N", default_value_t = crate::load::MAX_INCLUDE_DEPTH)]
     pub max_include_depth: usize,
     /// Stop with an error when `(` and `{` nest deeper than this (at most 4096).
     #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_NESTING,

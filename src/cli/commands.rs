@@ -9,9 +9,9 @@ use miette::Diagnostic;
 use super::args::{Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::derive::{self, DeriveOptions, ModuleStore};
+use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
-use crate::resolve::{Input, Options};
 use crate::simulation::Simulation;
 
 /// Runs `cmd`. `color` is for diagnostics on standard error; the REPL

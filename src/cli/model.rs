@@ -16,10 +16,9 @@ use crate::build::{self, BuildOptions, Built};
 use crate::derive::DeriveOptions;
 use crate::export::output::{write_scene, Format, WriteError};
 use crate::export::render;
+use crate::load::Input;
 use crate::mesh::{ComponentSearch, MeshOptions};
 use crate::progress::Progress;
-use crate::resolve::Input;
-use crate::source::Origin;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match format_of(&b.output) {
@@ -263,8 +262,8 @@ pub(super) enum Report {
 /// What one build did.
 pub(super) struct Outcome {
     pub code: i32,
-    /// The files the grammar was read from (root and includes), when it
-    /// compiled.
+    /// Every file the model was read from (root, includes, view and
+    /// function files), when it compiled.
     pub sources: Option<Vec<PathBuf>>,
 }
 
@@ -289,17 +288,7 @@ pub(super) fn build_once(
             }
         }
     };
-    let sources = Some(
-        comp.program
-            .sources
-            .files()
-            .iter()
-            .filter_map(|f| match &f.origin {
-                Origin::Disk(p) => Some(p.clone()),
-                _ => None,
-            })
-            .collect(),
-    );
+    let sources = Some(comp.program.sources.disk_paths());
     let code = build_compiled(m, &comp, (out, pic, format), color, report_as, t0);
     Outcome { code, sources }
 }

@@ -29,7 +29,7 @@ enum Found {
     File(PathBuf),
     BuiltIn(&'static str),
     /// A grammar, derived and built once, then placed like any component.
-    Grammar(crate::resolve::Input),
+    Grammar(crate::load::Input),
     /// A roof built on the fly.
     Roof(super::roof::RoofKind),
 }
@@ -55,7 +55,7 @@ impl ComponentSearch {
         let candidates = self.candidates(name);
         if let Some(p) = candidates.iter().find(|p| p.is_file()) {
             return Ok(if p.extension().is_some_and(|e| e == "lsys") {
-                Found::Grammar(crate::resolve::Input::Path(p.clone()))
+                Found::Grammar(crate::load::Input::Path(p.clone()))
             } else {
                 Found::File(p.clone())
             });
@@ -67,7 +67,7 @@ impl ComponentSearch {
             return Ok(Found::BuiltIn(text));
         }
         stdlib::grammar_component(name)
-            .map(|g| Found::Grammar(crate::resolve::Input::Std(g.to_string())))
+            .map(|g| Found::Grammar(crate::load::Input::Std(g.to_string())))
             .ok_or(candidates)
     }
 

@@ -12,7 +12,7 @@ use glam::Mat3;
 use super::components::{normalise, ComponentSearch};
 use super::error::MeshError;
 use super::scene::{Component, Material, Part, Scene, TriMesh};
-use crate::resolve::Input;
+use crate::load::Input;
 
 /// Compiles, derives and builds a grammar used as a component. Mesh only
 /// merges and places what it returns: the compiler lives above mesh

@@ -6,7 +6,7 @@ pub mod style;
 
 pub use style::{layout, parse_style, Layout, PailouType, StyleError};
 
-use crate::resolve::Input;
+use crate::load::Input;
 
 const BEGIN: &str = "// <layout>";
 const END: &str = "// </layout>";

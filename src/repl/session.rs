@@ -17,9 +17,9 @@ use std::time::{Duration, Instant};
 use super::input::{self, Kind};
 use super::{commands, show};
 use crate::derive::{Checkpoint, DeriveOptions, ModuleStore};
+use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
-use crate::resolve::{Input, Options};
 use crate::simulation::Simulation;
 
 /// A command's result: its text, or the text of what went wrong.

@@ -33,7 +33,7 @@ pub(crate) struct Vars {
     pub arrays: Vec<ArrayInfo>,
     pub array_ids: HashMap<String, u32>,
     pub hooks: Hooks,
-    /// The view file's functions, read at the first `func` call.
+    /// The view file's functions, taken at the first `func` call.
     pub functions: Option<Vec<crate::lang::spline::SplineFn>>,
 }
 

@@ -1,5 +1,5 @@
 //! Resolve errors and warnings (`lsys::resolve::*`): names, arities,
-//! includes, defines and everything else that is wrong with a grammar that
+//! defines and everything else that is wrong with a grammar that
 //! parsed.
 
 use std::sync::Arc;
@@ -11,85 +11,6 @@ type Src = NamedSource<Arc<String>>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum ResolveError {
-    /// The file holds NUL bytes (a binary or UTF-16 file) or is too large
-    /// to be a grammar. Its text is never shown in a diagnostic.
-    #[error("cannot include \"{path}\": it is not an L-system source ({why})")]
-    #[diagnostic(
-        code(lsys::resolve::include_not_source),
-        help("include only grammar text files; a UTF-16 file must be saved as UTF-8")
-    )]
-    IncludeNotSource {
-        path: String,
-        why: String,
-        #[source_code]
-        src: Src,
-        #[label("included here")]
-        span: SourceSpan,
-    },
-
-    #[error("cannot include \"{path}\": {cause}")]
-    #[diagnostic(code(lsys::resolve::include_not_found))]
-    IncludeNotFound {
-        path: String,
-        cause: String,
-        #[source_code]
-        src: Src,
-        #[label("included here")]
-        span: SourceSpan,
-        #[help]
-        help: String,
-    },
-
-    #[error("cannot include \"{path}\": it is outside the folder of the top-level grammar")]
-    #[diagnostic(code(lsys::resolve::include_outside))]
-    IncludeOutside {
-        path: String,
-        #[source_code]
-        src: Src,
-        #[label("included here")]
-        span: SourceSpan,
-        #[help]
-        help: String,
-    },
-
-    #[error("no standard library file <{name}>")]
-    #[diagnostic(code(lsys::resolve::unknown_std))]
-    UnknownStd {
-        name: String,
-        #[source_code]
-        src: Src,
-        #[label("included here")]
-        span: SourceSpan,
-        #[help]
-        help: String,
-    },
-
-    #[error("include cycle: {chain}")]
-    #[diagnostic(
-        code(lsys::resolve::include_cycle),
-        help("a file may not include itself, directly or through other files; remove one of the includes in the chain")
-    )]
-    IncludeCycle {
-        chain: String,
-        #[source_code]
-        src: Src,
-        #[label("this include closes the cycle")]
-        span: SourceSpan,
-    },
-
-    #[error("includes nested deeper than {limit} files (the limit)")]
-    #[diagnostic(
-        code(lsys::resolve::include_depth),
-        help("this include would be file {} of the chain; look for a file that includes a chain of generated files, or raise the limit with `--max-include-depth N`", limit + 1)
-    )]
-    IncludeDepth {
-        limit: usize,
-        #[source_code]
-        src: Src,
-        #[label("this include is one too many")]
-        span: SourceSpan,
-    },
-
     #[error("`{name}` is defined twice")]
     #[diagnostic(
         code(lsys::resolve::duplicate_define),

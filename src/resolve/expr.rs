@@ -539,29 +539,20 @@ impl Resolver {
         })
     }
 
-    /// The view file's functions (read once); `None` after reporting why
-    /// there are none.
+    /// The view file's functions (read while loading); `None` after
+    /// reporting why there are none.
     fn view_functions(
         &mut self,
         span: crate::source::Span,
     ) -> Option<Vec<crate::lang::spline::SplineFn>> {
-        if let Some(f) = &self.vars.functions {
-            return Some(f.clone());
-        }
-        let model = match &self.sources.get(0).origin {
-            crate::source::Origin::Disk(p) => Some(p.clone()),
-            _ => None,
-        };
-        let found = match &model {
-            Some(p) => crate::cpfg::view::load_functions(p),
-            None => Ok(None),
-        };
-        match found {
-            Ok(Some((_, fs))) => {
+        use crate::load::ViewFunctions;
+        match &mut self.view_functions {
+            ViewFunctions::Read(fs) => {
+                let fs = fs.clone();
                 self.vars.functions = Some(fs.clone());
                 Some(fs)
             }
-            Ok(None) => {
+            ViewFunctions::NoViewFile => {
                 self.error(ResolveError::Unsupported {
                     what: "`func` without a view file".to_string(),
                     src: self.sources.named_source(span),
@@ -570,14 +561,11 @@ impl Resolver {
                 });
                 None
             }
-            Err(why) => {
-                self.error(ResolveError::BadValue {
-                    what: "function file".to_string(),
-                    why,
-                    src: self.sources.named_source(span),
-                    span: span.into(),
-                    help: None,
-                });
+            // Reported once, at the first `func` call; they point into the
+            // view file and the function files.
+            ViewFunctions::Failed(errors) => {
+                let errors = std::mem::take(errors);
+                self.errors.extend(errors);
                 None
             }
         }

@@ -1,16 +1,15 @@
-//! Resolve: the root input and its includes -> a [`Program`]: defines
-//! applied (with `-D` overrides), the alphabet built and module runs split,
-//! every name bound, every arity checked, constants folded. All errors of
-//! all files are collected and reported together.
+//! Resolve: the [`Loaded`] model (every file parsed, side files read) -> a
+//! [`Program`]: defines applied (with `-D` overrides), the alphabet built
+//! and module runs split, every name bound, every arity checked, constants
+//! folded. All errors of all files are collected and reported together.
+//! Resolve reads no file: loading read them all.
 
 mod alphabet;
-mod cpp_load;
 mod cstmt;
 pub mod error;
 mod expr;
 mod fold;
 pub mod ir;
-mod load;
 mod modules;
 mod statements;
 mod tables;
@@ -20,68 +19,14 @@ use std::collections::HashMap;
 
 use miette::Report;
 
+/// The options of one compilation; loading reads them first.
+pub use crate::load::Options;
 pub use error::ResolveError;
 pub use ir::*;
-pub use load::{Input, InputError, MAX_INCLUDE_DEPTH, MAX_SOURCE_BYTES};
 
+use crate::load::Loaded;
 use crate::parse::ast;
 use crate::source::{Origin, SourceFile, SourceMap, Span};
-
-/// Options of one compilation.
-#[derive(Clone, Debug)]
-pub struct Options {
-    /// `-D NAME=VALUE` overrides, in command-line order (the last wins).
-    pub defines: Vec<(String, String)>,
-    /// `--include-dir DIR`: where `#include "f"` looks after the including
-    /// file's folder; files below them may be included too.
-    pub include_dirs: Vec<std::path::PathBuf>,
-    /// Longest chain of nested includes (`--max-include-depth`).
-    pub max_include_depth: usize,
-    /// Nesting and expression limits of the parser (`--max-nesting`,
-    /// `--max-operators`).
-    pub parse: crate::parse::Limits,
-    /// `--dialect`: overrides the profile the file's name and `dialect:`
-    /// header would give.
-    pub dialect: Option<crate::lang::Dialect>,
-}
-
-impl Default for Options {
-    fn default() -> Options {
-        Options {
-            defines: Vec::new(),
-            include_dirs: Vec::new(),
-            max_include_depth: MAX_INCLUDE_DEPTH,
-            parse: crate::parse::Limits::default(),
-            dialect: None,
-        }
-    }
-}
-
-impl Options {
-    /// The options of grammar component `name`: its own namespaced
-    /// defines (`name.X=V` becomes `X=V`, `name.A.X=V` becomes `A.X=V`),
-    /// everything else the same.
-    pub fn for_namespace(&self, name: &str) -> Options {
-        let prefix = format!("{name}.");
-        Options {
-            defines: self
-                .defines
-                .iter()
-                .filter_map(|(n, v)| Some((n.strip_prefix(&prefix)?.to_string(), v.clone())))
-                .collect(),
-            ..self.clone()
-        }
-    }
-
-    /// The defines for this grammar itself (no namespace), and the
-    /// namespaced ones (`TM.NTL`), which are for its grammar components.
-    pub fn split_defines(&self) -> (Vec<(String, String)>, Vec<(String, String)>) {
-        self.defines
-            .iter()
-            .cloned()
-            .partition(|(n, _)| !n.contains('.'))
-    }
-}
 
 /// A resolved grammar and the warnings found on the way.
 pub struct Resolved {
@@ -95,9 +40,8 @@ pub struct Failure {
     pub diagnostics: Vec<Report>,
 }
 
-/// Resolves `input`. `Err(InputError)` when the root cannot be read at all.
-pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure>, InputError> {
-    let loaded = load::load(input, opts)?;
+/// Resolves the loaded model.
+pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
     // A cpfg file's -D definitions went to the preprocessor.
     let no_defines = Options {
         defines: Vec::new(),
@@ -123,17 +67,19 @@ pub fn resolve(input: &Input, opts: &Options) -> Result<Result<Resolved, Failure
         profile: loaded.profile,
         warned_at: Default::default(),
         strings: Vec::new(),
+        view_angle: loaded.side.angle,
+        view_functions: loaded.side.functions,
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
-        Ok(Ok(Resolved {
+        Ok(Resolved {
             program: program.expect("no errors means a program"),
             warnings: r.warnings,
-        }))
+        })
     } else {
         let mut diagnostics = r.errors;
         diagnostics.extend(r.warnings);
-        Ok(Err(Failure { diagnostics }))
+        Err(Failure { diagnostics })
     }
 }
 
@@ -183,6 +129,11 @@ pub(crate) struct Resolver {
     pub warned_at: std::collections::HashSet<String>,
     /// Strings given as module parameters, numbered from 1 as cpfg does.
     pub strings: Vec<String>,
+    /// The turning angle of a cpfg model's view file, read while loading.
+    pub view_angle: Option<f64>,
+    /// The view file's functions (or why they could not be read), read
+    /// while loading; `func` takes them.
+    pub view_functions: crate::load::ViewFunctions,
 }
 
 impl Resolver {

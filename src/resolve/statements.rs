@@ -85,9 +85,7 @@ impl Resolver {
         }
         // A cpfg model's turning angle is in its view file.
         if self.profile.cpfg_model_file && turtle.angle.is_none() {
-            if let crate::source::Origin::Disk(p) = &self.sources.get(0).origin {
-                turtle.angle = crate::cpfg::view::view_angle(p);
-            }
+            turtle.angle = self.view_angle;
         }
         let vars = self.take_vars();
         let mut take = |t| tables.remove(&t).unwrap_or_default();

@@ -1,6 +1,7 @@
-//! Loading a cpfg file: the root `.l` file in, its preprocessed text and
-//! that of every file it includes out (the C preprocessor of
-//! [`crate::preprocess`]), with the include sites the loader splices.
+//! Load: a cpfg file through the C preprocessor. The root `.l` file in,
+//! its preprocessed text and that of every file it includes out (the C
+//! preprocessor of [`crate::preprocess`]), with the include sites the
+//! loader splices.
 //!
 //! Each preprocessed file keeps its original line count, so everything
 //! the later stages report points at the right file and line; the
@@ -12,7 +13,8 @@ use std::sync::Arc;
 
 use miette::Report;
 
-use super::load::Loader;
+use super::include::IncludeFinder;
+use super::loader::Loader;
 use crate::preprocess::{self, OutFile, RawFile};
 use crate::source::{FileId, Origin, SourceFile, Span};
 
@@ -22,14 +24,10 @@ pub(crate) struct Preprocessed {
     pub ids: HashMap<FileId, usize>,
 }
 
-/// Finds `#include "x"` files beside the including file, then in the
-/// `--include-dir`s, inside the allowed folders (links followed), as the
-/// loader does for `.lsys` files.
-struct IncludeFiles<'a> {
-    roots: &'a [PathBuf],
-    roots_shown: &'a [PathBuf],
-    include_dirs: &'a [PathBuf],
-}
+/// The preprocessor's `#include "x"` files, found by the loader's
+/// [`IncludeFinder`]: beside the including file, then in the
+/// `--include-dir`s, inside the allowed folders, within the size limit.
+struct IncludeFiles<'a>(&'a IncludeFinder);
 
 impl preprocess::Resolver for IncludeFiles<'_> {
     fn resolve(
@@ -43,42 +41,11 @@ impl preprocess::Resolver for IncludeFiles<'_> {
             .parent()
             .map(Path::to_path_buf)
             .unwrap_or_default();
-        let beside = base.join(name);
-        let full = if beside.exists() {
-            beside
-        } else {
-            self.include_dirs
-                .iter()
-                .map(|d| d.join(name))
-                .find(|p| p.exists())
-                .unwrap_or(beside)
-        };
-        if let Ok(real) = std::fs::canonicalize(&full) {
-            if !self.roots.iter().any(|r| real.starts_with(r)) {
-                let shown: Vec<String> = self
-                    .roots_shown
-                    .iter()
-                    .map(|p| p.display().to_string())
-                    .collect();
-                return Err(format!(
-                    "{} is not inside {} (links are followed); copy the file into that folder or below it, or name its folder with --include-dir",
-                    full.display(),
-                    shown.join(" or ")
-                ));
-            }
-        }
-        let text =
-            std::fs::read(&full).map_err(|e| format!("cannot read {}: {e}", full.display()))?;
-        if text.contains(&0) {
-            return Err(format!(
-                "{} holds NUL bytes (a binary or UTF-16 file), so it is not read",
-                full.display()
-            ));
-        }
+        let (full, text) = self.0.find(&base, name).map_err(|r| r.message())?;
         Ok(RawFile {
             name: full.display().to_string(),
             key: full,
-            text: String::from_utf8_lossy(&text).into_owned(),
+            text,
         })
     }
 }
@@ -105,16 +72,7 @@ impl Loader {
             max_include_depth: self.max_depth,
             ..Default::default()
         };
-        let (roots, shown, dirs) = (
-            self.roots.clone(),
-            self.roots_shown.clone(),
-            self.include_dirs.clone(),
-        );
-        let mut files = IncludeFiles {
-            roots: &roots,
-            roots_shown: &shown,
-            include_dirs: &dirs,
-        };
+        let mut files = IncludeFiles(&self.finder);
         let (out, errors) = preprocess::preprocess(raw, &mut files, &opts);
         for e in errors {
             let f = &out.files[e.file.min(out.files.len() - 1)].raw;

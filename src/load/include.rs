@@ -1,0 +1,153 @@
+//! Load: finding and reading the files a model names. An include name and
+//! the including file's folder in; the file's path and text out, or why it
+//! cannot be used. The one finder for `.lsys` includes, the C
+//! preprocessor's includes of cpfg files and the view file's function
+//! files: the same search order, the same folder confinement, the same size
+//! and NUL checks.
+
+use std::path::{Path, PathBuf};
+
+/// Larger files are not grammars (a log, a disk image): refused unread
+/// rather than loaded whole into memory.
+pub const MAX_SOURCE_BYTES: u64 = 64 << 20;
+
+/// Reads a source file: its bytes, or why it is not an L-system source
+/// (`Ok(Err(..))`), or the I/O error.
+pub(super) fn read_source(path: &Path) -> std::io::Result<Result<Vec<u8>, String>> {
+    let len = std::fs::metadata(path)?.len();
+    if len > MAX_SOURCE_BYTES {
+        return Ok(Err(format!(
+            "it is {len} bytes long, more than the {} MiB a grammar file may have",
+            MAX_SOURCE_BYTES >> 20
+        )));
+    }
+    let bytes = std::fs::read(path)?;
+    if is_binary(&bytes) {
+        return Ok(Err(
+            "it holds NUL bytes, as binary and UTF-16 files do".to_string()
+        ));
+    }
+    Ok(Ok(bytes))
+}
+
+/// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
+/// file is refused unread, so that no diagnostic shows its bytes. (Other
+/// invalid UTF-8, e.g. Latin-1 comments in old cpfg files, is read lossily.)
+fn is_binary(bytes: &[u8]) -> bool {
+    bytes.contains(&0)
+}
+
+/// Why a named file cannot be used; `full` is where lsys looked.
+#[derive(Debug)]
+pub(super) enum Refused {
+    /// It resolves (links followed) outside every allowed folder; `help`
+    /// names the file and the folders.
+    Outside { help: String },
+    /// Too large, or binary.
+    NotSource { full: PathBuf, why: String },
+    /// Missing or unreadable.
+    NotFound { full: PathBuf, cause: String },
+}
+
+/// Where included files are searched and which folders they must stay in.
+#[derive(Clone, Debug)]
+pub(super) struct IncludeFinder {
+    /// Every file read must resolve (links followed) inside one of these:
+    /// the top-level file's folder, then the `--include-dir`s.
+    roots: Vec<PathBuf>,
+    /// The same folders as the user named them, for messages.
+    roots_shown: Vec<PathBuf>,
+    /// `--include-dir`: searched after the including file's folder.
+    include_dirs: Vec<PathBuf>,
+}
+
+impl IncludeFinder {
+    /// Includes stay inside `root_dir` (the top-level file's folder, or the
+    /// working folder for text and library grammars) and the
+    /// `--include-dir`s: a grammar from someone else cannot read
+    /// ../../etc/passwd, nor show its lines in a diagnostic.
+    pub(super) fn new(root_dir: PathBuf, include_dirs: &[PathBuf]) -> IncludeFinder {
+        // A missing `--include-dir` allows nothing: it cannot be
+        // canonicalised, so nothing starts with it.
+        let mut roots = vec![std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone())];
+        roots.extend(
+            include_dirs
+                .iter()
+                .filter_map(|d| std::fs::canonicalize(d).ok()),
+        );
+        let mut roots_shown = vec![root_dir];
+        roots_shown.extend(include_dirs.iter().cloned());
+        IncludeFinder {
+            roots,
+            roots_shown,
+            include_dirs: include_dirs.to_vec(),
+        }
+    }
+
+    /// The file `name` included from a file in `base`: beside it, else in
+    /// the first `--include-dir` that has it. Its path and text (invalid
+    /// UTF-8 read lossily).
+    pub(super) fn find(&self, base: &Path, name: &str) -> Result<(PathBuf, String), Refused> {
+        let mut full = base.join(name);
+        if !full.exists() {
+            if let Some(found) = self
+                .include_dirs
+                .iter()
+                .map(|d| d.join(name))
+                .find(|p| p.exists())
+            {
+                full = found;
+            }
+        }
+        let text = self.read(&full)?;
+        Ok((full, text))
+    }
+
+    /// Reads the file at `full` if it is inside the allowed folders and is
+    /// a text file of at most [`MAX_SOURCE_BYTES`].
+    pub(super) fn read(&self, full: &Path) -> Result<String, Refused> {
+        if let Ok(real) = std::fs::canonicalize(full) {
+            // `real` is only compared, never shown: messages keep the
+            // user's own relative paths.
+            if !self.roots.iter().any(|r| real.starts_with(r)) {
+                let inside = self
+                    .roots_shown
+                    .iter()
+                    .map(|d| d.display().to_string())
+                    .collect::<Vec<_>>()
+                    .join(" or ");
+                return Err(Refused::Outside {
+                    help: format!(
+                        "{} is not inside {inside} (links are followed); copy the file into that folder or below it, or allow its folder with `--include-dir DIR`",
+                        full.display(),
+                    ),
+                });
+            }
+        }
+        match read_source(full) {
+            Ok(Ok(bytes)) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
+            Ok(Err(why)) => Err(Refused::NotSource {
+                full: full.to_path_buf(),
+                why,
+            }),
+            Err(e) => Err(Refused::NotFound {
+                full: full.to_path_buf(),
+                cause: e.to_string(),
+            }),
+        }
+    }
+}
+
+impl Refused {
+    /// One line for messages that have no structure of their own (the
+    /// preprocessor's, the view file's).
+    pub(super) fn message(&self) -> String {
+        match self {
+            Refused::Outside { help, .. } => help.clone(),
+            Refused::NotSource { full, why } => {
+                format!("{} is not an L-system source: {why}", full.display())
+            }
+            Refused::NotFound { full, cause } => format!("cannot read {}: {cause}", full.display()),
+        }
+    }
+}

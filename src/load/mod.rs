@@ -1,0 +1,196 @@
+//! Load: the root input in, every file the model reads out, read and
+//! parsed, before resolve starts: the root and the files it includes (a
+//! cpfg `.l` root through the C preprocessor of [`crate::preprocess`]),
+//! their statements flattened in include order (an `#include "f"` line is
+//! replaced by the statements of `f`, as the C preprocessor would), and a
+//! model's side files (the cpfg view file and its function files). Every
+//! file read is in the [`SourceMap`]; no later stage reads the disk for the
+//! grammar.
+
+mod cpfg;
+mod error;
+mod include;
+mod loader;
+mod view;
+
+use std::path::{Path, PathBuf};
+
+use miette::Report;
+
+pub use error::{InputError, LoadError};
+pub use include::MAX_SOURCE_BYTES;
+pub use view::{SideFiles, ViewFunctions};
+
+use crate::parse::ast::Item;
+use crate::source::{FileId, Origin, SourceFile, SourceMap};
+use crate::stdlib;
+
+/// Includes nested deeper than this are refused (a runaway generator, not
+/// a grammar); `--max-include-depth` changes it.
+pub const MAX_INCLUDE_DEPTH: usize = 64;
+
+/// What to compile.
+#[derive(Clone, Debug)]
+pub enum Input {
+    /// A file on disk.
+    Path(PathBuf),
+    /// `std:NAME`: a standard library file.
+    Std(String),
+    /// Text from memory (tests, the REPL).
+    Text { name: String, text: String },
+    /// A file's text as edited in memory (the REPL): named like the file,
+    /// with its `#include "..."` resolved beside it.
+    Edited { path: PathBuf, text: String },
+}
+
+impl Input {
+    /// Reads a command-line argument: `std:NAME` or a path.
+    pub fn from_arg(arg: &str) -> Input {
+        match arg.strip_prefix("std:") {
+            Some(name) => Input::Std(name.to_string()),
+            None => Input::Path(PathBuf::from(arg)),
+        }
+    }
+}
+
+/// Options of one compilation. Loading reads them all; resolve reads the
+/// `-D` definitions again when the preprocessor did not take them (a
+/// `.lsys` file's `#define`s are resolve's).
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// `-D NAME=VALUE` overrides, in command-line order (the last wins).
+    pub defines: Vec<(String, String)>,
+    /// `--include-dir DIR`: where `#include "f"` looks after the including
+    /// file's folder; files below them may be included too.
+    pub include_dirs: Vec<PathBuf>,
+    /// Longest chain of nested includes (`--max-include-depth`).
+    pub max_include_depth: usize,
+    /// Nesting and expression limits of the parser (`--max-nesting`,
+    /// `--max-operators`).
+    pub parse: crate::parse::Limits,
+    /// `--dialect`: overrides the profile the file's name and `dialect:`
+    /// header would give.
+    pub dialect: Option<crate::lang::Dialect>,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options {
+            defines: Vec::new(),
+            include_dirs: Vec::new(),
+            max_include_depth: MAX_INCLUDE_DEPTH,
+            parse: crate::parse::Limits::default(),
+            dialect: None,
+        }
+    }
+}
+
+/// Every file of one compilation and their statements in include order.
+pub struct Loaded {
+    /// Every file read: the root, its includes, then the side files.
+    pub sources: SourceMap,
+    pub items: Vec<(FileId, Item)>,
+    pub errors: Vec<Report>,
+    pub warnings: Vec<Report>,
+    /// The files went through the C preprocessor (a cpfg `.l` root), which
+    /// took the `-D` definitions.
+    pub preprocessed: bool,
+    /// The language profile, decided here once for the whole model.
+    pub profile: crate::lang::Profile,
+    /// What the model's view file gives (cpfg): its angle, its functions.
+    pub side: SideFiles,
+}
+
+/// Loads `input`, what it includes and its side files. A cpfg file (`.l`)
+/// goes through the C preprocessor first, with the `-D` definitions defined
+/// before its first line.
+pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
+    let root = root_file(input)?;
+    let profile = crate::lang::Profile::decide(&root.name, &root.text, opts.dialect);
+    // Includes stay inside the top-level file's folder (or, for text and
+    // library grammars, the working folder).
+    let root_dir = match &root.origin {
+        Origin::Disk(p) => p.parent().map(Path::to_path_buf),
+        _ => None,
+    }
+    .filter(|d| !d.as_os_str().is_empty())
+    .unwrap_or_else(|| PathBuf::from("."));
+    let finder = include::IncludeFinder::new(root_dir, &opts.include_dirs);
+    let model = match &root.origin {
+        Origin::Disk(p) => Some(p.clone()),
+        _ => None,
+    };
+    let mut loader = loader::Loader::new(profile, finder.clone(), opts);
+    let root = if profile.cpfg_model_file {
+        loader.preprocess(root, &opts.defines)
+    } else {
+        root
+    };
+    loader.root(root);
+    let mut loaded = loader.finish();
+    if let Some(model) = model {
+        loaded.side = view::read_side_files(&model, &profile, &finder, &mut loaded.sources);
+    }
+    Ok(loaded)
+}
+
+/// The root input as a source file, or why it cannot be read at all.
+fn root_file(input: &Input) -> Result<SourceFile, InputError> {
+    Ok(match input {
+        Input::Path(p) => {
+            let text = include::read_source(p)
+                .map_err(|e| InputError::NotFound {
+                    path: p.display().to_string(),
+                    cause: e.to_string(),
+                })?
+                .map_err(|why| InputError::NotSource {
+                    path: p.display().to_string(),
+                    why,
+                })?;
+            SourceFile::new(
+                p.display().to_string(),
+                Origin::Disk(p.clone()),
+                String::from_utf8_lossy(&text).into_owned(),
+            )
+        }
+        Input::Std(name) => {
+            let text = stdlib::get(name).ok_or_else(|| InputError::UnknownStd {
+                name: name.clone(),
+                available: stdlib::names().join(", "),
+            })?;
+            SourceFile::new(format!("std:{name}"), Origin::Std(name.clone()), text)
+        }
+        Input::Text { name, text } => SourceFile::new(name.clone(), Origin::Memory, text.clone()),
+        Input::Edited { path, text } => SourceFile::new(
+            path.display().to_string(),
+            Origin::Disk(path.clone()),
+            text.clone(),
+        ),
+    })
+}
+
+impl Options {
+    /// The options of grammar component `name`: its own namespaced
+    /// defines (`name.X=V` becomes `X=V`, `name.A.X=V` becomes `A.X=V`),
+    /// everything else the same.
+    pub fn for_namespace(&self, name: &str) -> Options {
+        let prefix = format!("{name}.");
+        Options {
+            defines: self
+                .defines
+                .iter()
+                .filter_map(|(n, v)| Some((n.strip_prefix(&prefix)?.to_string(), v.clone())))
+                .collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The defines for this grammar itself (no namespace), and the
+    /// namespaced ones (`TM.NTL`), which are for its grammar components.
+    pub fn split_defines(&self) -> (Vec<(String, String)>, Vec<(String, String)>) {
+        self.defines
+            .iter()
+            .cloned()
+            .partition(|(n, _)| !n.contains('.'))
+    }
+}

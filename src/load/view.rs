@@ -1,0 +1,237 @@
+//! Load: a cpfg model's side files. The model's path in; its view file,
+//! the turning angle the view file gives and the functions of its
+//! `function:` and `function set:` lines out (`func(id, x)` numbers them
+//! from 1 in that order), every file read added to the [`SourceMap`].
+//!
+//! cpfg is started with the view file on its command line; the model's
+//! `specifications` file holds that line (`cpfg -M m.mat plant.l plant.v
+//! plant.a`). Without it, the view file is the model's stem with `.v`.
+
+use std::path::{Path, PathBuf};
+
+use miette::Report;
+
+use super::error::LoadError;
+use super::include::IncludeFinder;
+use crate::lang::spline::{parse_func, parse_gallery, SplineFn};
+use crate::lang::Profile;
+use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
+
+/// What a model's view file gives, read while loading.
+#[derive(Debug, Default)]
+pub struct SideFiles {
+    /// The view file, when there is one and it could be read.
+    pub view: Option<FileId>,
+    /// The turning angle of a cpfg model's view file (`angle factor: n`
+    /// is 360/n degrees, `angle increment: d` is d degrees), computed in
+    /// `f32` as cpfg reads it.
+    pub angle: Option<f64>,
+    /// The view file's functions, in `func` order.
+    pub functions: ViewFunctions,
+}
+
+/// The functions `func(id, x)` reads. Errors in the files are reported by
+/// resolve when a `func` call needs them (a model that never calls `func`
+/// compiles with a broken function file, as cpfg draws it).
+#[derive(Debug, Default)]
+pub enum ViewFunctions {
+    /// The model has no view file.
+    #[default]
+    NoViewFile,
+    /// The functions of its `function:` and `function set:` lines.
+    Read(Vec<SplineFn>),
+    /// Why they could not be read, each pointing at the line at fault.
+    Failed(Vec<Report>),
+}
+
+/// Reads the side files of the model at `model`: the `specifications`
+/// file beside it, the view file, the function files it names. The view
+/// file's angle counts only for a cpfg model file; its functions count for
+/// any model on disk (`func` is cpfg's, but a `.lsys` file may call it).
+pub(super) fn read_side_files(
+    model: &Path,
+    profile: &Profile,
+    finder: &IncludeFinder,
+    sources: &mut SourceMap,
+) -> SideFiles {
+    let Some(view) = find_view_file(model, finder, sources) else {
+        return SideFiles::default();
+    };
+    let text = match finder.read(&view) {
+        Ok(t) => t,
+        Err(r) => {
+            let e = LoadError::ViewUnreadable {
+                path: view.display().to_string(),
+                why: r.message(),
+            };
+            return SideFiles {
+                view: None,
+                angle: None,
+                functions: ViewFunctions::Failed(vec![Report::new(e)]),
+            };
+        }
+    };
+    let id = sources.add(SourceFile::new(
+        view.display().to_string(),
+        Origin::Disk(view.clone()),
+        text,
+    ));
+    let angle = if profile.cpfg_model_file {
+        view_angle(&sources.get(id).text)
+    } else {
+        None
+    };
+    SideFiles {
+        view: Some(id),
+        angle,
+        functions: functions(id, &view, finder, sources),
+    }
+}
+
+/// The view file cpfg would read for `model`, if there is one. A
+/// `specifications` file that was read is added to `sources`.
+fn find_view_file(
+    model: &Path,
+    finder: &IncludeFinder,
+    sources: &mut SourceMap,
+) -> Option<PathBuf> {
+    let dir = model.parent().unwrap_or(Path::new("."));
+    let spec_path = dir.join("specifications");
+    if spec_path.is_file() {
+        if let Ok(spec) = finder.read(&spec_path) {
+            let id = sources.add(SourceFile::new(
+                spec_path.display().to_string(),
+                Origin::Disk(spec_path.clone()),
+                spec,
+            ));
+            for line in sources.get(id).text.lines() {
+                let words: Vec<&str> = line.split_whitespace().collect();
+                if !words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")) {
+                    continue;
+                }
+                if let Some(v) = words.iter().find(|w| w.ends_with(".v")) {
+                    let p = dir.join(v);
+                    if p.is_file() {
+                        return Some(p);
+                    }
+                }
+            }
+        }
+    }
+    let stem = model.with_extension("v");
+    stem.is_file().then_some(stem)
+}
+
+/// The functions of the view file `view_id` (at `view`), each function
+/// file added to `sources`.
+fn functions(
+    view_id: FileId,
+    view: &Path,
+    finder: &IncludeFinder,
+    sources: &mut SourceMap,
+) -> ViewFunctions {
+    let dir = view.parent().unwrap_or(Path::new("."));
+    let text = sources.get(view_id).text.clone();
+    let mut out = Vec::new();
+    let mut errors = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        let key = key.trim().to_ascii_lowercase();
+        let gallery = match key.as_str() {
+            "function" => false,
+            "function set" | "functions" => true,
+            _ => continue,
+        };
+        let at = line_span(sources.get(view_id), view_id, i + 1);
+        let Some(file) = rest.split_whitespace().next() else {
+            errors.push(Report::new(LoadError::ViewFile {
+                why: format!("`{key}:` names no file"),
+                src: sources.get(view_id).named_source(),
+                span: at.into(),
+                help: Some(format!("write `{key}: FILE`")),
+            }));
+            continue;
+        };
+        let path = dir.join(file);
+        let body = match finder.read(&path) {
+            Ok(b) => b,
+            Err(r) => {
+                errors.push(Report::new(LoadError::ViewFile {
+                    why: format!("cannot use the function file {}", path.display()),
+                    src: sources.get(view_id).named_source(),
+                    span: at.into(),
+                    help: Some(r.message()),
+                }));
+                continue;
+            }
+        };
+        let id = sources.add(SourceFile::new(
+            path.display().to_string(),
+            Origin::Disk(path.clone()),
+            body,
+        ));
+        let body = sources.get(id);
+        let parsed = if gallery {
+            parse_gallery(&body.text)
+        } else {
+            let samples = rest
+                .split_whitespace()
+                .nth(1)
+                .and_then(|n| n.parse().ok())
+                .unwrap_or(0);
+            parse_func(&body.text, samples).map(|f| vec![f])
+        };
+        match parsed {
+            Ok(fs) => out.extend(fs),
+            Err(e) => errors.push(Report::new(LoadError::FunctionFile {
+                path: path.display().to_string(),
+                why: e.message,
+                src: body.named_source(),
+                span: line_span(body, id, e.line).into(),
+            })),
+        }
+    }
+    if errors.is_empty() {
+        ViewFunctions::Read(out)
+    } else {
+        ViewFunctions::Failed(errors)
+    }
+}
+
+/// The turning angle a view file's text gives, computed in `f32` as cpfg
+/// reads it. `None` without either line.
+fn view_angle(text: &str) -> Option<f64> {
+    let mut angle = None;
+    for line in text.lines() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        let value = rest
+            .split_whitespace()
+            .next()
+            .and_then(|v| v.parse::<f32>().ok());
+        match (key.trim().to_ascii_lowercase().as_str(), value) {
+            ("angle factor", Some(n)) if n != 0.0 => angle = Some(f64::from(360.0f32 / n)),
+            ("angle increment", Some(d)) => angle = Some(f64::from(d)),
+            _ => {}
+        }
+    }
+    angle
+}
+
+/// The span of 1-based line `line` of `file` (without its line break); an
+/// empty span at the end for a line past the end.
+fn line_span(file: &SourceFile, id: FileId, line: usize) -> Span {
+    let text = file.text.as_str();
+    let mut start = 0;
+    for (n, l) in text.split_inclusive('\n').enumerate() {
+        if n + 1 == line {
+            let body = l.trim_end_matches(['\n', '\r']);
+            return Span::new(id, start, start + body.len());
+        }
+        start += l.len();
+    }
+    Span::new(id, text.len(), text.len())
+}
