@@ -65,6 +65,7 @@ fn w3_w2_mesh_only(bencher: Bencher) {
                     &palette,
                     &o.components,
                     &o.mesh,
+                    &mut lsys::mesh::NoGrammars,
                 )
                 .expect("meshes"),
             )

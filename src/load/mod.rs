@@ -169,6 +169,9 @@ fn root_file(input: &Input) -> Result<SourceFile, InputError> {
     })
 }
 
+/// `-D NAME=VALUE` pairs in command-line order.
+pub type Defines = Vec<(String, String)>;
+
 impl Options {
     /// The options of grammar component `name`: its own namespaced
     /// defines (`name.X=V` becomes `X=V`, `name.A.X=V` becomes `A.X=V`),
@@ -187,7 +190,7 @@ impl Options {
 
     /// The defines for this grammar itself (no namespace), and the
     /// namespaced ones (`TM.NTL`), which are for its grammar components.
-    pub fn split_defines(&self) -> (Vec<(String, String)>, Vec<(String, String)>) {
+    pub fn split_defines(&self) -> (Defines, Defines) {
         self.defines
             .iter()
             .cloned()

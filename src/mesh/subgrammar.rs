@@ -133,9 +133,9 @@ pub fn grammar_component(
         })
         .collect();
     if parts.is_empty() {
-        return Err(fail(format!(
-            "it draws nothing (no drawing command in its string)"
-        )));
+        return Err(fail(
+            "it draws nothing (no drawing command in its string)".to_string(),
+        ));
     }
     normalise(&mut parts);
     Ok(Component {
