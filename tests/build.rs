@@ -345,7 +345,7 @@ fn includes_stay_inside_the_grammar_folder() {
         let o = lsys(&["check", path_str(&grammar)]);
         assert_eq!(o.status.code(), Some(65), "{target}");
         assert!(
-            stderr(&o).contains("lsys::resolve::include_outside"),
+            stderr(&o).contains("lsys::load::include_outside"),
             "{target}: {}",
             stderr(&o)
         );

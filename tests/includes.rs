@@ -39,7 +39,7 @@ fn a_link_out_of_the_folder_is_refused_and_its_text_not_shown() {
     std::fs::create_dir_all(tmp.path().join("grammar/inc")).unwrap();
     std::os::unix::fs::symlink(&secret, tmp.path().join("grammar/inc/params.lsys")).unwrap();
     let err = compile(&root, &[]).unwrap_err();
-    assert!(err.contains("lsys::resolve::include_outside"), "{err}");
+    assert!(err.contains("lsys::load::include_outside"), "{err}");
     assert!(!err.contains("hunter2"), "{err}");
     // Allowing the folder with --include-dir lets it in (and it is then an
     // ordinary, if broken, source).
@@ -62,7 +62,7 @@ fn include_dirs_are_searched_after_the_including_folder_and_allowed() {
     write(&tmp.path().join("grammar/local.lsys"), "#define WHERE 1\n");
 
     let err = compile(&root, &[]).unwrap_err();
-    assert!(err.contains("lsys::resolve::include_not_found"), "{err}");
+    assert!(err.contains("lsys::load::include_not_found"), "{err}");
     let ok = compile(&root, &[&lib]).unwrap();
     assert_eq!(ok, "LEN=Some(3.0);WHERE=Some(1.0);");
 
@@ -70,7 +70,7 @@ fn include_dirs_are_searched_after_the_including_folder_and_allowed() {
     // in an --include-dir, refused otherwise.
     write(&root, "#include \"../lib/common.lsys\"\nAxiom: F\n");
     let err = compile(&root, &[]).unwrap_err();
-    assert!(err.contains("lsys::resolve::include_outside"), "{err}");
+    assert!(err.contains("lsys::load::include_outside"), "{err}");
     assert!(err.contains("--include-dir"), "{err}");
     compile(&root, &[&lib]).unwrap();
 }
@@ -129,12 +129,12 @@ fn huge_files_are_refused_unread() {
     let f = std::fs::File::create(&big).unwrap();
     f.set_len(lsys::load::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
     let err = compile(&big, &[]).unwrap_err();
-    assert!(err.contains("lsys::resolve::input_not_source"), "{err}");
+    assert!(err.contains("lsys::load::input_not_source"), "{err}");
     assert!(err.contains("67108865 bytes long"), "{err}");
     let root = tmp.path().join("main.lsys");
     write(&root, "#include \"big.lsys\"\nAxiom: F\n");
     let err = compile(&root, &[]).unwrap_err();
-    assert!(err.contains("lsys::resolve::include_not_source"), "{err}");
+    assert!(err.contains("lsys::load::include_not_source"), "{err}");
 }
 
 /// A cpfg file's includes go through the C preprocessor, which finds them

@@ -16,19 +16,19 @@ type Src = NamedSource<Arc<String>>;
 pub enum InputError {
     #[error("cannot read {path}: {cause}")]
     #[diagnostic(
-        code(lsys::resolve::input),
+        code(lsys::load::input),
         help("check the path; standard library grammars are named `std:NAME`")
     )]
     NotFound { path: String, cause: String },
     #[error("no standard library grammar `std:{name}`")]
     #[diagnostic(
-        code(lsys::resolve::unknown_std),
+        code(lsys::load::unknown_std),
         help("the standard library has: {available}")
     )]
     UnknownStd { name: String, available: String },
     #[error("{path} is not an L-system source: {why}")]
     #[diagnostic(
-        code(lsys::resolve::input_not_source),
+        code(lsys::load::input_not_source),
         help(
             "give lsys the grammar (.lsys or cpfg .l) file; a UTF-16 file must be saved as UTF-8"
         )
@@ -43,7 +43,7 @@ pub enum LoadError {
     /// to be a grammar. Its text is never shown in a diagnostic.
     #[error("cannot include \"{path}\": it is not an L-system source ({why})")]
     #[diagnostic(
-        code(lsys::resolve::include_not_source),
+        code(lsys::load::include_not_source),
         help("include only grammar text files; a UTF-16 file must be saved as UTF-8")
     )]
     IncludeNotSource {
@@ -56,7 +56,7 @@ pub enum LoadError {
     },
 
     #[error("cannot include \"{path}\": {cause}")]
-    #[diagnostic(code(lsys::resolve::include_not_found))]
+    #[diagnostic(code(lsys::load::include_not_found))]
     IncludeNotFound {
         path: String,
         cause: String,
@@ -69,7 +69,7 @@ pub enum LoadError {
     },
 
     #[error("cannot include \"{path}\": it is outside the folder of the top-level grammar")]
-    #[diagnostic(code(lsys::resolve::include_outside))]
+    #[diagnostic(code(lsys::load::include_outside))]
     IncludeOutside {
         path: String,
         #[source_code]
@@ -81,7 +81,7 @@ pub enum LoadError {
     },
 
     #[error("no standard library file <{name}>")]
-    #[diagnostic(code(lsys::resolve::unknown_std))]
+    #[diagnostic(code(lsys::load::unknown_std))]
     UnknownStd {
         name: String,
         #[source_code]
@@ -94,7 +94,7 @@ pub enum LoadError {
 
     #[error("include cycle: {chain}")]
     #[diagnostic(
-        code(lsys::resolve::include_cycle),
+        code(lsys::load::include_cycle),
         help("a file may not include itself, directly or through other files; remove one of the includes in the chain")
     )]
     IncludeCycle {
@@ -107,7 +107,7 @@ pub enum LoadError {
 
     #[error("includes nested deeper than {limit} files (the limit)")]
     #[diagnostic(
-        code(lsys::resolve::include_depth),
+        code(lsys::load::include_depth),
         help("this include would be file {} of the chain; look for a file that includes a chain of generated files, or raise the limit with `--max-include-depth N`", limit + 1)
     )]
     IncludeDepth {
