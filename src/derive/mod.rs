@@ -58,6 +58,7 @@ mod engine;
 pub mod error;
 mod fast;
 mod matching;
+pub mod number;
 mod parallel;
 mod rewrite;
 pub mod rng;
@@ -70,5 +71,6 @@ pub use engine::{
     derive, derive_each, homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted,
 };
 pub use error::{DepthWarning, DeriveError};
+pub use number::{NumberFormat, NumberStyle};
 pub use rng::{Rand48, DEFAULT_SEED};
 pub use store::{ContextIndex, Module, ModuleStore};

@@ -18,7 +18,7 @@ use miette::Report;
 
 use super::input::{self, Kind};
 use super::{commands, show};
-use crate::derive::{Checkpoint, Derivation, DeriveOptions, ModuleStore};
+use crate::derive::{Checkpoint, Derivation, DeriveOptions, ModuleStore, NumberFormat};
 use crate::pipeline::{self, Compilation, Failure};
 use crate::progress::Progress;
 use crate::resolve::{Input, Options};
@@ -522,7 +522,12 @@ impl Session {
                 self.pos,
                 s.len(),
                 if s.len() == 1 { "" } else { "s" },
-                show::abbreviate(s, &g.comp.program.symbols, show::BUDGET)
+                show::abbreviate(
+                    s,
+                    &g.comp.program.symbols,
+                    NumberFormat::for_program(&g.comp.program),
+                    show::BUDGET,
+                )
             ),
             _ => format!("step {}: no string", self.pos),
         }
