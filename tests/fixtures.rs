@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use lsys::derive::{self, DeriveOptions};
+use lsys::derive::{self, DeriveOptions, NumberFormat};
 use lsys::load::{Input, Options};
 use lsys::pipeline;
 use lsys::source::{Origin, SourceFile};
@@ -163,17 +163,22 @@ fn derive() {
                 .unwrap_or(DeriveOptions::default().max_params),
             ..DeriveOptions::default()
         };
+        // Parameters as the dialect stores them (f32 in cpfg's).
+        let fmt = NumberFormat::for_program(p);
         let mut out = warnings(&c);
         let mut run = || -> Result<derive::Derivation, derive::DeriveError> {
             let steps = p.derivation_length;
             let mut d = lsys::simulation::Simulation::new(p, code, opts.clone(), steps)?;
-            out.push_str(&format!("0: {}\n", d.current().display(&p.symbols)));
+            out.push_str(&format!(
+                "0: {}\n",
+                d.current().display_with(&p.symbols, fmt)
+            ));
             for _ in 0..p.derivation_length {
                 d.step()?;
                 out.push_str(&format!(
                     "{}: {}\n",
                     d.step_number(),
-                    d.current().display(&p.symbols)
+                    d.current().display_with(&p.symbols, fmt)
                 ));
             }
             d.finish()?;
@@ -189,7 +194,7 @@ fn derive() {
                     let h = d.homomorphism().unwrap();
                     out.push_str(&format!(
                         "homomorphism: {}\n",
-                        h.modules.display(&p.symbols)
+                        h.modules.display_with(&p.symbols, fmt)
                     ));
                     for w in &h.warnings {
                         out.push_str(&lsys::diag::render_plain(w));

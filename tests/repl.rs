@@ -330,3 +330,29 @@ fn watch_rebuilds_when_the_grammar_or_an_include_changes() {
     child.kill().unwrap();
     child.wait().unwrap();
 }
+
+#[test]
+fn cpfg_dialect_strings_show_f32_parameters() {
+    let dir = tempfile::tempdir().unwrap();
+    let thirds = dir.path().join("thirds.l");
+    std::fs::write(
+        &thirds,
+        "derivation length: 2\naxiom: I(1) F(0.1)\nI(x) --> I(x*1.1+1/3)\nF(x) --> F(x/3)\n",
+    )
+    .unwrap();
+    let mut s = Session::new(Settings::default());
+    s.start(thirds.to_str().unwrap(), 2).unwrap();
+    // Stored as f32s: shown in the f32's shortest form.
+    assert_eq!(s.execute(":show all").text, "I(1.91) F(0.011111111)");
+    assert!(s
+        .execute(":show")
+        .text
+        .ends_with("\nI(1.91) F(0.011111111)"));
+    let d = s.execute(":diff").text;
+    assert!(
+        d.contains("«I(1.4333333) F(0.033333335) → I(1.91) F(0.011111111)»"),
+        "{d}"
+    );
+    let r = s.execute("I(1.4333333)").text;
+    assert_eq!(r, "I(1.91)");
+}

@@ -151,6 +151,12 @@ pub struct DeriveArgs {
     /// Print the number of modules (in all, then per symbol) instead of the string. Grammars whose productions rewrite each module on its own (no context, no probabilities, no `ran`, no decomposition) are counted without building the string, however long it is.
     #[arg(long, conflicts_with_all = ["every", "homomorphism"])]
     pub count: bool,
+    /// Round parameters to N decimal places, trailing zeros removed (for stable snapshots); never more digits than the default form.
+    #[arg(long, value_name = "N", conflicts_with = "count")]
+    pub precision: Option<u8>,
+    /// Print parameters as cpfg's -str output does: C's printf("%g"), six significant digits (1e+06, 1.5e-05, 123457).
+    #[arg(long, conflicts_with_all = ["count", "precision"])]
+    pub cpfg_format: bool,
     /// Write the string here instead of standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub output: Option<PathBuf>,

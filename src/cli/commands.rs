@@ -8,7 +8,7 @@ use miette::Diagnostic;
 
 use super::args::{Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
-use crate::derive::{self, DeriveOptions, ModuleStore};
+use crate::derive::{self, DeriveOptions, ModuleStore, NumberFormat, NumberStyle};
 use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
@@ -128,6 +128,12 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
     if d.count {
         return count_cmd(d, &comp, opts, steps, color);
     }
+    let style = match (d.precision, d.cpfg_format) {
+        (_, true) => NumberStyle::PrintfG,
+        (Some(n), false) => NumberStyle::Decimals(n),
+        (None, false) => NumberStyle::Shortest,
+    };
+    let fmt = NumberFormat::for_program(program).with_style(style);
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {
         let line = |s: &ModuleStore, step: u32, mut out: &mut dyn Write| -> Result<(), Outcome> {
             let shown = if d.homomorphism {
@@ -141,7 +147,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
                 Cow::Borrowed(s)
             };
             shown
-                .write_string(&program.symbols, &mut out)
+                .write_string_with(&program.symbols, fmt, &mut out)
                 .map_err(Outcome::Io)?;
             out.write_all(b"\n").map_err(Outcome::Io)
         };

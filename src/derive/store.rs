@@ -1,6 +1,7 @@
 //! The flat module store: a string of modules as two vectors, with no
 //! allocation per module. Input: modules pushed by the VM or copied in
-//! bulk; output: iteration, printing in the CLI format, symbol counts.
+//! bulk; output: iteration, printing in the CLI format (numbers as
+//! [`NumberFormat`] says), symbol counts.
 //!
 //! `heads[i]` packs module `i`'s parameter count into the top 8 bits and
 //! its symbol id into the low 24 bits; the parameters of all modules follow
@@ -10,6 +11,7 @@
 
 use std::io::{self, Write};
 
+use super::number::{write_f32, write_f64, NumberFormat, NumberStyle};
 use crate::bytecode::Sink;
 use crate::resolve::{SymId, Symbols, CLOSE_BRACKET, OPEN_BRACKET};
 
@@ -142,6 +144,38 @@ impl ModuleStore {
     /// as `A(1,2.5)` with Rust's shortest round-trip `{}` for f64, no
     /// trailing newline. Buffered internally; no allocation per module.
     pub fn write_string<W: Write>(&self, symbols: &Symbols, out: &mut W) -> io::Result<()> {
+        self.write_modules(symbols, out, write_f64)
+    }
+
+    /// [`write_string`](Self::write_string) with the parameters printed
+    /// as `fmt` says.
+    pub fn write_string_with<W: Write>(
+        &self,
+        symbols: &Symbols,
+        fmt: NumberFormat,
+        out: &mut W,
+    ) -> io::Result<()> {
+        match fmt {
+            NumberFormat {
+                f32: false,
+                style: NumberStyle::Shortest,
+            } => self.write_modules(symbols, out, write_f64),
+            NumberFormat {
+                f32: true,
+                style: NumberStyle::Shortest,
+            } => self.write_modules(symbols, out, |b, v| write_f32(b, v as f32 as f64)),
+            _ => self.write_modules(symbols, out, |b, v| fmt.write(b, v)),
+        }
+    }
+
+    /// The modules, each parameter printed by `number`.
+    #[inline(always)]
+    fn write_modules<W: Write>(
+        &self,
+        symbols: &Symbols,
+        out: &mut W,
+        number: impl Fn(&mut Vec<u8>, f64),
+    ) -> io::Result<()> {
         let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
         for (i, m) in self.iter().enumerate() {
             if i > 0 {
@@ -154,7 +188,7 @@ impl ModuleStore {
                     if k > 0 {
                         buf.push(b',');
                     }
-                    write_f64(&mut buf, *v)?;
+                    number(&mut buf, *v);
                 }
                 buf.push(b')');
             }
@@ -168,8 +202,14 @@ impl ModuleStore {
 
     /// The CLI format as a `String` (tests, the REPL).
     pub fn display(&self, symbols: &Symbols) -> String {
+        self.display_with(symbols, NumberFormat::default())
+    }
+
+    /// [`display`](Self::display) with the parameters printed as `fmt`
+    /// says.
+    pub fn display_with(&self, symbols: &Symbols, fmt: NumberFormat) -> String {
         let mut v = Vec::new();
-        self.write_string(symbols, &mut v)
+        self.write_string_with(symbols, fmt, &mut v)
             .expect("writing to a Vec cannot fail");
         String::from_utf8(v).expect("symbol names are UTF-8")
     }
@@ -195,34 +235,6 @@ impl ModuleStore {
             self.params.extend_from_slice(params);
         }
     }
-}
-
-/// Append `v` as Rust's `{}` prints it. Whole numbers (the usual
-/// parameters) are printed by hand: the general float formatter costs more
-/// than the rest of printing a module together.
-#[inline]
-fn write_f64(buf: &mut Vec<u8>, v: f64) -> io::Result<()> {
-    // Below 2^53 every whole f64 is exact and `{}` prints its digits with
-    // no fraction and no exponent; `-0.0` prints as `-0`.
-    if v.fract() == 0.0 && v.abs() < 9_007_199_254_740_992.0 {
-        if v.is_sign_negative() {
-            buf.push(b'-');
-        }
-        let mut n = v.abs() as u64;
-        let mut digits = [0u8; 20];
-        let mut k = digits.len();
-        loop {
-            k -= 1;
-            digits[k] = b'0' + (n % 10) as u8;
-            n /= 10;
-            if n == 0 {
-                break;
-            }
-        }
-        buf.extend_from_slice(&digits[k..]);
-        return Ok(());
-    }
-    write!(buf, "{v}")
 }
 
 impl Sink for ModuleStore {
@@ -345,7 +357,7 @@ pub fn rest_of_branch(heads: &[u32], mut i: usize) -> (usize, usize) {
 
 #[cfg(test)]
 mod tests {
-    use super::write_f64;
+    use crate::derive::number::write_f64;
 
     #[test]
     fn whole_numbers_print_as_display_does() {
@@ -366,7 +378,7 @@ mod tests {
             f64::MAX,
         ] {
             let mut b = Vec::new();
-            write_f64(&mut b, v).unwrap();
+            write_f64(&mut b, v);
             assert_eq!(String::from_utf8(b).unwrap(), format!("{v}"), "{v:e}");
         }
     }

@@ -9,6 +9,7 @@
 use super::session::{Out, Session};
 use super::{grammar, show};
 use crate::bytecode::one_line;
+use crate::derive::NumberFormat;
 use crate::parse::ast::{HeaderKind, Item};
 use crate::pipeline::Compilation;
 use crate::resolve::{Cond, Expr, ExprKind, PatItem, PatModule, Production, Table};
@@ -169,6 +170,7 @@ impl Session {
         Ok(show::abbreviate(
             d.current(),
             &comp.program.symbols,
+            NumberFormat::for_program(&comp.program),
             show::BUDGET,
         ))
     }

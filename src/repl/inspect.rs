@@ -13,7 +13,7 @@ use super::session::{Out, Session};
 use super::show;
 use crate::build::{self, BuildOptions, Built};
 use crate::bytecode::{disasm, disasm_production, one_line};
-use crate::derive::ModuleStore;
+use crate::derive::{ModuleStore, NumberFormat};
 use crate::export::output::{write_scene, Format, WriteError};
 use crate::export::render::{RenderOptions, View};
 use crate::mesh::ComponentSearch;
@@ -30,14 +30,15 @@ impl Session {
     /// `:show [RANGE]`.
     pub fn show(&mut self, arg: &str) -> Out {
         let s = self.string()?;
-        let symbols = &self.grammar()?.comp.program.symbols;
+        let program = &self.grammar()?.comp.program;
+        let (symbols, fmt) = (&program.symbols, NumberFormat::for_program(program));
         let n = s.len();
         let arg = arg.trim();
         if arg.is_empty() {
             return Ok(self.status());
         }
         if arg == "all" {
-            return Ok(show::modules(s, symbols, 0..n));
+            return Ok(show::modules(s, symbols, fmt, 0..n));
         }
         let num = |t: &str, default: usize| -> Result<usize, String> {
             if t.trim().is_empty() {
@@ -63,7 +64,7 @@ impl Session {
         }
         Ok(format!(
             "modules {a}..{b} of {n}:\n{}",
-            show::modules(s, symbols, a..b)
+            show::modules(s, symbols, fmt, a..b)
         ))
     }
 
@@ -89,7 +90,14 @@ impl Session {
                 rewritable[m.sym as usize] = true;
             }
         }
-        Ok(show::diff(&prev, cur, &p.symbols, &rewritable, self.pos))
+        Ok(show::diff(
+            &prev,
+            cur,
+            &p.symbols,
+            NumberFormat::for_program(p),
+            &rewritable,
+            self.pos,
+        ))
     }
 
     /// `:rules`.

@@ -16,7 +16,7 @@ use std::time::{Duration, Instant};
 
 use super::input::{self, Kind};
 use super::{commands, show};
-use crate::derive::{Checkpoint, DeriveOptions, ModuleStore};
+use crate::derive::{Checkpoint, DeriveOptions, ModuleStore, NumberFormat};
 use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
@@ -514,7 +514,12 @@ impl Session {
                 self.pos,
                 s.len(),
                 if s.len() == 1 { "" } else { "s" },
-                show::abbreviate(s, &g.comp.program.symbols, show::BUDGET)
+                show::abbreviate(
+                    s,
+                    &g.comp.program.symbols,
+                    NumberFormat::for_program(&g.comp.program),
+                    show::BUDGET,
+                )
             ),
             _ => format!("step {}: no string", self.pos),
         }

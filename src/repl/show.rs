@@ -6,7 +6,7 @@
 use std::fmt::Write;
 use std::ops::Range;
 
-use crate::derive::{Module, ModuleStore};
+use crate::derive::{Module, ModuleStore, NumberFormat};
 use crate::resolve::Symbols;
 
 /// Characters of a string shown before it is abbreviated.
@@ -16,8 +16,8 @@ pub const DIFF_LIMIT: usize = 300;
 /// Strings shown module by module, each change in place, in [`diff`].
 pub const WHERE_LIMIT: usize = 100;
 
-/// One module in the CLI's format: `A(1,2.5)`.
-pub fn token(symbols: &Symbols, m: Module<'_>) -> String {
+/// One module in the CLI's format: `A(1,2.5)`, parameters as `fmt` says.
+pub fn token(symbols: &Symbols, fmt: NumberFormat, m: Module<'_>) -> String {
     let mut s = symbols.name(m.sym).to_string();
     if !m.params.is_empty() {
         s.push('(');
@@ -25,7 +25,7 @@ pub fn token(symbols: &Symbols, m: Module<'_>) -> String {
             if k > 0 {
                 s.push(',');
             }
-            let _ = write!(s, "{v}");
+            s.push_str(&fmt.format(*v));
         }
         s.push(')');
     }
@@ -33,13 +33,18 @@ pub fn token(symbols: &Symbols, m: Module<'_>) -> String {
 }
 
 /// Modules `range` of `store`, separated by spaces.
-pub fn modules(store: &ModuleStore, symbols: &Symbols, range: Range<usize>) -> String {
+pub fn modules(
+    store: &ModuleStore,
+    symbols: &Symbols,
+    fmt: NumberFormat,
+    range: Range<usize>,
+) -> String {
     let n = range.end.saturating_sub(range.start);
     let toks: Vec<String> = store
         .iter()
         .skip(range.start)
         .take(n)
-        .map(|m| token(symbols, m))
+        .map(|m| token(symbols, fmt, m))
         .collect();
     toks.join(" ")
 }
@@ -47,12 +52,17 @@ pub fn modules(store: &ModuleStore, symbols: &Symbols, range: Range<usize>) -> S
 /// The whole string when it fits in `budget` characters; otherwise its
 /// head and tail with the number of modules left out, and a line of
 /// counts per symbol.
-pub fn abbreviate(store: &ModuleStore, symbols: &Symbols, budget: usize) -> String {
+pub fn abbreviate(
+    store: &ModuleStore,
+    symbols: &Symbols,
+    fmt: NumberFormat,
+    budget: usize,
+) -> String {
     let half = budget / 2;
     let mut head = String::new();
     let mut shown = 0usize;
     for m in store.iter() {
-        let t = token(symbols, m);
+        let t = token(symbols, fmt, m);
         if head.len() + t.len() + 1 > half && shown > 0 {
             break;
         }
@@ -70,7 +80,11 @@ pub fn abbreviate(store: &ModuleStore, symbols: &Symbols, budget: usize) -> Stri
     }
     // The tail: at most `half` characters from the end.
     let from = store.len().saturating_sub(half / 2).max(shown);
-    let tail_toks: Vec<String> = store.iter().skip(from).map(|m| token(symbols, m)).collect();
+    let tail_toks: Vec<String> = store
+        .iter()
+        .skip(from)
+        .map(|m| token(symbols, fmt, m))
+        .collect();
     let mut tail: Vec<&str> = Vec::new();
     let mut chars = 0;
     for t in tail_toks.iter().rev() {
@@ -83,7 +97,7 @@ pub fn abbreviate(store: &ModuleStore, symbols: &Symbols, budget: usize) -> Stri
     tail.reverse();
     let omitted = store.len() - shown - tail.len();
     if omitted == 0 {
-        return modules(store, symbols, 0..store.len());
+        return modules(store, symbols, fmt, 0..store.len());
     }
     format!(
         "{head} … ({omitted} more) … {}\n{}",
@@ -151,6 +165,7 @@ pub fn diff(
     prev: &ModuleStore,
     cur: &ModuleStore,
     symbols: &Symbols,
+    fmt: NumberFormat,
     rewritable: &[bool],
     step: u32,
 ) -> String {
@@ -200,12 +215,12 @@ pub fn diff(
         );
         return out;
     }
-    let p: Vec<String> = prev.iter().map(|m| token(symbols, m)).collect();
+    let p: Vec<String> = prev.iter().map(|m| token(symbols, fmt, m)).collect();
     let r: Vec<bool> = prev
         .iter()
         .map(|m| rewritable.get(m.sym as usize).copied().unwrap_or(false))
         .collect();
-    let c: Vec<String> = cur.iter().map(|m| token(symbols, m)).collect();
+    let c: Vec<String> = cur.iter().map(|m| token(symbols, fmt, m)).collect();
     // An alignment is shown only when it is consistent: the same run of
     // modules became the same thing everywhere. Otherwise it is one guess
     // among several (conditions, stochastic rules, or plain ambiguity) and
