@@ -1,27 +1,65 @@
 //! `lsys`: a compiler and interpreter for parametric L-systems.
 //!
 //! ```text
+//! lang        the language profile, turtle command table, built-in
+//!             functions, random generator: what every stage shares
 //! source (.lsys, #include'd files, std library embedded in the binary)
 //!   -> load       every file the model reads: root, includes (cpfg .l through
-//!                 the C preprocessor), view and function files; each parsed
-//!   -> parse      pest grammar (grammar/lsys.pest) -> AST with spans
+//!                 the C preprocessor), view and function files, each parsed
+//!                 (parse: pest grammar -> AST with spans); decides the profile
 //!   -> resolve    #define, alphabet, names, arity, constant folding (no I/O)
 //!   -> bytecode   productions -> documented instructions (+ spans), disassembler
-//!   -> derive     parallel rewriting over a flat module store
+//!   -> derive     parallel rewriting over a flat module store (no turtle)
 //!   -> turtle     module string -> strokes, polygons and component placements
-//!   -> mesh       tubes, polygons, components (OBJ via tobj) -> a Scene
+//!   -> simulation the loop: derive a step -> environments (the turtle's
+//!                 ?P ?H ?L ?U first) answer query modules -> next step; End:
+//!   -> mesh       tubes, polygons, components (OBJ via tobj; grammar
+//!                 components through a seam the caller implements) -> a Scene
 //!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
 //!
-//! Around the pipeline: [`cli`] (the binary's commands, `watch` among
-//! them), [`repl`] (`lsys repl`: step, edit, inspect a grammar
+//! Each stage imports only the stages before it (`tests/architecture.rs`
+//! checks). Above them: [`pipeline`] (load to bytecode in one call),
+//! [`build`] (simulation to meshes in one call, building grammar
+//! components with the same options), [`pailou`] and the public API.
+//!
+//! # Using the library
+//!
+//! The public surface is [`Grammar`], [`Derived`], [`Scene`],
+//! [`GrammarOptions`] and [`Diagnostics`] (see `docs/library.md`):
+//!
+//! ```
+//! let g = lsys::Grammar::options()
+//!     .define("N", 3)
+//!     .from_str("koch.lsys", "#define N 1\nderivation length: N\naxiom: F\nF --> F+F-F-F+F\n")?;
+//! assert_eq!(g.derive(1)?.to_string(), "F + F - F - F + F");
+//! assert_eq!(g.steps().count(), 4); // the axiom and 3 steps
+//! # Ok::<(), lsys::Diagnostics>(())
+//! ```
+//!
+//! The stage modules are public for tests, benchmarks and tools that go
+//! deeper; their items may change between versions.
+//!
+//! With the default `cli` feature: [`cli`] (the binary's commands, `watch`
+//! among them), [`repl`] (`lsys repl`: step, edit, inspect a grammar
 //! interactively) and [`progress`] (progress bars on standard error).
+//! `default-features = false` builds the library without them (no clap,
+//! rustyline, notify, ctrlc, indicatif, dirs).
+
+mod api;
+
+pub use api::{Derived, Grammar, GrammarOptions, Scene, Steps};
+pub use diag::Diagnostics;
+pub use lang::Dialect;
 
 pub mod build;
 pub mod bytecode;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod derive;
 pub mod diag;
+#[cfg(feature = "cli")]
+pub mod exit_code;
 pub mod export;
 pub mod lang;
 pub mod load;
@@ -30,7 +68,9 @@ pub mod pailou;
 pub mod parse;
 pub mod pipeline;
 pub mod preprocess;
+#[cfg(feature = "cli")]
 pub mod progress;
+#[cfg(feature = "cli")]
 pub mod repl;
 pub mod resolve;
 pub mod simulation;

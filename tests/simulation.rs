@@ -173,3 +173,22 @@ fn seed_and_limits_reach_grammar_components() {
     assert!(err.contains("Sub"), "{err}");
     assert!(err.contains("100"), "{err}");
 }
+
+#[test]
+fn dialect_option_decides_the_profile_for_every_stage() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("third.lsys");
+    std::fs::write(&g, "axiom: A(1) % B\nA(x) --> A(x/3)\n").unwrap();
+    let g = g.to_str().unwrap();
+    let derive = |extra: &[&str]| {
+        let mut a = vec!["derive", g, "-n", "2"];
+        a.extend_from_slice(extra);
+        let o = lsys(&a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stdout).trim().to_string()
+    };
+    // The paper's profile: f64 parameters, `%` a roll that stays.
+    assert_eq!(derive(&[]), "A(0.1111111111111111) % B");
+    // cpfg's: f32 parameters printed short, `%` cuts the rest of the branch.
+    assert_eq!(derive(&["--dialect", "cpfg"]), "A(0.11111111)");
+}

@@ -101,6 +101,19 @@ pub struct SourceArgs {
     #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_OPERATORS,
           value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_OPERATORS_CEILING as u64))]
     pub max_operators: usize,
+    /// Read the file in this notation whatever its name (`.l`) and its
+    /// `dialect:` header say.
+    #[arg(long, value_enum, value_name = "DIALECT")]
+    pub dialect: Option<DialectArg>,
+}
+
+/// `--dialect`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum DialectArg {
+    /// The Pailou paper's Table 1 (`%` rolls 180°, `$` pitches 180°).
+    Paper,
+    /// cpfg's (`%` cuts the branch, `$` rolls to horizontal; f32 parameters).
+    Cpfg,
 }
 
 impl SourceArgs {
@@ -114,7 +127,10 @@ impl SourceArgs {
                 max_nesting: self.max_nesting,
                 max_operators: self.max_operators,
             },
-            dialect: None,
+            dialect: self.dialect.map(|d| match d {
+                DialectArg::Paper => crate::lang::Dialect::Paper,
+                DialectArg::Cpfg => crate::lang::Dialect::Cpfg,
+            }),
         }
     }
 }

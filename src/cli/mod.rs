@@ -13,12 +13,7 @@ use clap::Parser;
 
 pub use args::{Cli, Command};
 
-pub const EX_OK: i32 = 0;
-pub const EX_USAGE: i32 = 64;
-pub const EX_DATAERR: i32 = 65;
-pub const EX_NOINPUT: i32 = 66;
-pub const EX_SOFTWARE: i32 = 70;
-pub const EX_IOERR: i32 = 74;
+pub use crate::exit_code::*;
 
 /// Runs the command line of this process and returns its exit code.
 pub fn main() -> i32 {

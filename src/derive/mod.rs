@@ -36,7 +36,7 @@
 //!   of our branch) fails, a `[` in the pattern enters the next branch, a
 //!   `]` in the pattern skips the rest of the current branch past its `]`.
 //!   Unbalanced brackets fail the match.
-//! * **Generator.** POSIX `drand48` ([`rng`]), seeded by `--seed`, else the
+//! * **Generator.** POSIX `drand48` ([`crate::lang::rng`]), seeded by `--seed`, else the
 //!   program's `seed:`, else 0; one per derivation, consumed in string order
 //!   (conditions, weights, the draw, then the successor's `ran` calls).
 //! * **Decomposition.** After the axiom and after every step, each module

@@ -33,8 +33,8 @@ use rustyline::{CompletionType, Editor};
 pub use commands::{Arg, Command, COMMANDS};
 pub use session::{Names, Reply, Session, Settings, Source};
 
-use crate::cli::{EX_DATAERR, EX_IOERR, EX_OK};
 use crate::derive::DeriveOptions;
+use crate::exit_code::{EX_DATAERR, EX_IOERR, EX_OK};
 
 /// How `lsys repl` was started.
 #[derive(Clone, Debug, Default)]

@@ -1,0 +1,111 @@
+//! A compiled grammar: text or a file in; derived strings (each step or
+//! the last) and built scenes out.
+
+use std::sync::Arc;
+
+use super::derived::{Derived, Steps};
+use super::options::GrammarOptions;
+use super::scene::Scene;
+use crate::diag::Diagnostics;
+use crate::load::Input;
+use crate::pipeline::{self, Compilation};
+use crate::simulation::Simulation;
+
+/// A grammar, compiled and ready to derive.
+///
+/// ```
+/// use lsys::Grammar;
+/// let g = Grammar::from_str("algae.lsys", "derivation length: 3\naxiom: A\nA --> A B\nB --> A\n")?;
+/// let steps: Vec<String> = g.steps().map(|d| d.map(|d| d.to_string())).collect::<Result<_, _>>()?;
+/// assert_eq!(steps, ["A", "A B", "A B A", "A B A A B"]);
+/// # Ok::<(), lsys::Diagnostics>(())
+/// ```
+pub struct Grammar {
+    pub(crate) comp: Arc<Compilation>,
+    pub(crate) options: GrammarOptions,
+    warnings: Diagnostics,
+}
+
+impl Grammar {
+    /// Options to compile with; finish with
+    /// [`from_str`](GrammarOptions::from_str) or
+    /// [`from_path`](GrammarOptions::from_path).
+    pub fn options() -> GrammarOptions {
+        GrammarOptions::default()
+    }
+
+    /// Compiles `text`, named `name` in diagnostics (a name ending in `.l`
+    /// is read as a cpfg model).
+    #[allow(clippy::should_implement_trait)] // it needs a name, and returns Diagnostics
+    pub fn from_str(name: &str, text: &str) -> Result<Grammar, Diagnostics> {
+        Grammar::options().from_str(name, text)
+    }
+
+    /// Compiles a grammar file (and what it includes), or `std:NAME`.
+    pub fn from_path(path: impl AsRef<std::path::Path>) -> Result<Grammar, Diagnostics> {
+        Grammar::options().from_path(path)
+    }
+
+    pub(crate) fn compile(input: Input, options: GrammarOptions) -> Result<Grammar, Diagnostics> {
+        let mut comp = pipeline::compile(&input, &options.build.source)?;
+        let warnings = Diagnostics::new(std::mem::take(&mut comp.warnings));
+        Ok(Grammar {
+            comp: Arc::new(comp),
+            options,
+            warnings,
+        })
+    }
+
+    /// The warnings the grammar compiled with (possibly none).
+    pub fn warnings(&self) -> &Diagnostics {
+        &self.warnings
+    }
+
+    /// The file's `derivation length:` (0 when it gives none).
+    pub fn derivation_length(&self) -> u32 {
+        self.comp.program.derivation_length
+    }
+
+    /// The string after `steps` steps (`End:` runs after the last).
+    pub fn derive(&self, steps: u32) -> Result<Derived, Diagnostics> {
+        let mut sim = self.simulation(steps)?;
+        sim.run(&mut |_, _| {}).map_err(Diagnostics::one)?;
+        Ok(self.derived(sim.current().clone(), sim.step_number()))
+    }
+
+    /// The axiom and the string after each step, up to the file's
+    /// `derivation length:`.
+    pub fn steps(&self) -> Steps<'_> {
+        self.steps_to(self.derivation_length())
+    }
+
+    /// The axiom and the string after each step, up to `steps`.
+    pub fn steps_to(&self, steps: u32) -> Steps<'_> {
+        Steps::new(self, steps)
+    }
+
+    /// Derives `steps` steps and builds the model: the homomorphism, the
+    /// turtle, meshes and components (grammar components compiled with
+    /// these options).
+    pub fn build(&self, steps: u32) -> Result<Scene, Diagnostics> {
+        let mut opts = self.options.build.clone();
+        opts.steps = Some(steps);
+        let built = crate::build::build(&self.comp, &opts).map_err(Diagnostics::one)?;
+        Ok(Scene { built })
+    }
+
+    pub(crate) fn simulation(&self, steps: u32) -> Result<Simulation<'_>, Diagnostics> {
+        let p = &self.comp;
+        Simulation::new(
+            &p.program,
+            &p.compiled,
+            self.options.build.derive.clone(),
+            steps,
+        )
+        .map_err(Diagnostics::one)
+    }
+
+    pub(crate) fn derived(&self, string: crate::derive::ModuleStore, step: u32) -> Derived {
+        Derived::new(self.comp.clone(), string, step)
+    }
+}

@@ -1,0 +1,95 @@
+//! A built model as the library hands it out: meshes and component
+//! instances, written to GLB, OBJ (+ MTL) or a PNG picture, atomically.
+
+use std::path::Path;
+
+use miette::Diagnostic;
+use thiserror::Error;
+
+use crate::build::Built;
+use crate::diag::Diagnostics;
+use crate::export::output::{write_scene, Format, WriteError};
+use crate::export::render::{RenderOptions, View};
+
+/// A built model ([`Grammar::build`](super::Grammar::build)).
+///
+/// ```no_run
+/// let scene = lsys::Grammar::from_path("std:pailou")?.build(1)?;
+/// scene.write_glb("pailou.glb")?;
+/// # Ok::<(), lsys::Diagnostics>(())
+/// ```
+pub struct Scene {
+    pub(crate) built: Built,
+}
+
+/// An output file could not be written.
+#[derive(Debug, Error, Diagnostic)]
+#[error("cannot write {path}: {cause}")]
+#[diagnostic(
+    code(lsys::export::write),
+    help("check that the folder exists and is writable; nothing was written")
+)]
+pub struct WriteFailed {
+    pub path: String,
+    pub cause: String,
+}
+
+impl Scene {
+    /// Triangles in the model, instances counted in full.
+    pub fn triangle_count(&self) -> usize {
+        self.built.scene.triangle_count()
+    }
+
+    /// Modules of the string the turtle interpreted.
+    pub fn module_count(&self) -> usize {
+        self.built.modules
+    }
+
+    /// Component placements (instances).
+    pub fn instance_count(&self) -> usize {
+        self.built.scene.instances.len()
+    }
+
+    /// The meshes, materials and instances, for code that goes further
+    /// than writing a file.
+    pub fn mesh(&self) -> &crate::mesh::Scene {
+        &self.built.scene
+    }
+
+    /// Writes a binary glTF file; returns its size in bytes.
+    pub fn write_glb(&self, path: impl AsRef<Path>) -> Result<u64, Diagnostics> {
+        self.write(path.as_ref(), Format::Glb, &RenderOptions::default())
+    }
+
+    /// Writes an OBJ file and its MTL beside it; returns the bytes written.
+    pub fn write_obj(&self, path: impl AsRef<Path>) -> Result<u64, Diagnostics> {
+        self.write(path.as_ref(), Format::Obj, &RenderOptions::default())
+    }
+
+    /// Renders an isometric picture `width` × `height` pixels to a PNG.
+    pub fn write_png(
+        &self,
+        path: impl AsRef<Path>,
+        width: u32,
+        height: u32,
+    ) -> Result<u64, Diagnostics> {
+        let pic = RenderOptions {
+            view: View::Iso,
+            width,
+            height,
+            ..RenderOptions::default()
+        };
+        pic.validate().map_err(Diagnostics::one)?;
+        self.write(path.as_ref(), Format::Png, &pic)
+    }
+
+    fn write(&self, path: &Path, format: Format, pic: &RenderOptions) -> Result<u64, Diagnostics> {
+        write_scene(&self.built.scene, path, format, pic).map_err(|e| match e {
+            WriteError::Export(d) => Diagnostics::new(vec![miette::Report::new_boxed(d)]),
+            WriteError::Io(e) => Diagnostics::one(WriteFailed {
+                path: path.display().to_string(),
+                cause: e.to_string(),
+            }),
+        })
+    }
+}
