@@ -59,7 +59,7 @@ fn w3_w2_mesh_only(bencher: Bencher) {
         .counter(ItemsCount::new(built.modules))
         .bench_local(|| {
             black_box(
-                lsys::mesh::build_scene(
+                lsys::mesh::assemble_scene(
                     &c.program,
                     &built.drawing,
                     &palette,

@@ -201,7 +201,7 @@ fn model(
     observe(Stage::Mesh);
     let palette = Palette::new(&program.turtle.palette);
     let mut grammars = SubGrammars { opts };
-    let scene = mesh::build_scene(
+    let scene = mesh::assemble_scene(
         program,
         &drawing,
         &palette,

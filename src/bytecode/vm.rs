@@ -61,24 +61,50 @@ pub struct Fault {
     pub span: Span,
 }
 
-/// Run `chunk`. `stack` must hold at least `chunk.max_stack` values,
-/// `binds` every slot the chunk reads and `vars` every variable (cpfg's
-/// statement blocks). Returns the value on top of the stack at `Ret` (0 if
-/// the stack is empty).
-// The VM's hot loop takes plain slices rather than a context struct so
-// that each is a register-held pointer; hence the long parameter list.
-#[allow(clippy::too_many_arguments)]
+/// What a chunk runs against besides its bindings: the shared constant
+/// pool, cpfg's function splines, the statement blocks' variables, a
+/// preallocated stack and the derivation's generator.
+pub struct Machine<'a> {
+    pub consts: &'a [f64],
+    pub functions: &'a [SplineFn],
+    /// Variables of cpfg's statement blocks.
+    pub vars: &'a mut [f64],
+    /// At least `chunk.max_stack` values.
+    pub stack: &'a mut [f64],
+    pub rng: &'a mut Rand48,
+}
+
+impl<'a> Machine<'a> {
+    /// For code that reads no variable and no function (the fast path's
+    /// conditions and successors, module counting).
+    pub fn pure(consts: &'a [f64], stack: &'a mut [f64], rng: &'a mut Rand48) -> Machine<'a> {
+        Machine {
+            consts,
+            functions: &[],
+            vars: &mut [],
+            stack,
+            rng,
+        }
+    }
+}
+
+/// Run `chunk` with `binds` holding every slot the chunk reads. Returns
+/// the value on top of the stack at `Ret` (0 if the stack is empty).
 #[inline]
 pub fn run<S: Sink>(
     chunk: &Chunk,
-    consts: &[f64],
-    funcs: &[SplineFn],
     binds: &[f64],
-    vars: &mut [f64],
-    stack: &mut [f64],
-    rng: &mut Rand48,
+    machine: Machine<'_>,
     sink: &mut S,
 ) -> Result<f64, Fault> {
+    // Plain locals, so that the hot loop keeps each in a register.
+    let Machine {
+        consts,
+        functions: funcs,
+        vars,
+        stack,
+        rng,
+    } = machine;
     let code = &chunk.code[..];
     let mut pc = 0usize;
     let mut sp = 0usize;

@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::export::render::View;
+
 #[derive(Parser, Debug)]
 #[command(
     name = "lsys",
@@ -288,36 +290,22 @@ pub struct RenderArgs {
 #[derive(Args, Debug)]
 pub struct PictureArgs {
     /// Where the camera looks from.
-    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
-    pub view: ViewArg,
+    #[arg(long, value_enum, default_value_t = View::Iso)]
+    pub view: View,
     /// Picture size in pixels, WIDTHxHEIGHT.
     #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = parse_size)]
     pub size: (u32, u32),
 }
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum ViewArg {
-    /// From +z, looking at the front (x right, y up).
-    Front,
-    /// From +x.
-    Side,
-    /// From above.
-    Top,
-    /// From the front right, above.
-    Iso,
-}
-
+/// `--size`: the renderer's own parser, its message as clap's.
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("`{s}` is not WIDTHxHEIGHT (e.g. 1024x768)");
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let (w, h): (u32, u32) = (
-        w.trim().parse().map_err(|_| bad())?,
-        h.trim().parse().map_err(|_| bad())?,
-    );
-    if w == 0 || h == 0 || w > 16384 || h > 16384 {
-        return Err(format!("`{s}`: each side must be 1 to 16384 pixels"));
-    }
-    Ok((w, h))
+    crate::export::render::parse_size(s).map_err(|e| {
+        use miette::Diagnostic;
+        match e.help() {
+            Some(h) => format!("{e}; {h}"),
+            None => e.to_string(),
+        }
+    })
 }
 
 /// A number that is finite (`--angle nan` would draw nothing sensible).

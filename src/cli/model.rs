@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use super::args::{
     BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
-    SourceArgs, ViewArg,
+    SourceArgs,
 };
 use super::commands::{compile_input, report};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
@@ -371,12 +371,7 @@ fn build_compiled(
 
 fn picture(pic: &PictureArgs) -> render::RenderOptions {
     render::RenderOptions {
-        view: match pic.view {
-            ViewArg::Front => render::View::Front,
-            ViewArg::Side => render::View::Side,
-            ViewArg::Top => render::View::Top,
-            ViewArg::Iso => render::View::Iso,
-        },
+        view: pic.view,
         width: pic.size.0,
         height: pic.size.1,
         ..Default::default()

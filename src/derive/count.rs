@@ -17,10 +17,10 @@ use std::collections::HashMap;
 
 use super::engine::{Derivation, DeriveOptions};
 use super::error::DeriveError;
-use super::fast::{choose, Plan};
+use super::fast::{first_match, Plan};
 use super::rewrite::Tables;
 use super::store::{head_arity, head_sym, ModuleStore};
-use crate::bytecode::vm;
+use crate::bytecode::vm::{self, Machine};
 use crate::bytecode::Compiled;
 use crate::lang::rng::Rand48;
 use crate::resolve::Program;
@@ -128,7 +128,7 @@ impl Counter<'_, '_> {
             add(acc, c);
             return Ok(());
         }
-        let Some(p) = choose(self.plan, self.tab, &mut self.stack, head, params)? else {
+        let Some(p) = first_match(self.plan, self.tab, &mut self.stack, head, params)? else {
             // No production applies now, so none ever will: the module's
             // symbol and parameters never change.
             acc[sym] = acc[sym].saturating_add(1);
@@ -142,16 +142,8 @@ impl Counter<'_, '_> {
         succ.clear();
         let mut rng = Rand48::new(0); // eligible code never draws
         let code = &self.tab.compiled.main[p].succ;
-        let r = vm::run(
-            code,
-            &self.tab.compiled.consts,
-            &[],
-            params,
-            &mut [],
-            &mut self.stack,
-            &mut rng,
-            &mut succ,
-        );
+        let machine = Machine::pure(&self.tab.compiled.consts, &mut self.stack, &mut rng);
+        let r = vm::run(code, params, machine, &mut succ);
         let mut local = vec![0u64; self.nsyms];
         let mut res = r.map(|_| ()).map_err(|_| ());
         if res.is_ok() {

@@ -73,17 +73,8 @@ impl<'p> Derivation<'p> {
         let mut st = State::new(&tab, seed);
         let mut next = ModuleStore::new();
         run_hook(&tab, &mut st, "Start", compiled.hooks.start.as_ref())?;
-        vm::run(
-            &compiled.axiom,
-            &compiled.consts,
-            &compiled.functions,
-            &[],
-            &mut st.vars,
-            &mut st.stack,
-            &mut st.rng,
-            &mut next,
-        )
-        .map_err(|f| fault_error(&tab, f, Site::Axiom, 0))?;
+        vm::run(&compiled.axiom, &[], st.machine(compiled), &mut next)
+            .map_err(|f| fault_error(&tab, f, Site::Axiom, 0))?;
         store_params(&tab, &mut next, 0);
         check_limits(&tab, &next, None, 0)?;
         let mut d = Derivation {

@@ -24,7 +24,7 @@
 use super::rewrite::Tables;
 use super::store::{head_arity, head_sym, ModuleStore};
 use super::template::{Cond, Succ};
-use crate::bytecode::vm::{self, NoSink, Sink};
+use crate::bytecode::vm::{self, Machine, NoSink, Sink};
 use crate::bytecode::{Chunk, CondCode, Op, ProdCode};
 use crate::lang::rng::Rand48;
 
@@ -228,7 +228,7 @@ impl Out for LimitSink<'_> {
 /// if any: the first candidate (file order) whose condition holds.
 /// `Err`: the condition faulted.
 #[inline(always)]
-pub(crate) fn choose(
+pub(crate) fn first_match(
     plan: &Plan,
     tab: &Tables,
     stack: &mut [f64],
@@ -253,17 +253,8 @@ pub(crate) fn choose(
             CondCode::Code(ch) => {
                 // No `ran` in eligible code: the generator is never drawn.
                 let mut rng = Rand48::new(0);
-                let v = vm::run(
-                    ch,
-                    &tab.compiled.consts,
-                    &[],
-                    b,
-                    &mut [],
-                    stack,
-                    &mut rng,
-                    &mut NoSink,
-                )
-                .map_err(|_| ())?;
+                let machine = Machine::pure(&tab.compiled.consts, stack, &mut rng);
+                let v = vm::run(ch, b, machine, &mut NoSink).map_err(|_| ())?;
                 // Zero is false; anything else, NaN included, is true.
                 if v != 0.0 {
                     return Ok(Some(p));
@@ -305,7 +296,7 @@ pub(crate) fn run_range<S: Out>(
         }
         let a = head_arity(h);
         let b = &params[off..off + a];
-        match choose(plan, tab, stack, h, b)? {
+        match first_match(plan, tab, stack, h, b)? {
             None => sink.copy(&heads[i..i + 1], b),
             Some(p) if plan.succ[p].is_some() => {
                 if let Some(t) = &plan.succ[p] {
@@ -315,12 +306,8 @@ pub(crate) fn run_range<S: Out>(
             Some(p) => {
                 vm::run(
                     &codes[p].succ,
-                    consts,
-                    &[],
                     b,
-                    &mut [],
-                    stack,
-                    &mut rng,
+                    Machine::pure(consts, stack, &mut rng),
                     sink,
                 )
                 .map_err(|_| ())?;

@@ -20,7 +20,7 @@ use std::mem::MaybeUninit;
 
 use rayon::prelude::*;
 
-use super::fast::{choose, run_range, Out, Plan};
+use super::fast::{first_match, run_range, Out, Plan};
 use super::rewrite::Tables;
 use super::store::{head_arity, pack, ModuleStore};
 use super::template::Succ;
@@ -164,7 +164,7 @@ fn measure(
     for &h in heads {
         let a = head_arity(h);
         let chosen = if has_rules[(h & super::store::SYM_MASK) as usize] {
-            choose(plan, tab, stack, h, &params[off..off + a])?
+            first_match(plan, tab, stack, h, &params[off..off + a])?
         } else {
             None
         };

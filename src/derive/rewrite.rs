@@ -12,7 +12,7 @@ use super::error::{DepthWarning, DeriveError, Src};
 use super::matching::{match_at, Bound, Input, Rules};
 use super::run::run_successor;
 use super::store::{head_arity, head_sym, rest_of_branch, ContextIndex, ModuleStore, MAX_SYMBOLS};
-use crate::bytecode::vm::{self, NoSink};
+use crate::bytecode::vm::{self, Machine, NoSink};
 use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
 use crate::lang::rng::Rand48;
 use crate::resolve::{Program, Table, CLOSE_BRACKET, OPEN_BRACKET};
@@ -148,6 +148,17 @@ pub(crate) struct State {
 }
 
 impl State {
+    /// The VM's context for `compiled`'s code run in this state.
+    pub(crate) fn machine<'s>(&'s mut self, compiled: &'s Compiled) -> Machine<'s> {
+        Machine {
+            consts: &compiled.consts,
+            functions: &compiled.functions,
+            vars: &mut self.vars,
+            stack: &mut self.stack,
+            rng: &mut self.rng,
+        }
+    }
+
     pub(crate) fn new(tab: &Tables, seed: u64) -> State {
         State {
             rng: Rand48::new(seed),
@@ -305,17 +316,8 @@ fn eval(
     binds: &[f64],
     site: Site,
 ) -> Result<f64, Fail> {
-    vm::run(
-        chunk,
-        &tab.compiled.consts,
-        &tab.compiled.functions,
-        binds,
-        &mut st.vars,
-        &mut st.stack,
-        &mut st.rng,
-        &mut NoSink,
-    )
-    .map_err(|f| fault_error(tab, f, site, st.step))
+    vm::run(chunk, binds, st.machine(tab.compiled), &mut NoSink)
+        .map_err(|f| fault_error(tab, f, site, st.step))
 }
 
 /// The slice a match's bindings are in.

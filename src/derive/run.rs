@@ -29,16 +29,7 @@ pub(crate) fn run_successor(
     out: &mut ModuleStore,
 ) -> Result<f64, Fault> {
     let from = out.params.len();
-    let r = vm::run(
-        succ,
-        &tab.compiled.consts,
-        &tab.compiled.functions,
-        binds,
-        &mut st.vars,
-        &mut st.stack,
-        &mut st.rng,
-        out,
-    );
+    let r = vm::run(succ, binds, st.machine(tab.compiled), out);
     store_params(tab, out, from);
     r
 }
@@ -53,16 +44,7 @@ pub(crate) fn run_hook(
     let Some(chunk) = chunk else {
         return Ok(());
     };
-    vm::run(
-        chunk,
-        &tab.compiled.consts,
-        &tab.compiled.functions,
-        &[],
-        &mut st.vars,
-        &mut st.stack,
-        &mut st.rng,
-        &mut NoSink,
-    )
-    .map(|_| ())
-    .map_err(|f| fault_error(tab, f, Site::Hook(name), st.step))
+    vm::run(chunk, &[], st.machine(tab.compiled), &mut NoSink)
+        .map(|_| ())
+        .map_err(|f| fault_error(tab, f, Site::Hook(name), st.step))
 }

@@ -11,23 +11,36 @@ use std::path::{Path, PathBuf};
 /// rather than loaded whole into memory.
 pub const MAX_SOURCE_BYTES: u64 = 64 << 20;
 
-/// Reads a source file: its bytes, or why it is not an L-system source
-/// (`Ok(Err(..))`), or the I/O error.
-pub(super) fn read_source(path: &Path) -> std::io::Result<Result<Vec<u8>, String>> {
+/// Why a source file was not read.
+pub(super) enum Unread {
+    /// It could not be read (missing, a folder, no permission).
+    Io(std::io::Error),
+    /// It is not an L-system source: why.
+    NotSource(String),
+}
+
+impl From<std::io::Error> for Unread {
+    fn from(e: std::io::Error) -> Unread {
+        Unread::Io(e)
+    }
+}
+
+/// Reads a source file's bytes, refusing files too large or binary.
+pub(super) fn read_source(path: &Path) -> Result<Vec<u8>, Unread> {
     let len = std::fs::metadata(path)?.len();
     if len > MAX_SOURCE_BYTES {
-        return Ok(Err(format!(
+        return Err(Unread::NotSource(format!(
             "it is {len} bytes long, more than the {} MiB a grammar file may have",
             MAX_SOURCE_BYTES >> 20
         )));
     }
     let bytes = std::fs::read(path)?;
     if is_binary(&bytes) {
-        return Ok(Err(
-            "it holds NUL bytes, as binary and UTF-16 files do".to_string()
+        return Err(Unread::NotSource(
+            "it holds NUL bytes, as binary and UTF-16 files do".to_string(),
         ));
     }
-    Ok(Ok(bytes))
+    Ok(bytes)
 }
 
 /// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
@@ -125,12 +138,12 @@ impl IncludeFinder {
             }
         }
         match read_source(full) {
-            Ok(Ok(bytes)) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
-            Ok(Err(why)) => Err(Refused::NotSource {
+            Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
+            Err(Unread::NotSource(why)) => Err(Refused::NotSource {
                 full: full.to_path_buf(),
                 why,
             }),
-            Err(e) => Err(Refused::NotFound {
+            Err(Unread::Io(e)) => Err(Refused::NotFound {
                 full: full.to_path_buf(),
                 cause: e.to_string(),
             }),

@@ -138,15 +138,14 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
 fn root_file(input: &Input) -> Result<SourceFile, InputError> {
     Ok(match input {
         Input::Path(p) => {
-            let text = include::read_source(p)
-                .map_err(|e| InputError::NotFound {
-                    path: p.display().to_string(),
+            let path = p.display().to_string();
+            let text = include::read_source(p).map_err(|e| match e {
+                include::Unread::Io(e) => InputError::NotFound {
+                    path,
                     cause: e.to_string(),
-                })?
-                .map_err(|why| InputError::NotSource {
-                    path: p.display().to_string(),
-                    why,
-                })?;
+                },
+                include::Unread::NotSource(why) => InputError::NotSource { path, why },
+            })?;
             SourceFile::new(
                 p.display().to_string(),
                 Origin::Disk(p.clone()),

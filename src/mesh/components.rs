@@ -79,8 +79,10 @@ impl ComponentSearch {
         name: &str,
         materials: &mut Vec<Material>,
         grammars: &mut dyn super::subgrammar::GrammarComponents,
-    ) -> Result<Result<Component, MeshError>, Vec<PathBuf>> {
-        Ok(match self.find(name)? {
+        missing: impl FnOnce(&[PathBuf]) -> MeshError,
+    ) -> Result<Component, MeshError> {
+        let found = self.find(name).map_err(|searched| missing(&searched))?;
+        match found {
             Found::File(path) => match std::fs::read(&path) {
                 Ok(bytes) => parse_obj(
                     name,
@@ -107,7 +109,7 @@ impl ComponentSearch {
             Found::Grammar(input) => {
                 super::subgrammar::grammar_component(name, &input, self, materials, grammars)
             }
-        })
+        }
     }
 }
 
@@ -307,9 +309,20 @@ mod tests {
             dirs: vec![PathBuf::from("/nowhere/extra")],
             within: Vec::new(),
         };
-        let Err(tried) = s.load("Nope", &mut Vec::new(), &mut super::super::NoGrammars) else {
-            panic!("found a component that does not exist");
-        };
+        let mut tried = Vec::new();
+        let found = s.load(
+            "Nope",
+            &mut Vec::new(),
+            &mut super::super::NoGrammars,
+            |searched| {
+                tried = searched.to_vec();
+                MeshError::TooManyTriangles {
+                    limit: 0,
+                    reached: 0,
+                }
+            },
+        );
+        assert!(found.is_err(), "found a component that does not exist");
         assert_eq!(
             tried,
             vec![

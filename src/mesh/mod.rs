@@ -1,6 +1,6 @@
 //! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
 //! spheres and discs, and components loaded once and placed by transform.
-pub mod build;
+pub mod assemble;
 pub mod collide;
 pub mod components;
 pub mod error;
@@ -10,7 +10,7 @@ pub mod scene;
 pub mod shapes;
 pub mod subgrammar;
 pub mod tube;
-pub use build::{build_scene, MeshOptions};
+pub use assemble::{assemble_scene, MeshOptions};
 pub use components::ComponentSearch;
 pub use error::MeshError;
 pub use palette::Palette;

@@ -267,12 +267,19 @@ pub fn parse_expr(file_id: FileId, file: &SourceFile) -> Result<ast::Expr, Box<P
     }
 }
 
-/// A `-D` value: an expression (`Err` side of the result's `Ok`) or the
-/// flattened elements of a braced table list (`Ok`).
+/// What a `-D NAME=VALUE` value is.
+pub enum DefineValue {
+    /// One expression.
+    Expr(ast::Expr),
+    /// The flattened elements of a braced table list.
+    Table(Vec<ast::Expr>),
+}
+
+/// Parses a `-D` value.
 pub fn parse_define_value(
     file_id: FileId,
     file: &SourceFile,
-) -> Result<Result<Vec<ast::Expr>, ast::Expr>, Box<ParseError>> {
+) -> Result<DefineValue, Box<ParseError>> {
     if let Some(e) = too_deep(file, file_id, Limits::default()) {
         return Err(Box::new(e));
     }
@@ -290,9 +297,9 @@ pub fn parse_define_value(
             if v.as_rule() == Rule::table_values {
                 let mut out = Vec::new();
                 lower.table_values(v, &mut out)?;
-                Ok(Ok(out))
+                Ok(DefineValue::Table(out))
             } else {
-                Ok(Err(lower.expr(v)?))
+                Ok(DefineValue::Expr(lower.expr(v)?))
             }
         }
         Err(e) => Err(Box::new(ParseError::from_pest(file, file_id, 0, &e))),

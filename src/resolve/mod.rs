@@ -13,7 +13,7 @@ pub mod ir;
 mod modules;
 mod statements;
 mod tables;
-mod view;
+mod turtle_headers;
 
 use std::collections::HashMap;
 
@@ -248,8 +248,9 @@ impl Resolver {
                 }
             };
             let span = Span::new(id, 0, value.len());
+            use crate::parse::DefineValue::{Expr, Table};
             match (index, parsed) {
-                (Some(idx), Err(e)) => match tables::parse_index(idx) {
+                (Some(idx), Expr(e)) => match tables::parse_index(idx) {
                     Some(at) => elements.push(tables::ElementOverride {
                         name: base.to_string(),
                         at,
@@ -262,25 +263,25 @@ impl Resolver {
                         help: Some(format!("write e.g. `-D '{base}[1,2,3]=0'`")),
                     }),
                 },
-                (Some(_), Ok(_)) => self.error(ResolveError::BadOverride {
+                (Some(_), Table(_)) => self.error(ResolveError::BadOverride {
                     name: name.clone(),
                     why: "one element takes one value".to_string(),
                     help: Some(format!(
                         "to replace the whole table write `-D '{base}={{...}}'`"
                     )),
                 }),
-                (None, Ok(elems)) if is_table => {
+                (None, Table(elems)) if is_table => {
                     let entry = self.defines.get_mut(base).expect("checked above");
                     entry.elems = Some((elems, span));
                     entry.value = None;
                     entry.overridden = true;
                 }
-                (None, Ok(_)) => self.error(ResolveError::BadOverride {
+                (None, Table(_)) => self.error(ResolveError::BadOverride {
                     name: name.clone(),
                     why: format!("`{base}` is not a table, so it takes one value, not a list"),
                     help: None,
                 }),
-                (None, Err(e)) => {
+                (None, Expr(e)) => {
                     let entry = self.defines.get_mut(base).expect("checked above");
                     entry.value = Some(e);
                     if is_table {

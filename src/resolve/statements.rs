@@ -28,7 +28,7 @@ struct Sections {
     /// Per table and predecessor: was there a production, and which
     /// production always applies first (no context, condition, probability).
     seen: HashMap<(Table, PredKey), Option<Span>>,
-    turtle: super::view::TurtleHeaders,
+    turtle: super::turtle_headers::TurtleHeaders,
 }
 
 impl Resolver {

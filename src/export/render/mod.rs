@@ -45,6 +45,7 @@ const MAX_BAND_SAMPLES: usize = 1 << 23;
 /// Where the camera looks from. Every view keeps world +Y up on the screen
 /// except [`View::Top`], which looks down it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum View {
     /// From +Z towards -Z: +X right, +Y up.
     Front,

@@ -1,4 +1,4 @@
-//! Scene building: a turtle [`Drawing`] -> a [`Scene`]. Tubes, shapes and
+//! Scene assembly: a turtle [`Drawing`] -> a [`Scene`]. Tubes, shapes and
 //! polygons are merged into one mesh per colour; each component is loaded
 //! once, on its first placement, and every placement becomes an instance.
 
@@ -74,7 +74,7 @@ impl Builder<'_> {
 
 /// Builds the scene of `drawing`. Component symbols are named through
 /// `program` (for the file's spans in errors).
-pub fn build_scene(
+pub fn assemble_scene(
     program: &Program,
     drawing: &Drawing,
     palette: &Palette,
@@ -130,12 +130,9 @@ pub fn build_scene(
             None => {
                 let symbol = &program.symbols.list[p.symbol as usize];
                 let name = symbol.name.trim_start_matches('~');
-                let c = match search.load(name, &mut b.scene.materials, grammars) {
-                    Ok(c) => c?,
-                    Err(searched) => {
-                        return Err(missing(program, p.symbol, name, &searched));
-                    }
-                };
+                let c = search.load(name, &mut b.scene.materials, grammars, |searched| {
+                    missing(program, p.symbol, name, searched)
+                })?;
                 b.scene.components.push(c);
                 numbers.push(0);
                 let index = b.scene.components.len() - 1;
