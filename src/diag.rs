@@ -43,6 +43,8 @@ pub struct Diagnostics {
     reports: Vec<miette::Report>,
     /// The root input could not be read at all (the CLI's exit code 66).
     input: bool,
+    /// The files on disk the failed compilation read (`watch` watches them).
+    files: Vec<std::path::PathBuf>,
 }
 
 impl Diagnostics {
@@ -51,7 +53,20 @@ impl Diagnostics {
         Diagnostics {
             reports,
             input: false,
+            files: Vec::new(),
         }
+    }
+
+    /// The same, naming the files on disk the compilation read.
+    pub fn with_files(mut self, files: Vec<std::path::PathBuf>) -> Diagnostics {
+        self.files = files;
+        self
+    }
+
+    /// The files on disk the failed compilation had read (root, includes,
+    /// cpfg side files), so that a watcher can wait for a fix in any.
+    pub fn files(&self) -> &[std::path::PathBuf] {
+        &self.files
     }
 
     /// One diagnostic.

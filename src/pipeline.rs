@@ -38,11 +38,12 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Diagnostics
         ..opts.clone()
     };
     let loaded = load::load(input, &own_opts).map_err(Diagnostics::input)?;
+    let files = loaded.sources.disk_paths();
     let resolved = match resolve::resolve(loaded, &own_opts) {
-        Err(f) => return Err(Diagnostics::new(f.diagnostics)),
+        Err(f) => return Err(Diagnostics::new(f.diagnostics).with_files(files)),
         Ok(r) => r,
     };
-    check_namespaces(&resolved.program, &namespaced)?;
+    check_namespaces(&resolved.program, &namespaced).map_err(|d| d.with_files(files.clone()))?;
     match bytecode::compile(&resolved.program) {
         Ok(compiled) => Ok(Compilation {
             program: resolved.program,
@@ -52,7 +53,7 @@ pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Diagnostics
         Err(e) => {
             let mut diagnostics = vec![Report::new(e)];
             diagnostics.extend(resolved.warnings);
-            Err(Diagnostics::new(diagnostics))
+            Err(Diagnostics::new(diagnostics).with_files(files))
         }
     }
 }

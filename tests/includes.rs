@@ -155,3 +155,23 @@ fn huge_cpfg_includes_are_refused_unread() {
     assert!(err.contains("67108865 bytes"), "{err}");
     assert!(err.contains("not an L-system source"), "{err}");
 }
+
+#[test]
+fn a_failed_compilation_names_every_file_it_read() {
+    // `lsys watch` watches these after a failed build, so that fixing the
+    // include (not only the root) rebuilds.
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path().join("g.lsys");
+    write(&root, "#include \"part.lsys\"\naxiom: A\n");
+    write(&dir.path().join("part.lsys"), "A --> B(\n");
+    let err = match pipeline::compile(&Input::Path(root.clone()), &Options::default()) {
+        Ok(_) => panic!("the include has a syntax error"),
+        Err(e) => e,
+    };
+    let names: Vec<String> = err
+        .files()
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names, ["g.lsys", "part.lsys"]);
+}

@@ -66,6 +66,16 @@ pub(super) fn compile_input(
     opts: &Options,
     color: bool,
 ) -> Result<Compilation, i32> {
+    compile_reporting(input, name, opts, color).map_err(|(code, _)| code)
+}
+
+/// [`compile_input`], also naming on failure the files the grammar read.
+pub(super) fn compile_reporting(
+    input: &Input,
+    name: &str,
+    opts: &Options,
+    color: bool,
+) -> Result<Compilation, (i32, Vec<std::path::PathBuf>)> {
     match pipeline::compile(input, opts) {
         Ok(comp) => {
             for w in &comp.warnings {
@@ -75,7 +85,7 @@ pub(super) fn compile_input(
         }
         Err(d) if d.is_input_error() => {
             eprint!("{}", d.render(color));
-            Err(EX_NOINPUT)
+            Err((EX_NOINPUT, Vec::new()))
         }
         Err(diagnostics) => {
             let errors = diagnostics.error_count();
@@ -85,7 +95,7 @@ pub(super) fn compile_input(
                 name,
                 if errors == 1 { "" } else { "s" }
             );
-            Err(EX_DATAERR)
+            Err((EX_DATAERR, diagnostics.files().to_vec()))
         }
     }
 }

@@ -10,7 +10,7 @@ use super::args::{
     BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
     SourceArgs,
 };
-use super::commands::{compile_input, report};
+use super::commands::{compile_reporting, report};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
 use crate::build::{self, BuildOptions, Built};
 use crate::derive::DeriveOptions;
@@ -279,13 +279,15 @@ pub(super) fn build_once(
 ) -> Outcome {
     let t0 = Instant::now();
     let opts = source_options(m);
-    let comp = match compile_input(&m.input, m.name, &opts, color) {
+    let comp = match compile_reporting(&m.input, m.name, &opts, color) {
         Ok(c) => c,
-        Err(code) => {
+        Err((code, files)) => {
+            // A grammar that failed still names what it read: watch waits
+            // for a fix in an include or a function file too.
             return Outcome {
                 code,
-                sources: None,
-            }
+                sources: (!files.is_empty()).then_some(files),
+            };
         }
     };
     let sources = Some(comp.program.sources.disk_paths());

@@ -184,6 +184,12 @@ impl Session {
         let g = self.grammar()?;
         let s = self.string()?;
         let opts = BuildOptions {
+            // The session's `-D` overrides: namespaced ones (`TM.NTL=3`)
+            // reach the grammar components the model places.
+            source: crate::load::Options {
+                defines: self.overrides.clone(),
+                ..Default::default()
+            },
             derive: self.opts.clone(),
             components: ComponentSearch {
                 grammar_dir: g.source.dir(),
