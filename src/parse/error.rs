@@ -259,6 +259,18 @@ impl ParseError {
         expected.sort_unstable();
         expected.dedup();
         let (found, len) = found_at(&file.text, at);
+        // `A(x) : x < 3 => F`: the list of operators the condition could
+        // go on with is noise; the arrow is what was meant.
+        if file.text[at..].starts_with("=>") && expected.contains(&"`-->`") {
+            return ParseError::Syntax {
+                message: "expected `-->`, found `=>`".to_string(),
+                src: file.named_source(),
+                span: Span::new(file_id, at, at + 2).into(),
+                label: "not an arrow".to_string(),
+                help: Some(ARROW_HELP.to_string()),
+                offset: at,
+            };
+        }
         let message = match expected.as_slice() {
             [] => format!("unexpected {found}"),
             [one] => format!("expected {one}, found {found}"),
@@ -361,7 +373,7 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     let before = line.get(..col.min(line.len())).unwrap_or(line);
     let code = line.trim_start();
     if line.contains("=>") {
-        return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
+        return Some(ARROW_HELP.to_string());
     }
     if let Some(kw) = HEADERS.iter().find(|k| {
         // `get`: the line may hold non-ASCII text where the keyword would end.
@@ -411,6 +423,8 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     }
     None
 }
+
+const ARROW_HELP: &str = "the arrow of a production is `-->` (or `->`, `→`), not `=>`";
 
 /// Header keywords, for "a header needs a colon".
 const HEADERS: &[&str] = &[

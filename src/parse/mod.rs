@@ -181,7 +181,13 @@ pub fn parse_limited(
     limits: Limits,
 ) -> (ast::File, Vec<ParseError>) {
     if let Some(e) = too_deep(file, file_id, limits) {
-        return (ast::File { items: Vec::new() }, vec![e]);
+        return (
+            ast::File {
+                items: Vec::new(),
+                broken: Vec::new(),
+            },
+            vec![e],
+        );
     }
     let (file_ast, mut errors) = parse_statements(file_id, file);
     errors.extend(slash_comments(file, file_id));
@@ -193,6 +199,7 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
     let text = file.text.as_str();
     let mut items = Vec::new();
     let mut errors = Vec::new();
+    let mut broken = Vec::new();
     let mut pos = 0;
     loop {
         pos = match skip_blank(text, pos) {
@@ -235,12 +242,14 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
             Err(e) => {
                 let err = ParseError::from_pest(file, file_id, pos, &e);
                 let at = err.offset();
+                let line_end = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
+                broken.push(Span::new(file_id, pos, line_end));
                 errors.push(err);
                 pos = next_statement(text, at.max(pos));
             }
         }
     }
-    (ast::File { items }, errors)
+    (ast::File { items, broken }, errors)
 }
 
 /// Parses the value of a `-D NAME=VALUE` override or a REPL expression.

@@ -55,6 +55,20 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("{what}: probably from the include that failed")]
+    #[diagnostic(code(lsys::resolve::from_failed_include))]
+    FromFailedInclude {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection, "first use")]
+        uses: Vec<miette::LabeledSpan>,
+        #[label("this include failed")]
+        include: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
     #[error("unknown function `{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_function))]
     UnknownFunction {
