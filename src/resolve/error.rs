@@ -55,7 +55,7 @@ pub enum ResolveError {
         help: String,
     },
 
-    #[error("{what}: probably from the include that failed")]
+    #[error("{what}, probably from the include that failed")]
     #[diagnostic(code(lsys::resolve::from_failed_include))]
     FromFailedInclude {
         what: String,

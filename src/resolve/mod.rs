@@ -191,7 +191,7 @@ impl Resolver {
             what: if n == 1 {
                 format!("{list} is not defined")
             } else {
-                format!("{n} names are not defined: {list}")
+                format!("{n} names are not defined ({list})")
             },
             src: self.sources.named_source(first),
             uses,
