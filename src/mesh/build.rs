@@ -156,7 +156,7 @@ pub fn build_scene(
     Ok(b.scene)
 }
 
-fn missing(
+pub(super) fn missing(
     program: &Program,
     sym: SymId,
     name: &str,

@@ -69,6 +69,18 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("unknown component `~{name}`")]
+    #[diagnostic(code(lsys::resolve::unknown_component))]
+    UnknownComponent {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("not a declared component")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
     #[error("unknown function `{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_function))]
     UnknownFunction {
