@@ -69,6 +69,44 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("{what} closes a branch it did not open: a `]` with no `[` before it")]
+    #[diagnostic(code(lsys::resolve::unmatched_bracket))]
+    StrayClose {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
+    /// [`ResolveError::StrayClose`] in a successor: a warning, as a cpfg
+    /// model may close there a branch another production opened.
+    #[error("{what} closes a branch it did not open: a `]` with no `[` before it")]
+    #[diagnostic(code(lsys::resolve::unmatched_bracket), severity(Warning))]
+    StrayCloseWarning {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what} opens a branch with `[` and never closes it")]
+    #[diagnostic(code(lsys::resolve::unclosed_bracket), severity(Warning))]
+    UnclosedBracket {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
     #[error("unknown component `~{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_component))]
     UnknownComponent {

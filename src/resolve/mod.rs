@@ -5,6 +5,7 @@
 //! Resolve reads no file: loading read them all.
 
 mod alphabet;
+mod brackets;
 mod cstmt;
 pub mod error;
 mod expr;

@@ -177,6 +177,7 @@ impl Resolver {
                         "a grammar has one axiom; remove one of them",
                     );
                 } else {
+                    self.check_brackets(toks, super::brackets::Place::Axiom);
                     let m = self.successor(toks, &scope);
                     s.axiom = Some((m, h.keyword));
                 }
@@ -378,6 +379,7 @@ impl Resolver {
                 }
             },
         };
+        self.check_brackets(&p.succ, super::brackets::Place::Successor);
         let succ = self.successor(&p.succ, &scope);
         let prob = p.prob.as_ref().and_then(|e| self.expr(e, &scope));
         let always = lctx.is_empty()
