@@ -107,6 +107,19 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("`$` pitches the turtle 180° here (the paper's dialect); in ABOP and cpfg it rolls the turtle level")]
+    #[diagnostic(
+        code(lsys::resolve::dialect_hint),
+        severity(Advice),
+        help("this file reads like an ABOP/cpfg model but is read in the paper's dialect, the default for `.lsys` files; if `$` should roll the turtle so its left axis is horizontal, add the header `dialect: cpfg`; add `dialect: paper` to keep the paper's meaning and silence this hint")
+    )]
+    DollarDialect {
+        #[source_code]
+        src: Src,
+        #[label("`$` is pitch 180° in the paper's dialect")]
+        span: SourceSpan,
+    },
+
     #[error("unknown component `~{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_component))]
     UnknownComponent {

@@ -10,6 +10,7 @@ mod cstmt;
 pub mod error;
 mod expr;
 mod fold;
+mod hints;
 pub mod ir;
 mod modules;
 mod statements;
@@ -161,6 +162,7 @@ impl Resolver {
         let element_overrides = self.apply_overrides(opts);
         self.evaluate_tables(&element_overrides);
         self.build_alphabet(&items);
+        self.dialect_hint(&items, opts.dialect.is_some());
         let program = self.statements(&items);
         if !self.errors.is_empty() {
             return None;
