@@ -136,6 +136,8 @@ A(1) F(2) L
 :set N
 :seed 7
 :seed
+// takes back the last edit (here `:seed 7`)
+:undo
 :disasm 2
 :disasm
 :export tree.glb
@@ -165,6 +167,41 @@ fn tour_of_every_command() {
             c.name
         );
     }
+}
+
+/// Issue 16: a typed rule that an earlier, more general one shadows is
+/// reported (and marked by `:rules`); `:undo` takes edits back one by
+/// one; `:export` to a folder that does not exist names the path given.
+#[test]
+fn shadowed_rules_undo_and_bad_export_paths() {
+    let dir = workdir();
+    let script = "\
+// `s < N` holds wherever `s < 2` does: the new rule can never apply
+A(s) : s < 2 --> F(9)
+// a context does not help when the earlier rule has none
+L < A(s) : s < N --> F(8)
+:rules
+// a narrower rule before the general one is fine
+:drop 1
+:rules
+:undo
+:undo
+:undo
+:rules
+:undo
+:set N=2
+:axiom A(2)
+:undo
+:undo
+:defines
+:export no/such/folder/tree.obj
+";
+    let (text, code) = session(dir.path(), &["tree.lsys"], script);
+    insta::assert_snapshot!("shadowed_undo_export", text);
+    assert_eq!(
+        code, 65,
+        "the failed :undo and :export make the exit code 65"
+    );
 }
 
 #[test]

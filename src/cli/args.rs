@@ -31,7 +31,7 @@ pub enum Color {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Check a grammar and report every error and warning (exit 0 when clean).
-    Check(Common),
+    Check(CheckArgs),
     /// Derive a grammar and print the module string.
     Derive(DeriveArgs),
     /// Print the bytecode the grammar compiles to.
@@ -48,6 +48,15 @@ pub enum Command {
     Repl(ReplArgs),
     /// Rebuild the output whenever the grammar or a file it includes changes (Ctrl-C stops).
     Watch(BuildArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct CheckArgs {
+    #[command(flatten)]
+    pub common: Common,
+    /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar), as `build` would.
+    #[arg(long = "components", value_name = "DIR")]
+    pub components: Vec<PathBuf>,
 }
 
 #[derive(Args, Debug)]

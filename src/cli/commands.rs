@@ -6,7 +6,7 @@ use std::io::{self, BufWriter, Write};
 
 use miette::Diagnostic;
 
-use super::args::{Command, Common, DeriveArgs};
+use super::args::{CheckArgs, Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::derive::{self, DeriveOptions, ModuleStore, NumberFormat, NumberStyle};
 use crate::load::{Input, Options};
@@ -100,10 +100,27 @@ pub(super) fn compile_reporting(
     }
 }
 
-fn check(c: &Common, color: bool) -> i32 {
+fn check(args: &CheckArgs, color: bool) -> i32 {
+    let c = &args.common;
     match compile(c, color) {
         Ok(comp) => {
             let p = &comp.program;
+            // The components the grammar places, found as `build` would
+            // find them (nothing is read or built).
+            let search = crate::mesh::ComponentSearch {
+                grammar_dir: super::model::grammar_dir(&Input::from_arg(&c.file)),
+                dirs: args.components.clone(),
+                within: Vec::new(),
+            };
+            let missing = search.find_all(p);
+            if !missing.is_empty() {
+                for e in &missing {
+                    report(e, color);
+                }
+                let n = missing.len();
+                eprintln!("{}: {n} error{}", c.file, if n == 1 { "" } else { "s" });
+                return EX_DATAERR;
+            }
             let n = p.productions.len() + p.decomposition.len() + p.homomorphism.len();
             let w = comp.warnings.len();
             eprintln!(

@@ -205,9 +205,9 @@ pub(super) fn format_of(out: &Path) -> Result<Format, String> {
     })
 }
 
-/// The options of a build from the command line.
-fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
-    let grammar_dir = match &m.input {
+/// The folder whose `components/` is searched first: the grammar file's.
+pub(super) fn grammar_dir(input: &Input) -> Option<std::path::PathBuf> {
+    match input {
         Input::Path(p) => Some(
             p.parent()
                 .filter(|d| !d.as_os_str().is_empty())
@@ -215,7 +215,12 @@ fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
                 .to_path_buf(),
         ),
         _ => None,
-    };
+    }
+}
+
+/// The options of a build from the command line.
+fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
+    let grammar_dir = grammar_dir(&m.input);
     BuildOptions {
         source,
         steps: m.run.steps,

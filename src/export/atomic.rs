@@ -63,7 +63,23 @@ fn temporary_in(dir: &Path) -> io::Result<NamedTempFile> {
         use std::os::unix::fs::PermissionsExt;
         b.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    b.tempfile_in(dir)
+    // tempfile's error names the temporary file ("at path
+    // dir/.lsys-XXXX"), which the user never asked for: say what is wrong
+    // with the folder instead (callers name the output path).
+    b.tempfile_in(dir).map_err(|e| {
+        let why = match e.kind() {
+            io::ErrorKind::NotFound => format!("the folder {} does not exist", dir.display()),
+            io::ErrorKind::PermissionDenied => {
+                format!("no permission to create files in {}", dir.display())
+            }
+            kind => format!(
+                "cannot create a file in {}: {}",
+                dir.display(),
+                io::Error::from(kind)
+            ),
+        };
+        io::Error::new(e.kind(), why)
+    })
 }
 
 /// Writes one file atomically.

@@ -38,6 +38,8 @@ impl Loader {
                 items: Vec::new(),
                 errors: Vec::new(),
                 warnings: Vec::new(),
+                broken: Vec::new(),
+                failed_includes: Vec::new(),
                 preprocessed: false,
                 profile,
                 side: SideFiles::default(),
@@ -89,6 +91,7 @@ impl Loader {
                 self.loaded.warnings.push(Report::new(e));
             }
         }
+        self.loaded.broken.extend(ast.broken);
         for item in ast.items {
             match item {
                 Item::Include(Include::Path { span, .. }) if self.pre.is_some() => {
@@ -108,7 +111,11 @@ impl Loader {
 
     fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
         let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
-        let (full, text) = match self.finder.find(&base, path) {
+        let found = self.finder.find(&base, path);
+        if found.is_err() {
+            self.loaded.failed_includes.push(span);
+        }
+        let (full, text) = match found {
             Ok(found) => found,
             Err(Refused::Outside { help, .. }) => {
                 return self.error(LoadError::IncludeOutside {
@@ -159,12 +166,15 @@ impl Loader {
                 let file = SourceFile::new(format!("std:{name}"), Origin::Std(name.into()), text);
                 self.enter(from, file, span);
             }
-            None => self.loaded.errors.push(Report::new(LoadError::UnknownStd {
-                name: name.to_string(),
-                src: from.named_source(),
-                span: span.into(),
-                help: format!("the standard library has: {}", stdlib::names().join(", ")),
-            })),
+            None => {
+                self.loaded.failed_includes.push(span);
+                self.loaded.errors.push(Report::new(LoadError::UnknownStd {
+                    name: name.to_string(),
+                    src: from.named_source(),
+                    span: span.into(),
+                    help: format!("the standard library has: {}", stdlib::names().join(", ")),
+                }))
+            }
         }
     }
 

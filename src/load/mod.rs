@@ -22,7 +22,7 @@ pub use include::MAX_SOURCE_BYTES;
 pub use view::{SideFiles, ViewFunctions};
 
 use crate::parse::ast::Item;
-use crate::source::{FileId, Origin, SourceFile, SourceMap};
+use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
 use crate::stdlib;
 
 /// Includes nested deeper than this are refused (a runaway generator, not
@@ -92,6 +92,12 @@ pub struct Loaded {
     pub items: Vec<(FileId, Item)>,
     pub errors: Vec<Report>,
     pub warnings: Vec<Report>,
+    /// The first lines of statements that did not parse (see
+    /// [`crate::parse::ast::File::broken`]).
+    pub broken: Vec<Span>,
+    /// The `#include` lines (their path's span) whose file could not be
+    /// loaded: names it would have defined are not reported one by one.
+    pub failed_includes: Vec<Span>,
     /// The files went through the C preprocessor (a cpfg `.l` root), which
     /// took the `-D` definitions.
     pub preprocessed: bool,

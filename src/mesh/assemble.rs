@@ -153,7 +153,7 @@ pub fn assemble_scene(
     Ok(b.scene)
 }
 
-fn missing(
+pub(super) fn missing(
     program: &Program,
     sym: SymId,
     name: &str,

@@ -71,6 +71,29 @@ impl ComponentSearch {
             .ok_or(candidates)
     }
 
+    /// Finds every component `program` names (its `~X` symbols) without
+    /// reading or building any: `lsys check`'s look-up. One error, with
+    /// the places searched, for each component found nowhere.
+    pub fn find_all(&self, program: &crate::resolve::Program) -> Vec<MeshError> {
+        program
+            .symbols
+            .list
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| s.kind == crate::resolve::SymbolKind::Component)
+            .filter_map(|(id, s)| {
+                let name = s.name.trim_start_matches(['~', '∼']);
+                let searched = self.find(name).err()?;
+                Some(super::build::missing(
+                    program,
+                    id as crate::resolve::SymId,
+                    name,
+                    &searched,
+                ))
+            })
+            .collect()
+    }
+
     /// Loads component `name` (without the `~`). `Err(searched)` lists the
     /// places tried when it is nowhere; materials of its `.mtl` are added
     /// to `materials`.

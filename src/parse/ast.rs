@@ -10,6 +10,10 @@ use crate::source::Span;
 #[derive(Clone, Debug, Default)]
 pub struct File {
     pub items: Vec<Item>,
+    /// The first line of each statement that failed to parse (reported
+    /// already), so that later stages do not report what its absence
+    /// causes (an `else` that seems to have no earlier production).
+    pub broken: Vec<Span>,
 }
 
 #[derive(Clone, Debug)]

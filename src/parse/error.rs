@@ -118,6 +118,29 @@ pub enum ParseError {
 }
 
 impl ParseError {
+    /// No help, or only "a production needs an arrow", which a more
+    /// specific diagnosis may replace.
+    pub(crate) fn has_only_generic_help(&self) -> bool {
+        match self {
+            ParseError::Syntax { help: None, .. } => true,
+            ParseError::Syntax { help: Some(h), .. } => h == MISSING_ARROW_HELP,
+            _ => false,
+        }
+    }
+
+    /// An unindented line of modules right after a successor: not a
+    /// statement, and not part of the successor either.
+    pub(crate) fn lost_indent(file: &SourceFile, span: Span) -> ParseError {
+        ParseError::Syntax {
+            message: "a line of modules that is not part of any statement".to_string(),
+            src: file.named_source(),
+            span: span.into(),
+            label: "not indented, so it does not continue the successor above".to_string(),
+            help: Some("indent it to continue the successor above (a successor goes on over indented lines); to make it a production, give it a predecessor and an arrow: `A --> ...`".to_string()),
+            offset: span.start as usize,
+        }
+    }
+
     /// Byte offset of the error in its file.
     pub fn offset(&self) -> usize {
         match self {
@@ -183,7 +206,17 @@ impl ParseError {
                     .chars()
                     .next_back()
                     .is_some_and(|c| c.is_ascii_digit());
+                let line_start = file.text[..at].rfind('\n').map_or(0, |i| i + 1);
+                let stmt = file.text[line_start..line_end].trim();
                 let h = match rest.chars().next() {
+                    // `#include shared.lsys`: read as component names up
+                    // to the `.`.
+                    _ if stmt.starts_with("#include") && !stmt.contains(['"', '<']) => {
+                        let path = stmt["#include".len()..].trim();
+                        Some(format!(
+                            "a file to include is written in quotes: `#include \"{path}\"` (`#include A, B` without quotes declares components)"
+                        ))
+                    }
                     // `0,5`: a decimal comma, as many locales write it.
                     Some(',')
                         if digit_before
@@ -259,6 +292,18 @@ impl ParseError {
         expected.sort_unstable();
         expected.dedup();
         let (found, len) = found_at(&file.text, at);
+        // `A(x) : x < 3 => F`: the list of operators the condition could
+        // go on with is noise; the arrow is what was meant.
+        if file.text[at..].starts_with("=>") && expected.contains(&"`-->`") {
+            return ParseError::Syntax {
+                message: "expected `-->`, found `=>`".to_string(),
+                src: file.named_source(),
+                span: Span::new(file_id, at, at + 2).into(),
+                label: "not an arrow".to_string(),
+                help: Some(ARROW_HELP.to_string()),
+                offset: at,
+            };
+        }
         let message = match expected.as_slice() {
             [] => format!("unexpected {found}"),
             [one] => format!("expected {one}, found {found}"),
@@ -361,7 +406,7 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     let before = line.get(..col.min(line.len())).unwrap_or(line);
     let code = line.trim_start();
     if line.contains("=>") {
-        return Some("the arrow of a production is `-->` (or `->`, `→`), not `=>`".to_string());
+        return Some(ARROW_HELP.to_string());
     }
     if let Some(kw) = HEADERS.iter().find(|k| {
         // `get`: the line may hold non-ASCII text where the keyword would end.
@@ -393,10 +438,7 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     }
     let has_arrow = ["-->", "->", "→"].iter().any(|a| line.contains(a));
     if expected.contains(&"`-->`") && !has_arrow && !line.contains(':') {
-        return Some(
-            "a production needs an arrow between predecessor and successor: `A(x) --> B(x+1)`"
-                .to_string(),
-        );
+        return Some(MISSING_ARROW_HELP.to_string());
     }
     if expected.iter().any(|e| e.contains("`)`")) {
         return Some(
@@ -411,6 +453,11 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
     }
     None
 }
+
+const MISSING_ARROW_HELP: &str =
+    "a production needs an arrow between predecessor and successor: `A(x) --> B(x+1)`";
+
+const ARROW_HELP: &str = "the arrow of a production is `-->` (or `->`, `→`), not `=>`";
 
 /// Header keywords, for "a header needs a colon".
 const HEADERS: &[&str] = &[

@@ -181,7 +181,13 @@ pub fn parse_limited(
     limits: Limits,
 ) -> (ast::File, Vec<ParseError>) {
     if let Some(e) = too_deep(file, file_id, limits) {
-        return (ast::File { items: Vec::new() }, vec![e]);
+        return (
+            ast::File {
+                items: Vec::new(),
+                broken: Vec::new(),
+            },
+            vec![e],
+        );
     }
     let (file_ast, mut errors) = parse_statements(file_id, file);
     errors.extend(slash_comments(file, file_id));
@@ -193,6 +199,7 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
     let text = file.text.as_str();
     let mut items = Vec::new();
     let mut errors = Vec::new();
+    let mut broken = Vec::new();
     let mut pos = 0;
     loop {
         pos = match skip_blank(text, pos) {
@@ -233,14 +240,44 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
                 }
             }
             Err(e) => {
-                let err = ParseError::from_pest(file, file_id, pos, &e);
+                let mut err = ParseError::from_pest(file, file_id, pos, &e);
+                // Unless something more specific was found (`C => F` is
+                // modules too, but a mistyped arrow).
+                if err.has_only_generic_help() {
+                    if let Some(end) = lost_indent(text, pos, items.last()) {
+                        err = ParseError::lost_indent(file, Span::new(file_id, pos, end));
+                    }
+                }
                 let at = err.offset();
+                let line_end = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
+                broken.push(Span::new(file_id, pos, line_end));
                 errors.push(err);
                 pos = next_statement(text, at.max(pos));
             }
         }
     }
-    (ast::File { items }, errors)
+    (ast::File { items, broken }, errors)
+}
+
+/// Whether the unindented line at `pos`, which failed as a statement, is
+/// a run of modules right after a production: a continuation line of its
+/// successor that lost its indentation. The end of the modules when it
+/// is. (After an axiom, which seldom spans lines, such a line is more
+/// likely a production without its arrow.)
+fn lost_indent(text: &str, pos: usize, last: Option<&ast::Item>) -> Option<usize> {
+    let last_end = match last {
+        Some(ast::Item::Production(p)) => p.span.end as usize,
+        _ => return None,
+    };
+    // Only blank lines and comments in between.
+    if last_end > pos || skip_blank(text, last_end) != Ok(pos) {
+        return None;
+    }
+    let line_end = text[pos..].find('\n').map_or(text.len(), |i| pos + i);
+    let line = &text[pos..line_end];
+    let modules = LsysParser::parse(Rule::successor, line).ok()?.next()?;
+    let end = modules.as_span().end();
+    (end > 0 && end == skip_inline(line, end)).then_some(pos + line.trim_end().len())
 }
 
 /// Parses the value of a `-D NAME=VALUE` override or a REPL expression.

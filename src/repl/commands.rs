@@ -158,6 +158,13 @@ pub const COMMANDS: &[Command] = &[
         run: |s, a| s.set_seed(a),
     },
     Command {
+        name: "undo",
+        args: "",
+        help: "take back the last edit (a typed production, `:drop`, `:axiom`, `:set`, `:seed`), again for the one before",
+        arg: Arg::None,
+        run: |s, _| s.undo(),
+    },
+    Command {
         name: "disasm",
         args: "[RULE]",
         help: "the bytecode of every production, or of rule RULE",

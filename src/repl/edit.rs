@@ -112,13 +112,27 @@ impl Session {
             .position(|p| p.span.file == 0 && p.span.start as usize == start)
             .map_or(0, |i| i + 1);
         let line = one_line(typed);
-        let what = match &replaced {
+        let mut what = match &replaced {
             Some(old) => {
                 self.typed.retain(|t| t != old);
                 format!("replaced rule {n}: {line}  (was {old})")
             }
             None => format!("added rule {n}: {line}"),
         };
+        let prods = &comp.program.productions;
+        if let Some(i) = n
+            .checked_sub(1)
+            .and_then(|j| super::shadow::shadowed_beyond_resolve(prods, j))
+        {
+            what.push_str(&format!(
+                "
+warning: rule {n} can never apply: rule {} ({}) comes first and applies wherever rule {n} would (`:rules` shows the order); narrow rule {}'s condition, or `:drop {}` and type it again: a typed rule goes after the other rules for its predecessor",
+                i + 1,
+                one_line(comp.program.sources.slice(prods[i].span)),
+                i + 1,
+                i + 1,
+            ));
+        }
         self.typed.push(line);
         let rest = self.install(source, text, comp, true)?;
         Ok(format!("{what}\n{rest}"))
@@ -250,14 +264,14 @@ pub(super) fn rule(comp: &Compilation, n: usize) -> Result<&Production, String> 
 /// A production with no context, no probability and no condition (or
 /// `else`): once it is reached, nothing after it for the same predecessor
 /// applies.
-fn is_catch_all(p: &Production) -> bool {
+pub(super) fn is_catch_all(p: &Production) -> bool {
     p.lctx.is_empty()
         && p.rctx.is_empty()
         && p.prob.is_none()
         && matches!(p.cond, Cond::Always | Cond::Else(_))
 }
 
-fn pred_eq(a: &[PatModule], b: &[PatModule]) -> bool {
+pub(super) fn pred_eq(a: &[PatModule], b: &[PatModule]) -> bool {
     a.len() == b.len()
         && a.iter()
             .zip(b)
@@ -267,12 +281,7 @@ fn pred_eq(a: &[PatModule], b: &[PatModule]) -> bool {
 /// Whether typing `new` replaces `old`: same predecessor, contexts and
 /// condition; with probabilities, also the same successor.
 fn same_rule(old: &Production, new: &Production) -> bool {
-    let rctx_eq = old.rctx.len() == new.rctx.len()
-        && old.rctx.iter().zip(&new.rctx).all(|(x, y)| match (x, y) {
-            (PatItem::Module(a), PatItem::Module(b)) => a.sym == b.sym && a.arity == b.arity,
-            (PatItem::Open(_), PatItem::Open(_)) | (PatItem::Close(_), PatItem::Close(_)) => true,
-            _ => false,
-        });
+    let rctx_eq = rctx_eq(&old.rctx, &new.rctx);
     let cond_eq = match (&old.cond, &new.cond) {
         (Cond::Always, Cond::Always) | (Cond::Else(_), Cond::Else(_)) => true,
         (Cond::Expr(a), Cond::Expr(b)) => expr_eq(a, b),
@@ -293,9 +302,19 @@ fn same_rule(old: &Production, new: &Production) -> bool {
     pred_eq(&old.lctx, &new.lctx) && pred_eq(&old.pred, &new.pred) && rctx_eq && cond_eq && prob_eq
 }
 
+/// Equal right contexts (modules and brackets).
+pub(super) fn rctx_eq(a: &[PatItem], b: &[PatItem]) -> bool {
+    a.len() == b.len()
+        && a.iter().zip(b).all(|(x, y)| match (x, y) {
+            (PatItem::Module(a), PatItem::Module(b)) => a.sym == b.sym && a.arity == b.arity,
+            (PatItem::Open(_), PatItem::Open(_)) | (PatItem::Close(_), PatItem::Close(_)) => true,
+            _ => false,
+        })
+}
+
 /// Structural equality of expressions, spans aside (parameters compare by
 /// slot, so `A(x) : x > 1` and `A(y) : y > 1` are the same condition).
-fn expr_eq(a: &Expr, b: &Expr) -> bool {
+pub(super) fn expr_eq(a: &Expr, b: &Expr) -> bool {
     use ExprKind::*;
     match (&a.kind, &b.kind) {
         (Num(x), Num(y)) => x == y || (x.is_nan() && y.is_nan()),

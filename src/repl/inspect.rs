@@ -116,11 +116,20 @@ impl Session {
                 continue;
             }
             let _ = writeln!(out, "{title}");
-            for prod in prods {
+            let first = n;
+            for (j, prod) in prods.iter().enumerate() {
                 n += 1;
                 let text = one_line(p.sources.slice(prod.span));
                 let mark = if self.typed.contains(&text) { '*' } else { ' ' };
-                let _ = writeln!(out, "{n:>3}{mark} {text}");
+                let _ = write!(out, "{n:>3}{mark} {text}");
+                if let Some(i) = super::shadow::shadowed_by(prods, j) {
+                    let _ = write!(
+                        out,
+                        "   (never applies: rule {} comes first)",
+                        first + i + 1
+                    );
+                }
+                out.push('\n');
             }
         }
         if n == 0 {

@@ -20,7 +20,9 @@ mod grammar;
 mod input;
 mod inspect;
 mod session;
+mod shadow;
 mod show;
+mod undo;
 
 use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;

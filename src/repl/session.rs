@@ -149,6 +149,8 @@ pub struct Session {
     pub(super) last_production: Option<String>,
     /// Productions typed in the session (one line each), for `:rules`.
     pub(super) typed: Vec<String>,
+    /// The edits `:undo` can take back, the last on top.
+    pub(super) undo: Vec<super::undo::Edit>,
     /// Time of the last derivation.
     pub(super) derive_time: Duration,
     pub(super) quit: bool,
@@ -168,6 +170,7 @@ impl Session {
             pos: 0,
             last_production: None,
             typed: Vec::new(),
+            undo: Vec::new(),
             derive_time: Duration::ZERO,
             quit: false,
         }
@@ -226,10 +229,13 @@ impl Session {
             (Some(prev), true) => format!("{prev}\n{}", line.trim_end()),
             _ => indent_continuations(line.trim()),
         };
+        let before = self.edit_state();
+        let mut command = None;
         let out = match input::classify(&text) {
             Kind::Empty => Ok(String::new()),
             Kind::Command { name, args } => {
                 self.last_production = None;
+                command = commands::find(name).ok().map(|c| c.name);
                 commands::dispatch(self, name, args)
             }
             Kind::Statement => self.statement(&text),
@@ -238,6 +244,9 @@ impl Session {
                 self.rewrite_once(&text)
             }
         };
+        if out.is_ok() {
+            self.record_edit(&text, before, command);
+        }
         match out {
             Ok(text) => Reply { text, ok: true },
             Err(text) => Reply { text, ok: false },

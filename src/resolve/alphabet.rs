@@ -58,6 +58,22 @@ impl Alphabet {
         self.components.insert(name.to_string());
     }
 
+    /// The declared components (`#include MP, MPB`), sorted.
+    pub fn components(&self) -> Vec<&str> {
+        let mut c: Vec<&str> = self.components.iter().map(String::as_str).collect();
+        c.sort_unstable();
+        c
+    }
+
+    /// The longest declared component that `name` (without `~`) starts
+    /// with but is not: `MP` for `MPX` when `MP` is declared.
+    pub fn component_prefix<'a>(&self, name: &'a str) -> Option<&'a str> {
+        if self.components.contains(name) {
+            return None;
+        }
+        longest(name, |s| self.components.contains(s)).map(|n| &name[..n])
+    }
+
     pub fn contains_word(&self, name: &str) -> bool {
         self.words.contains(name)
     }

@@ -55,6 +55,83 @@ pub enum ResolveError {
         help: String,
     },
 
+    #[error("{what}, probably from the include that failed")]
+    #[diagnostic(code(lsys::resolve::from_failed_include))]
+    FromFailedInclude {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection, "first use")]
+        uses: Vec<miette::LabeledSpan>,
+        #[label("this include failed")]
+        include: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what} closes a branch it did not open: a `]` with no `[` before it")]
+    #[diagnostic(code(lsys::resolve::unmatched_bracket))]
+    StrayClose {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
+    /// [`ResolveError::StrayClose`] in a successor: a warning, as a cpfg
+    /// model may close there a branch another production opened.
+    #[error("{what} closes a branch it did not open: a `]` with no `[` before it")]
+    #[diagnostic(code(lsys::resolve::unmatched_bracket), severity(Warning))]
+    StrayCloseWarning {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("{what} opens a branch with `[` and never closes it")]
+    #[diagnostic(code(lsys::resolve::unclosed_bracket), severity(Warning))]
+    UnclosedBracket {
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label(collection)]
+        spans: Vec<miette::LabeledSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("`$` pitches the turtle 180° here (the paper's dialect); in ABOP and cpfg it rolls the turtle level")]
+    #[diagnostic(
+        code(lsys::resolve::dialect_hint),
+        severity(Advice),
+        help("this file reads like an ABOP/cpfg model but is read in the paper's dialect, the default for `.lsys` files; if `$` should roll the turtle so its left axis is horizontal, add the header `dialect: cpfg`; add `dialect: paper` to keep the paper's meaning and silence this hint")
+    )]
+    DollarDialect {
+        #[source_code]
+        src: Src,
+        #[label("`$` is pitch 180° in the paper's dialect")]
+        span: SourceSpan,
+    },
+
+    #[error("unknown component `~{name}`")]
+    #[diagnostic(code(lsys::resolve::unknown_component))]
+    UnknownComponent {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("not a declared component")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
     #[error("unknown function `{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_function))]
     UnknownFunction {

@@ -243,6 +243,14 @@ impl Resolver {
             }
             return self.expand(&def, span, scope, exp, HashMap::new());
         }
+        if !self.failed_includes.is_empty() {
+            // Probably defined by the include that failed: one error for
+            // all such names (see `report_missing_names`).
+            if !self.missing_names.iter().any(|(m, _)| m == n) {
+                self.missing_names.push((n.to_string(), span));
+            }
+            return None;
+        }
         let mut candidates: Vec<String> = scope.params.iter().map(|(p, _)| p.clone()).collect();
         candidates.extend(self.defines.keys().cloned());
         let mut help = match suggest(n, candidates.iter().map(String::as_str)) {

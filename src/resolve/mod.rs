@@ -5,10 +5,12 @@
 //! Resolve reads no file: loading read them all.
 
 mod alphabet;
+mod brackets;
 mod cstmt;
 pub mod error;
 mod expr;
 mod fold;
+mod hints;
 pub mod ir;
 mod modules;
 mod statements;
@@ -69,6 +71,9 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         strings: Vec::new(),
         view_angle: loaded.side.angle,
         view_functions: loaded.side.functions,
+        broken: loaded.broken,
+        failed_includes: loaded.failed_includes,
+        missing_names: Vec::new(),
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -134,6 +139,13 @@ pub(crate) struct Resolver {
     /// The view file's functions (or why they could not be read), read
     /// while loading; `func` takes them.
     pub view_functions: crate::load::ViewFunctions,
+    /// First lines of statements that did not parse.
+    pub broken: Vec<Span>,
+    /// `#include` lines whose file could not be loaded.
+    pub failed_includes: Vec<Span>,
+    /// Unknown names met while an include had failed, with their first
+    /// use: reported together once (see [`Resolver::report_missing_names`]).
+    pub missing_names: Vec<(String, Span)>,
 }
 
 impl Resolver {
@@ -150,11 +162,48 @@ impl Resolver {
         let element_overrides = self.apply_overrides(opts);
         self.evaluate_tables(&element_overrides);
         self.build_alphabet(&items);
+        self.dialect_hint(&items, opts.dialect.is_some());
         let program = self.statements(&items);
         if !self.errors.is_empty() {
             return None;
         }
         program
+    }
+
+    /// One error for every name left undefined by a failed `#include`,
+    /// instead of one "unknown name" each: the include's own error says
+    /// what to fix.
+    pub(crate) fn report_missing_names(&mut self) {
+        let Some((&first, _)) = self.missing_names.first().map(|(_, s)| (s, ())) else {
+            return;
+        };
+        let names: Vec<String> = self
+            .missing_names
+            .iter()
+            .map(|(n, _)| format!("`{n}`"))
+            .collect();
+        let uses = self
+            .missing_names
+            .iter()
+            .filter(|(_, s)| s.file == first.file)
+            .map(|(n, s)| miette::LabeledSpan::new_with_span(Some(format!("`{n}`")), *s))
+            .collect();
+        let include = self.failed_includes[0];
+        let (n, list) = (names.len(), names.join(", "));
+        self.error(ResolveError::FromFailedInclude {
+            what: if n == 1 {
+                format!("{list} is not defined")
+            } else {
+                format!("{n} names are not defined ({list})")
+            },
+            src: self.sources.named_source(first),
+            uses,
+            include: (include.file == first.file).then(|| include.into()),
+            help: format!(
+                "fix the include at {} first (its error is above); a name that is not meant to come from it needs a `#define NAME value` above its first use",
+                self.sources.location(include)
+            ),
+        });
     }
 
     fn collect_defines(&mut self, items: &[(u32, ast::Item)]) {

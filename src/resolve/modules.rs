@@ -112,6 +112,9 @@ impl Resolver {
             }
             p
         } else {
+            if tok.kind == TokKind::Tilde && self.unknown_component(tok) {
+                return Vec::new();
+            }
             self.alphabet.split(&tok.text, tok.kind)
         };
         let n = pieces.len();
@@ -151,6 +154,41 @@ impl Resolver {
             span: tok.name_span.into(),
             help: format!("the turtle's `@` commands are {}", ats.join(" ")),
         });
+    }
+
+    /// `~MPX` where only `MP` and `MPB` are declared: longest match would
+    /// place `~MP` and a module `X`, silently. Reported instead; `true`
+    /// when it was.
+    fn unknown_component(&mut self, tok: &ModuleTok) -> bool {
+        let name = tok.text.trim_start_matches(['~', '∼']);
+        let Some(prefix) = self.alphabet.component_prefix(name) else {
+            return false;
+        };
+        let declared = self.alphabet.components();
+        let near = suggest(name, declared.iter().copied().filter(|c| *c != prefix))
+            .map(|c| format!("did you mean `~{c}`? "))
+            .unwrap_or_default();
+        let rest = &name[prefix.len()..];
+        let args = self
+            .sources
+            .slice(Span::new(
+                tok.span.file,
+                tok.name_span.end as usize,
+                tok.span.end as usize,
+            ))
+            .to_string();
+        let help = format!(
+            "{near}the grammar declares {} (`#include {}`); to place `~{prefix}` followed by the module `{rest}`, write them apart: `~{prefix} {rest}{args}`",
+            declared.iter().map(|c| format!("`~{c}`")).collect::<Vec<_>>().join(", "),
+            declared.join(", "),
+        );
+        self.error(ResolveError::UnknownComponent {
+            name: name.to_string(),
+            src: self.sources.named_source(tok.name_span),
+            span: tok.name_span.into(),
+            help,
+        });
+        true
     }
 
     fn unknown_turtle_warning(&mut self, tok: &ModuleTok) {

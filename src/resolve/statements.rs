@@ -59,6 +59,8 @@ impl Resolver {
                 Item::Define(_) | Item::Include(_) => {}
             }
         }
+        // Before the program takes the sources.
+        self.report_missing_names();
         let root = Span::new(0, 0, 0);
         let Some((axiom, _)) = s.axiom.take() else {
             // After other errors (an axiom line that did not parse, a file
@@ -175,6 +177,7 @@ impl Resolver {
                         "a grammar has one axiom; remove one of them",
                     );
                 } else {
+                    self.check_brackets(toks, super::brackets::Place::Axiom);
                     let m = self.successor(toks, &scope);
                     s.axiom = Some((m, h.keyword));
                 }
@@ -346,10 +349,13 @@ impl Resolver {
             .unwrap_or_default();
         let key: PredKey = pred.iter().map(|m| (m.sym, m.arity)).collect();
         let pred_text = self.sources.slice(p.head_span).trim().to_string();
+        let mut cond_failed = false;
         let cond = match &p.cond {
             None | Some(Condition::Always(_)) => Cond::Always,
             Some(Condition::Else(span)) => {
-                if !s.seen.contains_key(&(table, key.clone())) {
+                if !s.seen.contains_key(&(table, key.clone()))
+                    && !self.broken_production_before(p.span, &pred_text)
+                {
                     self.error(ResolveError::ElseFirst {
                         pred: pred_text.clone(),
                         src: self.sources.named_source(*span),
@@ -364,14 +370,22 @@ impl Resolver {
                     ..
                 }) if v != 0.0 => Cond::Always,
                 Some(e) => Cond::Expr(e),
-                None => Cond::Always,
+                None => {
+                    // Already reported; the production does not compile.
+                    // It must not count as unconditional, or every later
+                    // production for the predecessor would be "unreachable".
+                    cond_failed = true;
+                    Cond::Always
+                }
             },
         };
+        self.check_brackets(&p.succ, super::brackets::Place::Successor);
         let succ = self.successor(&p.succ, &scope);
         let prob = p.prob.as_ref().and_then(|e| self.expr(e, &scope));
         let always = lctx.is_empty()
             && rctx.is_empty()
             && prob.is_none()
+            && !cond_failed
             && matches!(cond, Cond::Always | Cond::Else(_));
         let entry = s.seen.entry((table, key)).or_insert(None);
         if let Some(earlier) = *entry {
@@ -403,6 +417,26 @@ impl Resolver {
             pre,
             post,
         })
+    }
+}
+
+impl Resolver {
+    /// Whether a statement above `at` in its file that did not parse
+    /// begins with the predecessor `pred` (`A(x) : x = 2 --> F`): it is
+    /// probably what an `else` for `pred` is the alternative of, and its
+    /// syntax error is already reported.
+    fn broken_production_before(&self, at: Span, pred: &str) -> bool {
+        self.broken
+            .iter()
+            .filter(|b| b.file == at.file && b.start < at.start)
+            .any(|b| {
+                let line = self.sources.slice(*b);
+                line.strip_prefix(pred).is_some_and(|rest| {
+                    let rest = rest.trim_start();
+                    rest.starts_with(':')
+                        || ["-->", "->", "→", "⟶"].iter().any(|a| rest.starts_with(a))
+                })
+            })
     }
 }
 

@@ -2,8 +2,12 @@
 //! offending module (its 1-based position in the string and its text);
 //! output: a diagnostic that says what to change.
 
-use miette::Diagnostic;
+use std::sync::Arc;
+
+use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
+
+use crate::resolve::{Program, CLOSE_BRACKET, OPEN_BRACKET};
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum TurtleError {
@@ -31,11 +35,17 @@ pub enum TurtleError {
     },
 
     #[error("module {index} of the string is a `]` with no `[` before it")]
-    #[diagnostic(
-        code(lsys::turtle::unbalanced_bracket),
-        help("every `]` must close a `[`; the productions that write brackets must write them in pairs")
-    )]
-    UnbalancedBracket { index: usize },
+    #[diagnostic(code(lsys::turtle::unbalanced_bracket))]
+    UnbalancedBracket {
+        index: usize,
+        /// The grammar, when a production is found to blame.
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this successor writes a `]` it does not open")]
+        written_by: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
 
     #[error("module {index} of the string is a `}}` with no `{{` before it")]
     #[diagnostic(
@@ -54,4 +64,46 @@ pub enum TurtleError {
     #[error("module {index} of the string, `{text}`, divides the step scale by zero")]
     #[diagnostic(code(lsys::turtle::zero_scale), help("`@Dd(s)` needs s ≠ 0"))]
     ZeroScale { index: usize, text: String },
+}
+
+impl TurtleError {
+    /// A `]` with no `[` at module `index`. The derivation does not record
+    /// which production wrote which module, so the production blamed is
+    /// the first whose successor (main, decomposition or homomorphism)
+    /// closes more branches than it opens: `check` warned about it.
+    pub(crate) fn unbalanced(index: usize, program: &Program) -> TurtleError {
+        let culprit = program
+            .productions
+            .iter()
+            .chain(&program.decomposition)
+            .chain(&program.homomorphism)
+            .find(|p| {
+                let mut depth = 0i32;
+                p.succ.iter().any(|m| {
+                    match m.sym {
+                        OPEN_BRACKET => depth += 1,
+                        CLOSE_BRACKET => depth -= 1,
+                        _ => {}
+                    }
+                    depth < 0
+                })
+            });
+        let general = "every `]` must close a `[`; the productions that write brackets must write them in pairs";
+        match culprit {
+            Some(p) => TurtleError::UnbalancedBracket {
+                index,
+                src: program.sources.named_source(p.span),
+                written_by: Some(p.span.into()),
+                help: format!(
+                    "{general}: add the `[` that this production's `]` should close, or remove the `]`"
+                ),
+            },
+            None => TurtleError::UnbalancedBracket {
+                index,
+                src: NamedSource::new("", Arc::new(String::new())),
+                written_by: None,
+                help: general.to_string(),
+            },
+        }
+    }
 }

@@ -93,6 +93,8 @@ struct State {
 
 struct Turtle<'a> {
     opts: &'a TurtleOptions,
+    /// For errors that point at the grammar.
+    program: &'a Program,
     symbols: &'a Symbols,
     drawing: Drawing,
     state: State,
@@ -175,6 +177,7 @@ fn interpret_with(
         .collect();
     let mut t = Turtle {
         opts,
+        program,
         symbols: &program.symbols,
         drawing: Drawing::default(),
         state: State {
@@ -320,7 +323,7 @@ impl Turtle<'_> {
                 self.state = self
                     .stack
                     .pop()
-                    .ok_or(TurtleError::UnbalancedBracket { index: index + 1 })?;
+                    .ok_or_else(|| TurtleError::unbalanced(index + 1, self.program))?;
             }
             SetWidth => match args.first() {
                 Some(&w) => s.width = (w as f32).max(0.0),

@@ -1,0 +1,71 @@
+//! Bracket balance: the module tokens of a successor or the axiom -> a
+//! diagnostic when their `[` and `]` do not pair up. An unclosed `[` is a
+//! warning (cpfg models sometimes open a branch in one production and
+//! close it in another); a `]` with no `[` is an error in the axiom, which
+//! is the whole first string, and a warning in a successor.
+
+use super::error::ResolveError;
+use super::Resolver;
+use crate::parse::ast::{ModuleTok, TokKind};
+use crate::source::Span;
+
+/// Where the tokens come from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Place {
+    Axiom,
+    Successor,
+}
+
+/// The unclosed `[` and the `]` that close nothing, in order.
+fn unbalanced(toks: &[ModuleTok]) -> (Vec<Span>, Vec<Span>) {
+    let (mut open, mut stray) = (Vec::new(), Vec::new());
+    for t in toks.iter().filter(|t| t.kind == TokKind::Punct) {
+        match t.text.as_str() {
+            "[" => open.push(t.span),
+            "]" if open.pop().is_none() => stray.push(t.span),
+            _ => {}
+        }
+    }
+    (open, stray)
+}
+
+impl Resolver {
+    /// Reports unbalanced brackets in `toks`, at most one diagnostic of
+    /// each kind per successor.
+    pub(super) fn check_brackets(&mut self, toks: &[ModuleTok], place: Place) {
+        let (open, stray) = unbalanced(toks);
+        let what = match place {
+            Place::Axiom => "the axiom",
+            Place::Successor => "this successor",
+        };
+        if let Some(&first) = stray.first() {
+            let what = what.to_string();
+            let src = self.sources.named_source(first);
+            let spans = stray
+                .iter()
+                .map(|s| miette::LabeledSpan::new_with_span(Some("closes no `[`".into()), *s))
+                .collect();
+            let help = "a `]` ends a branch that a `[` began: remove it, or add the `[` where the branch starts".to_string();
+            match place {
+                Place::Axiom => self.error(ResolveError::StrayClose { what, src, spans, help }),
+                Place::Successor => self.warn(ResolveError::StrayCloseWarning {
+                    what,
+                    src,
+                    spans,
+                    help: help + " (if another production's successor opens the branch, as in some cpfg models, ignore this warning)",
+                }),
+            }
+        }
+        if let Some(&first) = open.first() {
+            self.warn(ResolveError::UnclosedBracket {
+                what: what.to_string(),
+                src: self.sources.named_source(first),
+                spans: open
+                    .iter()
+                    .map(|s| miette::LabeledSpan::new_with_span(Some("never closed".into()), *s))
+                    .collect(),
+                help: "close the branch with `]` where it ends (e.g. `F[+F]F`); if another production's successor closes it, as in some cpfg models, ignore this warning".to_string(),
+            });
+        }
+    }
+}
