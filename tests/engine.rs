@@ -417,6 +417,7 @@ fn program(src: &str) -> Program {
         arrays: Vec::new(),
         hooks: Default::default(),
         functions: Vec::new(),
+        cpfg_surfaces: Vec::new(),
     };
     for line in text.lines() {
         let Some((key, rest)) = line.trim_start().split_once(':') else {

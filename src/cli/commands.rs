@@ -113,11 +113,11 @@ fn check(args: &CheckArgs, color: bool) -> i32 {
                 within: Vec::new(),
             };
             let missing = search.find_all(p);
-            if !missing.is_empty() {
-                for e in &missing {
-                    report(e, color);
-                }
-                let n = missing.len();
+            for e in &missing {
+                report(e, color);
+            }
+            let n = missing.iter().filter(|e| crate::diag::is_error(*e)).count();
+            if n > 0 {
                 eprintln!("{}: {n} error{}", c.file, if n == 1 { "" } else { "s" });
                 return EX_DATAERR;
             }

@@ -28,6 +28,9 @@ pub struct SideFiles {
     pub angle: Option<f64>,
     /// The view file's functions, in `func` order.
     pub functions: ViewFunctions,
+    /// The names its `surface: NAME FILE.s ...` lines give cpfg surfaces
+    /// (`~NAME` draws the surface), in file order.
+    pub surfaces: Vec<String>,
 }
 
 /// The functions `func(id, x)` reads. Errors in the files are reported by
@@ -68,6 +71,7 @@ pub(super) fn read_side_files(
                 view: None,
                 angle: None,
                 functions: ViewFunctions::Failed(vec![Report::new(e)]),
+                surfaces: Vec::new(),
             };
         }
     };
@@ -81,11 +85,25 @@ pub(super) fn read_side_files(
     } else {
         None
     };
+    let surfaces = surface_names(&sources.get(id).text);
     SideFiles {
         view: Some(id),
         angle,
         functions: functions(id, &view, finder, sources),
+        surfaces,
     }
+}
+
+/// The names of a view file's `surface:` lines.
+fn surface_names(text: &str) -> Vec<String> {
+    text.lines()
+        .filter_map(|line| {
+            let (key, rest) = line.split_once(':')?;
+            (key.trim().eq_ignore_ascii_case("surface"))
+                .then(|| rest.split_whitespace().next().map(str::to_string))
+                .flatten()
+        })
+        .collect()
 }
 
 /// The view file cpfg would read for `model`, if there is one. A

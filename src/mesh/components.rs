@@ -84,7 +84,13 @@ impl ComponentSearch {
             .filter_map(|(id, s)| {
                 let name = s.name.trim_start_matches(['~', '∼']);
                 let searched = self.find(name).err()?;
-                Some(super::build::missing(
+                // A cpfg model's view file names its surfaces.
+                if program.cpfg_surfaces.iter().any(|s| s == name) {
+                    return Some(MeshError::CpfgSurface {
+                        name: name.to_string(),
+                    });
+                }
+                Some(super::assemble::missing(
                     program,
                     id as crate::resolve::SymId,
                     name,

@@ -13,6 +13,14 @@ pub enum MeshError {
     #[diagnostic(transparent)]
     MissingComponent(Box<MissingComponent>),
 
+    #[error("cpfg surface `~{name}` (a `surface:` of the view file) cannot be drawn yet")]
+    #[diagnostic(
+        code(lsys::mesh::cpfg_surface),
+        severity(Warning),
+        help("the model derives as cpfg does, but lsys does not read cpfg surface files (.s) yet, so `build` and `render` stop at its first `~{name}`")
+    )]
+    CpfgSurface { name: String },
+
     #[error("cannot read component `~{name}` from {path}: {cause}")]
     #[diagnostic(
         code(lsys::mesh::component_io),

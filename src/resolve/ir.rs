@@ -309,6 +309,9 @@ pub struct Program {
     pub hooks: Hooks,
     /// The functions of a cpfg model's view file (`func(id, x)`).
     pub functions: Vec<crate::lang::spline::SplineFn>,
+    /// The cpfg surfaces a model's view file names (`surface: NAME ...`):
+    /// `~NAME` draws one.
+    pub cpfg_surfaces: Vec<String>,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.

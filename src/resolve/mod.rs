@@ -70,6 +70,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         warned_at: Default::default(),
         strings: Vec::new(),
         view_angle: loaded.side.angle,
+        cpfg_surfaces: loaded.side.surfaces,
         view_functions: loaded.side.functions,
         broken: loaded.broken,
         failed_includes: loaded.failed_includes,
@@ -136,6 +137,8 @@ pub(crate) struct Resolver {
     pub strings: Vec<String>,
     /// The turning angle of a cpfg model's view file, read while loading.
     pub view_angle: Option<f64>,
+    /// The cpfg surfaces the view file names (`~NAME`).
+    pub cpfg_surfaces: Vec<String>,
     /// The view file's functions (or why they could not be read), read
     /// while loading; `func` takes them.
     pub view_functions: crate::load::ViewFunctions,

@@ -118,6 +118,7 @@ impl Resolver {
             arrays: vars.arrays,
             hooks: vars.hooks,
             functions: vars.functions.unwrap_or_default(),
+            cpfg_surfaces: std::mem::take(&mut self.cpfg_surfaces),
         })
     }
 
