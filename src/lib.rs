@@ -58,6 +58,7 @@ pub mod bytecode;
 pub mod cli;
 pub mod derive;
 pub mod diag;
+pub mod environment;
 #[cfg(feature = "cli")]
 pub mod exit_code;
 pub mod export;

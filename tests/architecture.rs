@@ -16,6 +16,7 @@ const STAGES: &[&str] = &[
     "preprocess",
     "parse",
     "load",
+    "environment",
     "resolve",
     "bytecode",
     "derive",

@@ -418,6 +418,7 @@ fn program(src: &str) -> Program {
         hooks: Default::default(),
         functions: Vec::new(),
         cpfg_surfaces: Vec::new(),
+        environment: None,
     };
     for line in text.lines() {
         let Some((key, rest)) = line.trim_start().split_once(':') else {

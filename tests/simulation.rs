@@ -50,7 +50,7 @@ struct StepCounter<'a> {
 }
 
 impl Environment for StepCounter<'_> {
-    fn answer(
+    fn after_step(
         &mut self,
         ctx: &StepContext<'_>,
         string: &mut ModuleStore,

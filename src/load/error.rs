@@ -132,6 +132,16 @@ pub enum LoadError {
         help: Option<String>,
     },
 
+    /// A cpfg environment file (`.e` or the program's specification)
+    /// exists but cannot be read.
+    #[error("cannot use the environment file {path}")]
+    #[diagnostic(code(lsys::load::environment_file))]
+    EnvironmentUnreadable {
+        path: String,
+        #[help]
+        why: String,
+    },
+
     /// The view file exists but cannot be read.
     #[error("cannot use the view file {path}")]
     #[diagnostic(code(lsys::load::view_file))]

@@ -43,6 +43,7 @@ impl Loader {
                 preprocessed: false,
                 profile,
                 side: SideFiles::default(),
+                environment: None,
             },
             stack: Vec::new(),
             finder,

@@ -3,11 +3,13 @@
 //! cpfg `.l` root through the C preprocessor of [`crate::preprocess`]),
 //! their statements flattened in include order (an `#include "f"` line is
 //! replaced by the statements of `f`, as the C preprocessor would), and a
-//! model's side files (the cpfg view file and its function files). Every
+//! model's side files (the cpfg view file and its function files, the
+//! environment's communication and specification files). Every
 //! file read is in the [`SourceMap`]; no later stage reads the disk for the
 //! grammar.
 
 mod cpfg;
+mod environment;
 mod error;
 mod include;
 mod loader;
@@ -17,6 +19,7 @@ use std::path::{Path, PathBuf};
 
 use miette::Report;
 
+pub use environment::EnvironmentFiles;
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
 pub use view::{SideFiles, ViewFunctions};
@@ -105,6 +108,9 @@ pub struct Loaded {
     pub profile: crate::lang::Profile,
     /// What the model's view file gives (cpfg): its angle, its functions.
     pub side: SideFiles,
+    /// The cpfg environment files (`-e FILE.e` and its program's
+    /// specification), when the model runs with an environmental program.
+    pub environment: Option<EnvironmentFiles>,
 }
 
 /// Loads `input`, what it includes and its side files. A cpfg file (`.l`)
@@ -136,6 +142,12 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
     let mut loaded = loader.finish();
     if let Some(model) = model {
         loaded.side = view::read_side_files(&model, &profile, &finder, &mut loaded.sources);
+        if profile.cpfg_model_file {
+            let (env, errors) =
+                environment::read_environment_files(&model, &finder, &mut loaded.sources);
+            loaded.environment = env;
+            loaded.errors.extend(errors);
+        }
     }
     Ok(loaded)
 }

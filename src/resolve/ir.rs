@@ -312,6 +312,8 @@ pub struct Program {
     /// The cpfg surfaces a model's view file names (`surface: NAME ...`):
     /// `~NAME` draws one.
     pub cpfg_surfaces: Vec<String>,
+    /// The environment that answers `?E` (a cpfg model's `-e FILE.e`).
+    pub environment: Option<crate::environment::Environment>,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.

@@ -71,6 +71,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         strings: Vec::new(),
         view_angle: loaded.side.angle,
         cpfg_surfaces: loaded.side.surfaces,
+        environment_files: loaded.environment,
         view_functions: loaded.side.functions,
         broken: loaded.broken,
         failed_includes: loaded.failed_includes,
@@ -139,6 +140,8 @@ pub(crate) struct Resolver {
     pub view_angle: Option<f64>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<String>,
+    /// A cpfg model's environment files (`-e FILE.e`).
+    pub environment_files: Option<crate::load::EnvironmentFiles>,
     /// The view file's functions (or why they could not be read), read
     /// while loading; `func` takes them.
     pub view_functions: crate::load::ViewFunctions,

@@ -75,15 +75,29 @@ impl Resolver {
         };
         let defines = self.define_infos();
         let mut turtle = std::mem::take(&mut s.turtle.settings);
+        let mut environment = None;
         if let Some(Some(span)) = self
             .symbols
             .get("?E")
             .map(|id| self.symbols.list[id as usize].span)
         {
-            self.warn(ResolveError::Environment {
-                src: self.sources.named_source(span),
-                span: span.into(),
-            });
+            match self.environment_files {
+                Some(files) => match crate::environment::configure(
+                    &self.sources,
+                    files.communication,
+                    files.specification,
+                ) {
+                    Ok(env) => environment = Some(env),
+                    Err(e) if crate::diag::is_error(&*e) => {
+                        self.errors.push(miette::Report::new(*e))
+                    }
+                    Err(e) => self.warnings.push(miette::Report::new(*e)),
+                },
+                None => self.warn(ResolveError::Environment {
+                    src: self.sources.named_source(span),
+                    span: span.into(),
+                }),
+            }
         }
         // A cpfg model's turning angle is in its view file.
         if self.profile.cpfg_model_file && turtle.angle.is_none() {
@@ -119,6 +133,7 @@ impl Resolver {
             hooks: vars.hooks,
             functions: vars.functions.unwrap_or_default(),
             cpfg_surfaces: std::mem::take(&mut self.cpfg_surfaces),
+            environment,
         })
     }
 

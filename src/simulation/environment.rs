@@ -16,14 +16,34 @@ pub struct StepContext<'a> {
     pub step: u32,
 }
 
-/// Something that answers query modules after each step: it reads the
-/// string and overwrites the parameters it answers, and only those. The
-/// loop then stores parameters as the language profile says (f32 in
-/// cpfg's) and runs `EndEach:`.
+/// Something that answers query modules: it reads the string and
+/// overwrites the parameters it answers, and only those; the loop then
+/// stores parameters as the language profile says (f32 in cpfg's).
+///
+/// cpfg's order: an environment pass over string k−1 ([`before_step`],
+/// before `StartEach:` of step k; none over the final string), while the
+/// turtle's own queries (`?P`, ...) are filled by every interpretation
+/// ([`after_step`]: after the axiom and after each step, before
+/// `EndEach:`).
+///
+/// [`before_step`]: Environment::before_step
+/// [`after_step`]: Environment::after_step
 pub trait Environment {
-    fn answer(
+    /// Before step `ctx.step + 1` rewrites `string` (step `ctx.step`'s).
+    fn before_step(
         &mut self,
-        ctx: &StepContext<'_>,
-        string: &mut ModuleStore,
-    ) -> Result<(), DeriveError>;
+        _ctx: &StepContext<'_>,
+        _string: &mut ModuleStore,
+    ) -> Result<(), DeriveError> {
+        Ok(())
+    }
+
+    /// After the axiom (`ctx.step` 0) and after each step.
+    fn after_step(
+        &mut self,
+        _ctx: &StepContext<'_>,
+        _string: &mut ModuleStore,
+    ) -> Result<(), DeriveError> {
+        Ok(())
+    }
 }

@@ -15,9 +15,11 @@
 //! a grammar with query modules gets.
 
 mod environment;
+mod pass;
 mod queries;
 
 pub use environment::{Environment, StepContext};
+pub use pass::EnvironmentPass;
 pub use queries::TurtleQueries;
 
 use crate::bytecode::Compiled;
@@ -78,6 +80,9 @@ impl<'p> Simulation<'p> {
         if derivation.has_queries() {
             environments.push(Box::new(TurtleQueries));
         }
+        if let Some(env) = &program.environment {
+            environments.push(Box::new(EnvironmentPass::new(env)));
+        }
         Simulation {
             derivation,
             program,
@@ -97,7 +102,7 @@ impl<'p> Simulation<'p> {
         target: u32,
     ) -> Result<Simulation<'p>, DeriveError> {
         let mut s = Simulation::bare(derivation, program, compiled, opts, target);
-        s.answer()?;
+        s.answer(true)?;
         Ok(s)
     }
 
@@ -108,8 +113,9 @@ impl<'p> Simulation<'p> {
         self
     }
 
-    /// Every environment answers the queries of the current string.
-    fn answer(&mut self) -> Result<(), DeriveError> {
+    /// Every environment answers the queries of the current string, after
+    /// a step (`after`) or before the next one.
+    fn answer(&mut self, after: bool) -> Result<(), DeriveError> {
         if self.environments.is_empty() {
             return Ok(());
         }
@@ -120,18 +126,29 @@ impl<'p> Simulation<'p> {
             step: self.derivation.step_number(),
         };
         for env in &mut self.environments {
-            env.answer(&ctx, self.derivation.current_mut())?;
+            let string = self.derivation.current_mut();
+            if after {
+                env.after_step(&ctx, string)?;
+            } else {
+                env.before_step(&ctx, string)?;
+            }
         }
         self.derivation.parameters_changed();
         Ok(())
     }
 
-    /// One step: `StartEach:`, productions, decomposition, the
-    /// environments' answers, `EndEach:`, and `End:` when this was the
-    /// target step.
+    /// One step: the environments' pass over the current string,
+    /// `StartEach:`, productions, decomposition, the turtle's answers to
+    /// query modules, `EndEach:`, and `End:` when this was the target step.
     pub fn step(&mut self) -> Result<(), DeriveError> {
+        // cpfg runs an environment pass after each step but the last: the
+        // axiom gets none (unlike the turtle's `?P`, which every
+        // interpretation fills).
+        if self.derivation.step_number() > 0 {
+            self.answer(false)?;
+        }
         self.derivation.rewrite_step()?;
-        self.answer()?;
+        self.answer(true)?;
         self.derivation.end_each()?;
         if self.derivation.step_number() == self.target {
             self.finish()?;

@@ -12,7 +12,7 @@ use crate::turtle::{self, TurtleOptions};
 pub struct TurtleQueries;
 
 impl Environment for TurtleQueries {
-    fn answer(
+    fn after_step(
         &mut self,
         ctx: &StepContext<'_>,
         string: &mut ModuleStore,

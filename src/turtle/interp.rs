@@ -111,7 +111,7 @@ pub fn interpret(
     store: &ModuleStore,
     opts: &TurtleOptions,
 ) -> Result<Drawing, TurtleError> {
-    interpret_with(program, store, opts, &mut |_, _, _| {})
+    interpret_with(program, store, opts, &mut |_| {})
 }
 
 /// The values cpfg's query modules take in `store`: for each `?P`, `?H`,
@@ -136,17 +136,18 @@ pub fn query_values(
         })
         .collect();
     let mut out = Vec::new();
-    interpret_with(program, store, opts, &mut |sym, offset, f| {
-        let (Some(k), arity) = (which[sym.0 as usize], sym.1) else {
+    interpret_with(program, store, opts, &mut |site| {
+        let (Some(k), arity) = (which[site.sym as usize], site.arity) else {
             return;
         };
+        let f = &site.frame;
         let v = match k {
             0 => f.pos,
             1 => f.h,
             2 => f.l,
             _ => f.u,
         };
-        out.push((offset, arity.min(3), [v.x, v.y, v.z]));
+        out.push((site.offset, arity.min(3), [v.x, v.y, v.z]));
     })
     // A string between steps may end inside a polygon; the frames up to
     // the end are what the queries need.
@@ -157,12 +158,42 @@ pub fn query_values(
     Ok(out)
 }
 
-/// Called with (symbol, arity), the offset of the first parameter and the
-/// frame at each query module.
-type QueryFn<'a> = dyn FnMut((SymId, usize), usize, &Frame) + 'a;
+/// Where a query module stands in a string and the turtle's state there.
+#[derive(Clone, Copy, Debug)]
+pub struct QuerySite {
+    pub sym: SymId,
+    pub arity: usize,
+    /// The module's position in the string.
+    pub index: usize,
+    /// Offset of its first parameter in the string's parameter arena.
+    pub offset: usize,
+    pub frame: Frame,
+    /// The line width and the scale (`@Dd`) in force.
+    pub width: f32,
+    pub scale: f32,
+}
 
-/// [`interpret`], telling `on_module((symbol, arity), first parameter
-/// offset, frame)` the turtle's frame at every query module.
+/// Every query module with parameters in `store` (`?P`, `?E`, ...), in
+/// string order, with the turtle's state where it stands. A string that
+/// ends inside a polygon is read up to its end.
+pub fn query_sites(
+    program: &Program,
+    store: &ModuleStore,
+    opts: &TurtleOptions,
+) -> Result<Vec<QuerySite>, TurtleError> {
+    let mut out = Vec::new();
+    interpret_with(program, store, opts, &mut |site| out.push(site)).or_else(|e| match e {
+        TurtleError::UnclosedPolygon { .. } => Ok(Drawing::default()),
+        e => Err(e),
+    })?;
+    Ok(out)
+}
+
+/// Called with each query module's site.
+type QueryFn<'a> = dyn FnMut(QuerySite) + 'a;
+
+/// [`interpret`], telling `on_query` the turtle's state at every query
+/// module.
 fn interpret_with(
     program: &Program,
     store: &ModuleStore,
@@ -206,7 +237,15 @@ fn interpret_with(
         let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
         let args = &params[offset..offset + arity];
         if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
-            on_query((sym, arity), offset, &t.state.frame);
+            on_query(QuerySite {
+                sym,
+                arity,
+                index: i,
+                offset,
+                frame: t.state.frame,
+                width: t.state.width,
+                scale: t.state.scale,
+            });
         }
         offset += arity;
         let act = acts[sym as usize];

@@ -1,0 +1,109 @@
+//! Load: a cpfg model's environment files. The model's path and its
+//! `specifications` (already read) in; the communication file (`.e`) that
+//! cpfg's `-e FILE` names and the specification file its `executable:`
+//! line gives the environmental program, each added to the [`SourceMap`]
+//! out. Reading them here keeps resolve and the simulation free of I/O;
+//! what they say is read by `crate::environment`.
+
+use std::path::Path;
+
+use miette::Report;
+
+use super::error::LoadError;
+use super::include::IncludeFinder;
+use crate::source::{FileId, Origin, SourceFile, SourceMap};
+
+/// A model's environment files, as loaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EnvironmentFiles {
+    /// The communication file (`fractal.e`): the program and the turtle
+    /// fields it is sent.
+    pub communication: FileId,
+    /// The program's specification file (`density.spec`), when the
+    /// `executable:` line names one that could be read.
+    pub specification: Option<FileId>,
+}
+
+/// The environment files of `model`, if its `specifications` runs cpfg
+/// with `-e FILE`. Errors name the file that could not be read.
+pub(super) fn read_environment_files(
+    model: &Path,
+    finder: &IncludeFinder,
+    sources: &mut SourceMap,
+) -> (Option<EnvironmentFiles>, Vec<Report>) {
+    let dir = model.parent().unwrap_or(Path::new("."));
+    let spec_path = dir.join("specifications");
+    let Some(spec_id) = sources
+        .files()
+        .iter()
+        .position(|f| f.origin == Origin::Disk(spec_path.clone()))
+    else {
+        return (None, Vec::new());
+    };
+    let e_name = sources
+        .get(spec_id as FileId)
+        .text
+        .lines()
+        .find_map(|line| {
+            let words: Vec<&str> = line.split_whitespace().collect();
+            if !words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")) {
+                return None;
+            }
+            let at = words.iter().position(|w| *w == "-e")?;
+            words.get(at + 1).map(|w| w.to_string())
+        });
+    let Some(e_name) = e_name else {
+        return (None, Vec::new());
+    };
+    let mut errors = Vec::new();
+    let e_path = dir.join(&e_name);
+    let e_text = match finder.read(&e_path) {
+        Ok(t) => t,
+        Err(r) => {
+            errors.push(Report::new(LoadError::EnvironmentUnreadable {
+                path: e_path.display().to_string(),
+                why: r.message(),
+            }));
+            return (None, errors);
+        }
+    };
+    let communication = sources.add(SourceFile::new(
+        e_path.display().to_string(),
+        Origin::Disk(e_path.clone()),
+        e_text,
+    ));
+    // `executable: PROGRAM [-e FILE.e] SPECFILE`: the specification file
+    // is the last word, when there is one besides the program.
+    let spec_name = sources.get(communication).text.lines().find_map(|line| {
+        let (key, rest) = line.split_once(':')?;
+        if !key.trim().eq_ignore_ascii_case("executable") {
+            return None;
+        }
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        (words.len() > 1).then(|| words[words.len() - 1].to_string())
+    });
+    let specification = spec_name.and_then(|name| {
+        let path = dir.join(&name);
+        match finder.read(&path) {
+            Ok(text) => Some(sources.add(SourceFile::new(
+                path.display().to_string(),
+                Origin::Disk(path.clone()),
+                text,
+            ))),
+            Err(r) => {
+                errors.push(Report::new(LoadError::EnvironmentUnreadable {
+                    path: path.display().to_string(),
+                    why: r.message(),
+                }));
+                None
+            }
+        }
+    });
+    (
+        Some(EnvironmentFiles {
+            communication,
+            specification,
+        }),
+        errors,
+    )
+}
