@@ -9,9 +9,14 @@
 //! with four or more parameters, `p2..p4 =` the normalised direction of
 //! most light.
 //!
-//! The vlab program walks a voxel grid to find the spheres along a ray;
-//! lsys tests every sphere (each at most once per ray), which is what the
-//! grid is an accelerator for. Arithmetic is in `f32` as the program's.
+//! The spheres a ray meets are found as the vlab program finds them: by
+//! walking a voxel grid (`grid size:`) from the sphere's centre, each
+//! voxel listing the spheres near it, each sphere counted once per ray.
+//! That walk places voxel centres without the grid's origin, so when the
+//! grid does not start at 0 it can step past a voxel and miss a sphere
+//! that a brute-force test would find; lsys walks it the same way, so
+//! that models derive the strings cpfg derives (`docs/environments.md`).
+//! Arithmetic is in `f32` where the program's is, `f64` where C promotes.
 
 use std::f64::consts::PI;
 
@@ -40,6 +45,8 @@ pub struct Settings {
     pub cie_sky: bool,
     /// `source direction: x y z intensity` lines (replace the sky).
     pub sources: Vec<([f32; 3], f32)>,
+    /// `grid size: XxYxZ` of the voxel grid the rays walk (1x1x1).
+    pub grid: [i32; 3],
 }
 
 impl Default for Settings {
@@ -53,6 +60,7 @@ impl Default for Settings {
             estimate_area: false,
             cie_sky: false,
             sources: Vec::new(),
+            grid: [1, 1, 1],
         }
     }
 }
@@ -85,6 +93,24 @@ impl Settings {
                     s.samples = n as u32;
                 }
                 "estimate intersection area" => s.estimate_area = switch(line.value),
+                "grid size" => {
+                    let v: Vec<f64> = line
+                        .value
+                        .split(['x', ',', ';', ' ', '\t'])
+                        .filter(|w| !w.is_empty())
+                        .filter_map(number)
+                        .collect();
+                    for (k, n) in v.iter().take(3).enumerate() {
+                        if !(1.0..=1024.0).contains(n) {
+                            return Err(bad(
+                                &line.key,
+                                line.span,
+                                "each side of the grid is 1 to 1024 voxels".into(),
+                            ));
+                        }
+                        s.grid[k] = *n as i32;
+                    }
+                }
                 "use cie formula" => {
                     s.cie_sky = line.value.split_whitespace().next() == Some("yes")
                 }
@@ -336,17 +362,23 @@ impl Program for Light {
                 })
             })
             .collect();
-        let lit: Vec<&Sphere> = spheres.iter().flatten().collect();
+        let lit: Vec<Sphere> = spheres.iter().flatten().copied().collect();
+        let grid = Grid::new(s.grid, &lit, s.beam_radius);
+        let mut k = 0;
         spheres
             .iter()
             .zip(queries)
             .map(|(me, q)| {
                 let mut reply = vec![None; q.params.len()];
-                let Some(me) = me else { return reply };
+                if me.is_none() {
+                    return reply;
+                }
+                let lv = k;
+                k += 1;
                 let mut sum = 0f32;
                 let mut best = [0f32; 3];
                 for smp in &self.samples {
-                    let a = self.received(me, smp, &lit);
+                    let a = self.received(lv, smp, &lit, &grid);
                     sum += a;
                     for (b, d) in best.iter_mut().zip(smp.dir) {
                         *b += a * d;
@@ -365,33 +397,172 @@ impl Program for Light {
     }
 }
 
+/// The voxel grid of one pass, enclosing every sphere.
+struct Grid {
+    size: [i32; 3],
+    pos: [f32; 3],
+    range: [f32; 3],
+    /// Per voxel (x fastest), the spheres near it, the last added first.
+    cells: Vec<Vec<usize>>,
+}
+
+impl Grid {
+    /// The grid around `spheres` (in query order), each voxel listing the
+    /// spheres within reach of its centre.
+    fn new(size: [i32; 3], spheres: &[Sphere], beam: f32) -> Grid {
+        let mut pos = [0f32; 3];
+        let mut range = [0f32; 3];
+        let mut max_r = 0f32;
+        for (k, sp) in spheres.iter().enumerate() {
+            for c in 0..3 {
+                if k == 0 {
+                    pos[c] = sp.pos[c] - sp.radius;
+                    range[c] = 2.0 * sp.radius;
+                } else {
+                    let aux = pos[c] - (sp.pos[c] - sp.radius);
+                    if aux > 0.0 {
+                        pos[c] -= aux;
+                        range[c] += aux;
+                    }
+                    let aux = (sp.pos[c] + sp.radius) - (pos[c] + range[c]);
+                    if aux > 0.0 {
+                        range[c] += aux;
+                    }
+                }
+            }
+            if k == 0 || sp.radius > max_r {
+                max_r = sp.radius;
+            }
+        }
+        let n = (size[0] * size[1] * size[2]) as usize;
+        let mut grid = Grid {
+            size,
+            pos,
+            range,
+            cells: vec![Vec::new(); n],
+        };
+        let mut half = 0f32;
+        for c in 0..3 {
+            let aux = range[c] / size[c] as f32;
+            half += aux * aux;
+        }
+        let half = (0.5 * (half as f64).sqrt()) as f32;
+        let centre = |c: usize, i: i32| {
+            (pos[c] as f64 + (i as f64 + 0.5) / size[c] as f32 as f64 * range[c] as f64) as f32
+        };
+        for (lv, sp) in spheres.iter().enumerate() {
+            let reach = sp.radius + max_r * beam;
+            let mut lo = [0i32; 3];
+            let mut hi = [0i32; 3];
+            for c in 0..3 {
+                let l = ((sp.pos[c] - reach - pos[c]) / range[c] * size[c] as f32).floor() - 1.0;
+                lo[c] = l.max(0.0) as i32;
+                let h = 1.0 + ((sp.pos[c] + reach - pos[c]) / range[c] * size[c] as f32).floor();
+                hi[c] = if h >= size[c] as f32 {
+                    size[c] - 1
+                } else {
+                    h as i32
+                };
+            }
+            let limit = (reach + half) * (reach + half);
+            for z in lo[2]..=hi[2] {
+                let pz = centre(2, z);
+                for y in lo[1]..=hi[1] {
+                    let py = centre(1, y);
+                    for x in lo[0]..=hi[0] {
+                        let px = centre(0, x);
+                        let d = [sp.pos[0] - px, sp.pos[1] - py, sp.pos[2] - pz];
+                        if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= limit {
+                            let i = grid.index([x, y, z]);
+                            grid.cells[i].insert(0, lv);
+                        }
+                    }
+                }
+            }
+        }
+        grid
+    }
+
+    /// The voxel `node`, clamped into the grid.
+    fn index(&self, node: [i32; 3]) -> usize {
+        let n = [0, 1, 2].map(|c| node[c].clamp(0, self.size[c] - 1));
+        (n[2] * self.size[1] * self.size[0] + n[1] * self.size[0] + n[0]) as usize
+    }
+}
+
 impl Light {
-    /// The light `me` receives from `smp`, attenuated by every other
-    /// sphere the ray meets (each once).
-    fn received(&self, me: &Sphere, smp: &Sample, all: &[&Sphere]) -> f32 {
+    /// The light sphere `lv` receives from `smp`: the ray from its centre
+    /// walks the grid, and every other sphere listed in a voxel it visits
+    /// that the ray meets reduces it (each sphere once).
+    fn received(&self, lv: usize, smp: &Sample, spheres: &[Sphere], grid: &Grid) -> f32 {
         if smp.intensity == 0.0 {
             return 0.0;
         }
         let s = &self.settings;
-        let red = s.transmittance;
-        let mut reduction = 1f32;
-        for other in all {
-            if std::ptr::eq(*other, me) {
-                continue;
-            }
-            if s.estimate_area {
-                let a = covered_area(me.pos, smp.dir, other, me.radius);
-                if a > 0.0 {
-                    reduction *= 1.0 - (1.0 - red) * a / me.area;
-                }
-            } else {
-                let a = chord(me.pos, smp.dir, other, s.beam_radius * me.radius);
-                if a > 0.0 {
-                    let e = a as f64 / (2.0 * (other.radius + s.beam_radius * me.radius) as f64);
-                    reduction = (reduction as f64 * (red as f64).powf(e)) as f32;
-                }
+        let me = &spheres[lv];
+        let pt = me.pos;
+        let size = grid.size;
+        let mut step = [1i64, size[0] as i64, (size[0] * size[1]) as i64];
+        let mut node_size = [0f32; 3];
+        for c in 0..3 {
+            node_size[c] = (0.5 * grid.range[c] as f64 / size[c] as f32 as f64) as f32;
+            if smp.dir[c] < 0.0 {
+                node_size[c] = -node_size[c];
+                step[c] = -step[c];
             }
         }
-        smp.intensity * reduction
+        let mut node = [0i32; 3];
+        let mut middle = [0f32; 3];
+        for c in 0..3 {
+            node[c] = ((pt[c] - grid.pos[c]) / grid.range[c] * size[c] as f32).floor() as i32;
+            // As chiba computes it: without the grid's origin.
+            middle[c] =
+                ((node[c] as f64 + 0.5) / size[c] as f32 as f64 * grid.range[c] as f64) as f32;
+        }
+        let mut cell = grid.index(node) as i64;
+        let mut counted = vec![false; spheres.len()];
+        counted[lv] = true;
+        let mut reduction = 1f32;
+        let red = s.transmittance;
+        loop {
+            let list = usize::try_from(cell).ok().and_then(|i| grid.cells.get(i));
+            for &o in list.into_iter().flatten() {
+                if counted[o] {
+                    continue;
+                }
+                let other = &spheres[o];
+                if s.estimate_area {
+                    let a = covered_area(pt, smp.dir, other, me.radius);
+                    if a > 0.0 {
+                        counted[o] = true;
+                        reduction *= 1.0 - (1.0 - red) * a / me.area;
+                    }
+                } else {
+                    let a = chord(pt, smp.dir, other, s.beam_radius * me.radius);
+                    if a > 0.0 {
+                        counted[o] = true;
+                        let e =
+                            a as f64 / (2.0 * (other.radius + s.beam_radius * me.radius) as f64);
+                        reduction = (reduction as f64 * (red as f64).powf(e)) as f32;
+                    }
+                }
+            }
+            // The face of the voxel the ray leaves through.
+            let mut smallest = (middle[0] + node_size[0] - pt[0]).abs();
+            let mut ind = 0;
+            for c in 1..3 {
+                let aux = middle[c] + node_size[c] - pt[c];
+                if (aux * smp.dir[ind]).abs() < (smallest * smp.dir[c]).abs() {
+                    smallest = aux;
+                    ind = c;
+                }
+            }
+            middle[ind] += 2.0 * node_size[ind];
+            cell += step[ind];
+            node[ind] += if smp.dir[ind] > 0.0 { 1 } else { -1 };
+            if node[ind] < 0 || node[ind] >= size[ind] {
+                return smp.intensity * reduction;
+            }
+        }
     }
 }

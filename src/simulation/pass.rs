@@ -96,15 +96,26 @@ impl Environment for EnvironmentPass {
             return Ok(());
         }
         let params = string.params();
+        // cpfg sends its environment vectors with z negated relative to the
+        // frame its `?P` modules report (lsys's cpfg frame): found with the
+        // light-sierp-tetra model, whose chiba answers depend on absolute
+        // positions and match cpfg's exactly only so.
+        let flip = |v: glam::DVec3| {
+            if ctx.program.profile.cpfg_turtle {
+                glam::DVec3::new(v.x, v.y, -v.z)
+            } else {
+                v
+            }
+        };
         let queries: Vec<Query> = sites
             .iter()
             .map(|s| Query {
                 index: s.index,
                 params: params[s.offset..s.offset + s.arity].to_vec(),
-                position: self.vector(FieldKind::Position, s.frame.pos),
-                heading: self.vector(FieldKind::Heading, s.frame.h),
-                left: self.vector(FieldKind::Left, s.frame.l),
-                up: self.vector(FieldKind::Up, s.frame.u),
+                position: self.vector(FieldKind::Position, flip(s.frame.pos)),
+                heading: self.vector(FieldKind::Heading, flip(s.frame.h)),
+                left: self.vector(FieldKind::Left, flip(s.frame.l)),
+                up: self.vector(FieldKind::Up, flip(s.frame.u)),
                 line_width: self.scalar(FieldKind::LineWidth, s.width),
                 scale: self.scalar(FieldKind::ScaleFactor, s.scale),
             })
