@@ -148,10 +148,10 @@ def main():
     else:
         for r in rows:
             print("%-70s check: %s%s\n    str: %s\n    homo: %s" % (
-                r[0], r[1], "  [environmental program: out of scope]" if r[4] else "", r[2], r[3]))
+                r[0], r[1], "  [environmental program]" if r[4] else "", r[2], r[3]))
     print("\n%d of %d models pass check; %d of %d models with expected strings derive them exactly"
           % (n_check, n, len(exact), len(with_exp)))
-    print("without environmental programs (-e): %d of %d" % (len(exact_no_env), len(no_env)))
+    print("without environmental programs (-e): %d of %d; with one: %d of %d" % (len(exact_no_env), len(no_env), len(exact) - len(exact_no_env), len(with_exp) - len(no_env)))
     return 0 if len(exact) == len(with_exp) else 1
 
 

@@ -1,0 +1,139 @@
+//! Environments of Open L-systems: the collision (honda81) and light
+//! (chiba) programs answer exactly as their definitions say, and a model
+//! of our own that runs with an environment file grows as the collision
+//! rule implies (Pascal's triangle mod 2).
+
+use std::process::Command;
+
+use lsys::environment::collision::{Collision, Settings as CollisionSettings};
+use lsys::environment::light::{Light, Settings as LightSettings};
+use lsys::environment::{Program, Query};
+
+fn query(params: &[f64], pos: [f32; 3]) -> Query {
+    Query {
+        index: 0,
+        params: params.to_vec(),
+        position: Some(pos),
+        heading: None,
+        left: None,
+        up: None,
+        line_width: None,
+        scale: None,
+    }
+}
+
+fn collide(radius: f32, three_d: bool, queries: &[Query]) -> Vec<Option<f64>> {
+    Collision::new(CollisionSettings { radius, three_d })
+        .respond(queries)
+        .into_iter()
+        .map(|r| r[0])
+        .collect()
+}
+
+#[test]
+fn two_coincident_queries_of_equal_vigor_both_stop() {
+    let q = [
+        query(&[0.5], [1.0, 2.0, 3.0]),
+        query(&[0.5], [1.0, 2.0, 3.0]),
+    ];
+    assert_eq!(collide(0.0, true, &q), [Some(0.0), Some(0.0)]);
+}
+
+#[test]
+fn the_stronger_query_goes_on_and_the_weaker_stops() {
+    let q = [query(&[0.9], [0.0; 3]), query(&[0.5], [0.0; 3])];
+    assert_eq!(collide(0.1, true, &q), [Some(1.0), Some(0.0)]);
+}
+
+#[test]
+fn a_distance_of_exactly_the_radius_collides_and_beyond_does_not() {
+    let at = |d: f32| [query(&[1.0], [0.0; 3]), query(&[1.0], [d, 0.0, 0.0])];
+    assert_eq!(collide(0.5, true, &at(0.5)), [Some(0.0), Some(0.0)]);
+    assert_eq!(collide(0.5, true, &at(0.5001)), [Some(1.0), Some(1.0)]);
+}
+
+#[test]
+fn different_groups_never_collide() {
+    let q = [query(&[1.0, 1.0], [0.0; 3]), query(&[1.0, 2.0], [0.0; 3])];
+    assert_eq!(collide(1.0, true, &q), [Some(1.0), Some(1.0)]);
+}
+
+#[test]
+fn without_3d_only_x_and_z_count() {
+    let q = [
+        query(&[1.0], [0.0, 0.0, 0.0]),
+        query(&[1.0], [0.0, 5.0, 0.0]),
+    ];
+    assert_eq!(collide(0.1, false, &q), [Some(0.0), Some(0.0)]);
+    assert_eq!(collide(0.1, true, &q), [Some(1.0), Some(1.0)]);
+    // A query without a parameter is not the program's: no reply.
+    let r = Collision::new(CollisionSettings::default()).respond(&[query(&[], [0.0; 3])]);
+    assert_eq!(r, [Vec::<Option<f64>>::new()]);
+}
+
+/// One source straight above, the given transmittance and area mode.
+fn light(transmittance: f32, estimate_area: bool) -> Light {
+    Light::new(LightSettings {
+        transmittance,
+        estimate_area,
+        beam_radius: if estimate_area { 1.0 } else { 0.0 },
+        sources: vec![([0.0, 1.0, 0.0], 1.0)],
+        grid: [8, 8, 8],
+        ..LightSettings::default()
+    })
+}
+
+#[test]
+fn an_isolated_sphere_receives_all_the_light() {
+    for area in [false, true] {
+        let r = light(0.3, area).respond(&[query(&[1.0], [3.0, 4.0, 5.0])]);
+        assert_eq!(r[0][0], Some(1.0), "estimate area {area}");
+    }
+}
+
+#[test]
+fn an_equal_occluder_on_the_light_axis_passes_exactly_the_transmittance() {
+    for area in [false, true] {
+        let q = [query(&[1.0], [0.0; 3]), query(&[1.0], [0.0, 5.0, 0.0])];
+        let r = light(0.25, area).respond(&q);
+        assert_eq!(
+            r[0][0],
+            Some(0.25),
+            "estimate area {area}: the lower sphere"
+        );
+        assert_eq!(r[1][0], Some(1.0), "estimate area {area}: the upper sphere");
+    }
+}
+
+#[test]
+fn four_parameters_get_the_direction_of_most_light() {
+    let r = light(0.5, false).respond(&[query(&[1.0, 0.0, 0.0, 0.0], [0.0; 3])]);
+    assert_eq!(r[0], [Some(1.0), Some(0.0), Some(1.0), Some(0.0)]);
+}
+
+#[test]
+fn sierpinski_tentacles_follow_pascals_triangle_mod_2() {
+    let dir = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/environment/sierpinski"
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["derive", "sierpinski.l", "-n", "16", "--every"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    // The environment is found and run: no "needs an environmental
+    // program" warning.
+    assert!(!err.contains("environment"), "{err}");
+    let text = String::from_utf8_lossy(&o.stdout);
+    let sensors: Vec<u32> = text
+        .lines()
+        .map(|l| l.matches("?E").count() as u32)
+        .collect();
+    // After step k the string holds the two sensors of each live tip of
+    // row k: 2 * 2^popcount(k).
+    let expected: Vec<u32> = (0..=16u32).map(|k| 2 << k.count_ones()).collect();
+    assert_eq!(sensors, expected);
+}
