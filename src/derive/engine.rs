@@ -90,7 +90,9 @@ impl<'p> Derivation<'p> {
             prev_len: 0,
         };
         d.fast = Plan::new(&d.tab);
-        d.decompose()?;
+        if program.profile.decompose_axiom {
+            d.decompose()?;
+        }
         mem::swap(&mut d.cur, &mut d.next);
         Ok(d)
     }

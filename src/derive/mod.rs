@@ -5,7 +5,10 @@
 //! # Semantics
 //!
 //! * **Axiom.** Step 0 is the axiom's successor chunk (it may call `ran`),
-//!   followed by the decomposition.
+//!   followed by the decomposition in the paper's profile; the cpfg
+//!   profile (`Profile::decompose_axiom` off) decomposes only after each
+//!   step's productions, as cpfg does, so its step 0 is the axiom as
+//!   written.
 //! * **Dispatch.** At every position the candidates are the productions
 //!   whose strict predecessor starts with the module's symbol, in file
 //!   order. Modules without candidates are copied (in bulk runs).

@@ -77,6 +77,12 @@ pub struct Profile {
     /// The turtle starts in cpfg's left-handed frame (U = −z) and `@Ts`
     /// bends toward the tropism vector as cpfg does.
     pub cpfg_turtle: bool,
+    /// The axiom is decomposed before the first step (step 0 is the
+    /// decomposed axiom). cpfg decomposes only after each step's
+    /// productions, so its step 0 is the axiom as written: its first
+    /// environment pass sees `?E` modules of the axiom, not those its
+    /// decomposition would write.
+    pub decompose_axiom: bool,
 }
 
 impl Profile {
@@ -92,6 +98,7 @@ impl Profile {
             context_through_brackets: cpfg,
             fast_path: !cpfg,
             cpfg_turtle: cpfg,
+            decompose_axiom: !cpfg,
         }
     }
 

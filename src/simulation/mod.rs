@@ -141,12 +141,7 @@ impl<'p> Simulation<'p> {
     /// `StartEach:`, productions, decomposition, the turtle's answers to
     /// query modules, `EndEach:`, and `End:` when this was the target step.
     pub fn step(&mut self) -> Result<(), DeriveError> {
-        // cpfg runs an environment pass after each step but the last: the
-        // axiom gets none (unlike the turtle's `?P`, which every
-        // interpretation fills).
-        if self.derivation.step_number() > 0 {
-            self.answer(false)?;
-        }
+        self.answer(false)?;
         self.derivation.rewrite_step()?;
         self.answer(true)?;
         self.derivation.end_each()?;
