@@ -140,3 +140,68 @@ fn sierpinski_tentacles_follow_pascals_triangle_mod_2() {
         .collect();
     assert_eq!(sensors, expected);
 }
+
+/// A 2×2 SGI image, stored verbatim, channels red then green then blue,
+/// rows from the bottom.
+fn sgi_2x2(red: [u8; 4], green: [u8; 4]) -> Vec<u8> {
+    let mut b = vec![0u8; 512];
+    b[0..2].copy_from_slice(&474u16.to_be_bytes());
+    b[2] = 0; // verbatim
+    b[3] = 1; // one byte per value
+    b[4..6].copy_from_slice(&3u16.to_be_bytes());
+    b[6..8].copy_from_slice(&2u16.to_be_bytes());
+    b[8..10].copy_from_slice(&2u16.to_be_bytes());
+    b[10..12].copy_from_slice(&3u16.to_be_bytes());
+    b.extend_from_slice(&red);
+    b.extend_from_slice(&green);
+    b.extend_from_slice(&[0; 4]);
+    b
+}
+
+#[test]
+fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &[u8]| std::fs::write(dir.path().join(name), text).unwrap();
+    w("specifications", b"cpfg -e field.e patch.l\n");
+    w(
+        "field.e",
+        b"executable: clover -e field.e field.spec\nturtle position:P:%g %g %g\n",
+    );
+    w(
+        "field.spec",
+        b"grid size: 2x2\ngrid position: 0 0\ngrid range: 2x2\ntransmittance: 0.5\ninput image: light.rgb\n",
+    );
+    // Green (the light) 255, 128 in the bottom row, 64, 0 in the top one;
+    // red (the ratio) 64 everywhere.
+    w("light.rgb", &sgi_2x2([64; 4], [255, 128, 64, 0]));
+    // A leaf (?E(1, area)) on the bottom-left cell comes before the query
+    // of that cell in the string: the answers see it.
+    w(
+        "patch.l",
+        b"Lsystem: 1\nderivation length: 1\nAxiom: @M(0.5,0.5,0)?E(1,0.0001)?E(0,0)\
+          @M(1.5,0.5,0)?E(0)@M(0.5,1.5,0)?E(0)@M(1.5,1.5,0)?E(0)@M(5,5,0)?E(0)\nendlsystem\n",
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["derive", "patch.l"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let out = String::from_utf8_lossy(&o.stdout);
+    let answers: Vec<&str> = out
+        .split_whitespace()
+        .filter(|m| m.starts_with("?E"))
+        .collect();
+    assert_eq!(
+        answers,
+        [
+            "?E(1,0.0001)",  // a leaf: no answer
+            "?E(0.5,0.5)",   // full light under one leaf (t = 0.5), ratio 64/128
+            "?E(0.5019608)", // 128/255
+            "?E(0.2509804)", // 64/255
+            "?E(0)",         // no light
+            "?E(0)",         // outside the grid
+        ]
+    );
+}

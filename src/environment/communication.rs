@@ -8,11 +8,12 @@ use miette::SourceSpan;
 
 use super::error::EnvironmentError;
 use super::format::Conversion;
-use super::{collision, light, Program};
-use crate::source::{FileId, SourceMap};
+use super::{clover, collision, light, Program};
+use crate::load::EnvironmentFiles;
+use crate::source::SourceMap;
 
 /// The environmental programs lsys runs, by their vlab names.
-pub const PROGRAMS: [&str; 2] = ["honda81", "chiba"];
+pub const PROGRAMS: [&str; 3] = ["honda81", "chiba", "clover"];
 
 /// A turtle field sent with each query, with its format's conversions.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,6 +52,7 @@ impl FieldKind {
 pub enum Settings {
     Collision(collision::Settings),
     Light(light::Settings),
+    Clover(clover::Settings),
 }
 
 /// An environment as configured by a model's files: what a simulation
@@ -69,6 +71,7 @@ impl Environment {
         match &self.settings {
             Settings::Collision(s) => Box::new(collision::Collision::new(s.clone())),
             Settings::Light(s) => Box::new(light::Light::new(s.clone())),
+            Settings::Clover(s) => Box::new(clover::Clover::new(s.clone())),
         }
     }
 
@@ -111,9 +114,9 @@ pub(super) fn lines(text: &str) -> Vec<Line<'_>> {
 /// file `specification` of `sources` into an [`Environment`].
 pub fn configure(
     sources: &SourceMap,
-    communication: FileId,
-    specification: Option<FileId>,
+    files: &EnvironmentFiles,
 ) -> Result<Environment, Box<EnvironmentError>> {
+    let (communication, specification) = (files.communication, files.specification);
     let file = sources.get(communication);
     let text = file.text.as_str();
     let mut program = None;
@@ -161,6 +164,7 @@ pub fn configure(
     let settings = match name.rsplit('/').next().unwrap_or(&name) {
         "honda81" => Settings::Collision(collision::Settings::read(spec_text, bad)?),
         "chiba" => Settings::Light(light::Settings::read(spec_text, bad)?),
+        "clover" => Settings::Clover(clover::Settings::read(spec_text, &files.data, bad)?),
         _ => {
             return Err(Box::new(EnvironmentError::UnknownProgram {
                 name,

@@ -4,18 +4,20 @@
 //! communication file formats them); output: for each query, the
 //! parameters the environment sets. The programs are native versions of
 //! the Virtual Laboratory's environmental programs (`ENVIRO/` in the vlab
-//! sources): [`collision`] (honda81) and [`light`] (chiba); a
+//! sources): [`collision`] (honda81), [`light`] (chiba) and [`clover`]; a
 //! model chooses one with its `.e` communication file ([`communication`]).
 //!
 //! This stage does no I/O and knows nothing of the turtle or of derive:
 //! the simulation loop (`crate::simulation`) interprets the string,
 //! builds the [`Query`] list and writes the replies back.
 
+pub mod clover;
 pub mod collision;
 pub mod communication;
 mod error;
 pub mod format;
 pub mod light;
+mod sgi;
 
 pub use communication::{configure, Environment, Field};
 pub use error::EnvironmentError;

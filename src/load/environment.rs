@@ -14,7 +14,7 @@ use super::include::IncludeFinder;
 use crate::source::{FileId, Origin, SourceFile, SourceMap};
 
 /// A model's environment files, as loaded.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct EnvironmentFiles {
     /// The communication file (`fractal.e`): the program and the turtle
     /// fields it is sent.
@@ -22,6 +22,9 @@ pub struct EnvironmentFiles {
     /// The program's specification file (`density.spec`), when the
     /// `executable:` line names one that could be read.
     pub specification: Option<FileId>,
+    /// The binary files the specification names (`input image: X.rgb`),
+    /// as the name written there and their bytes.
+    pub data: Vec<(String, std::sync::Arc<Vec<u8>>)>,
 }
 
 /// The environment files of `model`, if its `specifications` runs cpfg
@@ -99,10 +102,37 @@ pub(super) fn read_environment_files(
             }
         }
     });
+    // Binary inputs of the program (clover's `input image:`).
+    let mut data = Vec::new();
+    if let Some(spec) = specification {
+        let names: Vec<String> = sources
+            .get(spec)
+            .text
+            .lines()
+            .filter_map(|l| {
+                let (k, v) = l.split_once(':')?;
+                (k.trim() == "input image")
+                    .then(|| v.split([',', ';', ' ', '\t']).find(|w| !w.is_empty()))
+                    .flatten()
+                    .map(str::to_string)
+            })
+            .collect();
+        for name in names {
+            let path = dir.join(&name);
+            match finder.read_bytes(&path) {
+                Ok(bytes) => data.push((name, std::sync::Arc::new(bytes))),
+                Err(r) => errors.push(Report::new(LoadError::EnvironmentUnreadable {
+                    path: path.display().to_string(),
+                    why: r.message(),
+                })),
+            }
+        }
+    }
     (
         Some(EnvironmentFiles {
             communication,
             specification,
+            data,
         }),
         errors,
     )

@@ -116,9 +116,37 @@ impl IncludeFinder {
         Ok((full, text))
     }
 
+    /// Reads the binary file at `full` (an environment's input image) if
+    /// it is inside the allowed folders and at most [`MAX_SOURCE_BYTES`].
+    pub(super) fn read_bytes(&self, full: &Path) -> Result<Vec<u8>, Refused> {
+        self.confined(full)?;
+        let cause = |e: std::io::Error| Refused::NotFound {
+            full: full.to_path_buf(),
+            cause: e.to_string(),
+        };
+        let len = std::fs::metadata(full).map_err(cause)?.len();
+        if len > MAX_SOURCE_BYTES {
+            return Err(Refused::NotSource {
+                full: full.to_path_buf(),
+                why: format!(
+                    "it is {len} bytes long, more than the {} MiB lsys reads",
+                    MAX_SOURCE_BYTES >> 20
+                ),
+            });
+        }
+        std::fs::read(full).map_err(cause)
+    }
+
     /// Reads the file at `full` if it is inside the allowed folders and is
     /// a text file of at most [`MAX_SOURCE_BYTES`].
     pub(super) fn read(&self, full: &Path) -> Result<String, Refused> {
+        self.confined(full)?;
+        self.read_text(full)
+    }
+
+    /// `Err` when `full` resolves (links followed) outside the allowed
+    /// folders.
+    fn confined(&self, full: &Path) -> Result<(), Refused> {
         if let Ok(real) = std::fs::canonicalize(full) {
             // `real` is only compared, never shown: messages keep the
             // user's own relative paths.
@@ -137,6 +165,10 @@ impl IncludeFinder {
                 });
             }
         }
+        Ok(())
+    }
+
+    fn read_text(&self, full: &Path) -> Result<String, Refused> {
         match read_source(full) {
             Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
             Err(Unread::NotSource(why)) => Err(Refused::NotSource {

@@ -81,12 +81,8 @@ impl Resolver {
             .get("?E")
             .map(|id| self.symbols.list[id as usize].span)
         {
-            match self.environment_files {
-                Some(files) => match crate::environment::configure(
-                    &self.sources,
-                    files.communication,
-                    files.specification,
-                ) {
+            match &self.environment_files {
+                Some(files) => match crate::environment::configure(&self.sources, files) {
                     Ok(env) => environment = Some(env),
                     Err(e) if crate::diag::is_error(&*e) => {
                         self.errors.push(miette::Report::new(*e))
