@@ -198,7 +198,7 @@ pub struct LookArgs {
     /// Print statistics as JSON to standard output (modules, instances, vertices, triangles, bounds, timings).
     #[arg(long)]
     pub stats: bool,
-    /// Warn about placed components whose boxes interpenetrate (always on for `lsys pailou`).
+    /// Check the structure: every Pailou part touches its support, and no two components interpenetrate unless the relation matrix joins them (always on for `lsys pailou`; see docs/pailou.md).
     #[arg(long)]
     pub collisions: bool,
 }

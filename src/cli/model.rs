@@ -62,6 +62,7 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     use crate::pailou::{self, graph, PailouType};
     let mut defines = Vec::new();
+    let mut relations_text: Option<String> = None;
     let (layout, kind, title, name) = match &p.graph {
         Some(path) => {
             let text = match std::fs::read_to_string(path) {
@@ -81,8 +82,15 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
                 },
                 None => graph::RELATIONS.to_string(),
             };
-            match graph::read(&path.display().to_string(), &text, &relations) {
+            let found = graph::read(&path.display().to_string(), &text, &relations);
+            if p.relations.is_some() {
+                relations_text = Some(relations);
+            }
+            match found {
                 Ok(g) => {
+                    for u in &g.unplaced {
+                        eprintln!("lsys: warning: graph: {u}");
+                    }
                     defines = g.defines;
                     let stem = path
                         .file_stem()
@@ -164,6 +172,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         run: &p.run,
         look: &p.look,
         collisions: true,
+        relations: relations_text.as_deref(),
     };
     build_once(&job, out, &p.picture, format, color, Report::Stats).code
 }
@@ -178,8 +187,10 @@ pub(super) struct Job<'a> {
     source: Option<&'a SourceArgs>,
     run: &'a DeriveRun,
     look: &'a LookArgs,
-    /// Report interpenetrating components.
+    /// Run the structural check (supports and interpenetration).
     collisions: bool,
+    /// The relation matrix for it (`None`: the library's).
+    relations: Option<&'a str>,
 }
 
 /// A build from `lsys build`, `render` or `watch`.
@@ -192,6 +203,7 @@ pub(super) fn model_job(m: &ModelArgs) -> Job<'_> {
         run: &m.run,
         look: &m.look,
         collisions: m.look.collisions,
+        relations: None,
     }
 }
 
@@ -318,21 +330,10 @@ fn build_compiled(
         report(w, color);
     }
     if m.collisions {
-        let found = crate::mesh::collide::collisions(&built.scene);
-        for c in found.iter().take(20) {
-            eprintln!(
-                "lsys: warning: components {} and {} collide ({:.0}% of the smaller one's box is inside the other)",
-                c.a,
-                c.b,
-                c.shared * 100.0
-            );
-        }
-        if found.len() > 20 {
-            eprintln!(
-                "lsys: warning: ... and {} more collisions",
-                found.len() - 20
-            );
-        }
+        structural_warnings(
+            &built.scene,
+            m.relations.unwrap_or(crate::pailou::graph::RELATIONS),
+        );
     }
     if built.scene.triangle_count() == 0 {
         eprintln!(
@@ -366,6 +367,29 @@ fn build_compiled(
             eprintln!("lsys: cannot write {}: {e}", out.display());
             EX_IOERR
         }
+    }
+}
+
+/// Prints the structural check's problems as warnings (at most 40, then
+/// how many more).
+fn structural_warnings(scene: &crate::mesh::Scene, relations: &str) {
+    use crate::mesh::structure;
+    let rules = match structure::Rules::pailou(relations) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("lsys: warning: no structural check: the relation matrix does not read: {e}");
+            return;
+        }
+    };
+    let found = structure::check(scene, &rules);
+    for p in found.iter().take(40) {
+        eprintln!("lsys: warning: structure: {p}");
+    }
+    if found.len() > 40 {
+        eprintln!(
+            "lsys: warning: structure: ... and {} more problems",
+            found.len() - 40
+        );
     }
 }
 

@@ -96,6 +96,8 @@ pub struct Graph {
     pub kind: PailouType,
     /// `[defines]`: (name, value) as `-D` would give them.
     pub defines: Vec<(String, String)>,
+    /// Components the layout has no place for, one sentence each.
+    pub unplaced: Vec<String>,
 }
 
 struct Reader<'a> {
@@ -105,6 +107,8 @@ struct Reader<'a> {
     on: BTreeMap<&'a str, Vec<&'a str>>,
     /// id -> what attaches to it.
     under: BTreeMap<&'a str, Vec<&'a str>>,
+    /// Components the layout has taken a decoration or entrance from.
+    used: std::cell::RefCell<BTreeSet<String>>,
 }
 
 impl Reader<'_> {
@@ -128,12 +132,16 @@ impl Reader<'_> {
         self.kinds.get(id).copied().unwrap_or("")
     }
 
-    /// What of `kind` attaches to `id`.
+    /// What of `kind` attaches to `id` (each marked as used).
     fn attached(&self, id: &str, kind: &str) -> Vec<&str> {
-        self.under
+        let found: Vec<&str> = self
+            .under
             .get(id)
             .map(|v| v.iter().copied().filter(|x| self.kind(x) == kind).collect())
-            .unwrap_or_default()
+            .unwrap_or_default();
+        let mut used = self.used.borrow_mut();
+        used.extend(found.iter().map(|x| x.to_string()));
+        found
     }
 
     /// The pillars (or suspended pillars) a lintel rests on.
@@ -174,6 +182,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         kinds: BTreeMap::new(),
         on: BTreeMap::new(),
         under: BTreeMap::new(),
+        used: Default::default(),
     };
     for (id, kind) in &file.components {
         if !KINDS_OF_COMPONENT.contains(&kind.get_ref().as_str()) {
@@ -320,6 +329,28 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             "the Pailou grammar mirrors one half; decorate both halves alike".to_string(),
         ));
     }
+    r.used.borrow_mut().insert(centre.to_string());
+    for half in &halves {
+        for &(lintel, pillar) in half {
+            r.used.borrow_mut().insert(lintel.to_string());
+            r.used.borrow_mut().insert(pillar.to_string());
+        }
+    }
+    let unplaced = {
+        let used = r.used.borrow();
+        r.kinds
+            .iter()
+            .filter(|(id, _)| !used.contains(**id))
+            .map(|(id, kind)| {
+                let on = r.on.get(id).map(|v| v.join(", ")).unwrap_or_default();
+                if on.is_empty() {
+                    format!("`{id}` ({kind}) attaches to nothing and is not placed")
+                } else {
+                    format!("`{id}` ({kind}) on {on} is not placed: the layout has no place for it (docs/pailou.md, \"The layout\")")
+                }
+            })
+            .collect()
+    };
     let defines = file
         .defines
         .iter()
@@ -329,6 +360,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         layout: layouts.into_iter().next().expect("two halves"),
         kind,
         defines,
+        unplaced,
     })
 }
 
@@ -345,6 +377,15 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
             let d = &mut l.dec[i][j];
             decorate(r, current, d);
             if j == 0 {
+                // A Queti may be fixed to a pillar (the matrix allows it):
+                // it decorates the entrance whose outer pillar it is on.
+                let on_pillar = r.attached(outer, "queti");
+                if !on_pillar.is_empty() {
+                    d[QUETI] = true;
+                    d[YUNDAN] |= on_pillar
+                        .iter()
+                        .any(|q| !r.attached(q, "yundan").is_empty());
+                }
                 d[PILLAR_BASE] = !r.attached(outer, "pillar_base").is_empty();
                 d[PILLAR_TYPE] = kind == PailouType::Pillar;
                 d[PILLAR_ROOF] = !r.attached(outer, "clipped_roof").is_empty();
