@@ -89,7 +89,8 @@ pub fn roof(kind: RoofKind) -> TriMesh {
         let (a, b) = (at(NX, k), at(NX, k + 1));
         quad(&mut m, a, b, b + down, a + down);
     }
-    // The ridge along the top, raised at its ends.
+    // The ridge along the top, with end blocks no higher than it (what
+    // stands on a roof stands on its ridge, the top of its box).
     let top = height(kind, 0.0, 0.0);
     let half = match kind {
         RoofKind::Clipped => 0.5,
@@ -104,8 +105,8 @@ pub fn roof(kind: RoofKind) -> TriMesh {
         let x = s * (half - RIDGE * 0.6);
         cuboid(
             &mut m,
-            Vec3::new(x - RIDGE * 0.6, top, -RIDGE * 0.6),
-            Vec3::new(x + RIDGE * 0.6, top + RIDGE * 2.6, RIDGE * 0.6),
+            Vec3::new(x - RIDGE * 0.6, top - RIDGE * 0.6, -RIDGE * 0.6),
+            Vec3::new(x + RIDGE * 0.6, top + RIDGE, RIDGE * 0.6),
         );
     }
     normalise(&mut m);

@@ -115,7 +115,7 @@ impl Rules {
 fn mode(part: &str, support: &str) -> Mode {
     match part {
         "lintel" => Mode::Touch,
-        "queti" if support.ends_with("pillar") => Mode::Touch,
+        "queti" | "clipped_roof" if support.ends_with("pillar") => Mode::Touch,
         "queti" | "yundan" | "flower_board" | "inscribed_board" => Mode::Under,
         _ => Mode::On,
     }
@@ -235,10 +235,10 @@ pub fn check(scene: &Scene, rules: &Rules) -> Vec<Problem> {
     out
 }
 
-/// Footprints (x and z) overlap by more than the tolerance.
+/// Footprints (x and z) overlap (by more than a rounding error).
 fn footprints_meet(a: &Part, b: &Part) -> bool {
     let o = a.hi.min(b.hi) - a.lo.max(b.lo);
-    o.x > TOLERANCE && o.z > TOLERANCE
+    o.x > 1e-4 && o.z > 1e-4
 }
 
 /// How far apart two boxes are (0 when they touch or overlap).
@@ -307,9 +307,29 @@ fn support(p: &Part, kind: &str, parts: &[Part], rules: &Rules, out: &mut Vec<Pr
             Mode::Under => "hang under",
             Mode::Touch => "touch",
         };
+        let article = |k: &str| {
+            let k = k.replace('_', " ");
+            if k.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                format!("an {k}")
+            } else {
+                format!("a {k}")
+            }
+        };
         let mut words: Vec<String> = Vec::new();
-        for (k, m) in &wanted {
-            words.push(format!("{} a {}", how(*m), k.replace('_', " ")));
+        for m in [Mode::On, Mode::Under, Mode::Touch] {
+            let kinds: Vec<String> = wanted
+                .iter()
+                .filter(|(_, x)| *x == m)
+                .map(|(k, _)| article(k))
+                .collect();
+            if let Some((last, rest)) = kinds.split_last() {
+                let list = if rest.is_empty() {
+                    last.clone()
+                } else {
+                    format!("{} or {last}", rest.join(", "))
+                };
+                words.push(format!("{} {list}", how(m)));
+            }
         }
         out.push(Problem::Unsupported {
             part: p.name.clone(),

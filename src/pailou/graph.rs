@@ -384,7 +384,9 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
                     d[QUETI] = true;
                     d[YUNDAN] |= on_pillar
                         .iter()
-                        .any(|q| !r.attached(q, "yundan").is_empty());
+                        .map(|q| r.attached(q, "yundan").len())
+                        .sum::<usize>()
+                        > 0;
                 }
                 d[PILLAR_BASE] = !r.attached(outer, "pillar_base").is_empty();
                 d[PILLAR_TYPE] = kind == PailouType::Pillar;
@@ -396,9 +398,12 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
                 .attached(standing.first().copied().unwrap_or(""), "lintel")
                 .into_iter()
                 .find(|u| r.supports(u).len() == 2);
-            d[SIDE_CLIPPED_ROOFS] = standing
+            // every one looked at, so that each roof counts as placed
+            let roofs: usize = standing
                 .iter()
-                .any(|s| !r.attached(s, "clipped_roof").is_empty());
+                .map(|s| r.attached(s, "clipped_roof").len())
+                .sum();
+            d[SIDE_CLIPPED_ROOFS] = roofs > 0;
             match above {
                 Some(u) => current = u,
                 None => break,
@@ -411,14 +416,25 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
 fn decorate(r: &Reader, lintel: &str, d: &mut [bool; KINDS]) {
     let has = |k: &str| !r.attached(lintel, k).is_empty();
     let toukungs = r.attached(lintel, "middle_toukung");
-    let on_toukungs = |k: &str| toukungs.iter().any(|t| !r.attached(t, k).is_empty());
+    // every one looked at (no short cut), so that each counts as placed
+    let on_toukungs = |k: &str| {
+        toukungs
+            .iter()
+            .map(|t| r.attached(t, k).len())
+            .sum::<usize>()
+            > 0
+    };
     d[MIDDLE_TOUKUNGS] = !toukungs.is_empty();
     d[SIDE_TOUKUNGS] = has("side_toukung");
-    d[EAVES_ROOF] = has("eaves_roof") || on_toukungs("eaves_roof");
-    d[CLIPPED_ROOF] = has("clipped_roof") || on_toukungs("clipped_roof");
+    d[EAVES_ROOF] = has("eaves_roof") | on_toukungs("eaves_roof");
+    d[CLIPPED_ROOF] = has("clipped_roof") | on_toukungs("clipped_roof");
     let quetis = r.attached(lintel, "queti");
     d[QUETI] = !quetis.is_empty();
-    d[YUNDAN] = quetis.iter().any(|q| !r.attached(q, "yundan").is_empty());
+    d[YUNDAN] = quetis
+        .iter()
+        .map(|q| r.attached(q, "yundan").len())
+        .sum::<usize>()
+        > 0;
     d[FLOWER_BOARD] = has("flower_board");
     d[INSCRIBED_BOARD] = has("inscribed_board");
 }
