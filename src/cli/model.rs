@@ -262,6 +262,7 @@ fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
             grammar_dir,
             dirs: m.look.components.clone(),
             within: Vec::new(),
+            detail: m.look.detail,
         },
         mesh: MeshOptions {
             sides: m.look.facets,
