@@ -234,7 +234,7 @@ fn grammar_components_build_once_and_refuse_cycles() {
 
 /// The 15 Pailous of the paper's Table 3 (`examples/pailou/*.toml`, named
 /// by figure and style) build through `lsys pailou GRAPH` with the pillars
-/// and roofs their names promise, without colliding components, and pass
+/// and roofs their names promise, without a structural warning, and pass
 /// the glTF validator when it is installed.
 #[test]
 fn table_3_pailous_build_with_their_pillars_and_roofs() {
@@ -254,7 +254,8 @@ fn table_3_pailous_build_with_their_pillars_and_roofs() {
         let out = dir.path().join(format!("{stem}.glb"));
         let o = lsys(&["pailou", path_str(graph), "-o", path_str(&out), "--stats"]);
         assert!(o.status.success(), "{stem}: {}", stderr(&o));
-        assert!(!stderr(&o).contains("collide"), "{stem}: {}", stderr(&o));
+        // No structural warning (tests/pailou.rs has the details).
+        assert!(!stderr(&o).contains("warning"), "{stem}: {}", stderr(&o));
         let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let n: Vec<u64> = style.split('-').map(|x| x.parse().unwrap()).collect();
         let count = |c: &str| stats["instances"][c].as_u64().unwrap_or(0);

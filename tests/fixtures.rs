@@ -227,7 +227,7 @@ fn turtle() {
                 components: lsys::mesh::ComponentSearch {
                     grammar_dir: Some(Path::new(&rel(path)).parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
-                    within: Vec::new(),
+                    ..Default::default()
                 },
                 mesh: lsys::mesh::MeshOptions {
                     max_triangles: fixture_limit(&text, "--max-triangles")
@@ -262,7 +262,7 @@ fn examples_build() {
                 components: lsys::mesh::ComponentSearch {
                     grammar_dir: Some(path.parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
-                    within: Vec::new(),
+                    ..Default::default()
                 },
                 ..Default::default()
             };

@@ -134,7 +134,7 @@ fn namespaced_defines_set_a_grammar_components_own_defines() {
         "{fewer} {default} {more}"
     );
     // An unknown namespace is a diagnostic that lists the components.
-    let err = stats(&["std:pailou", "-o", out, "-D", "TX.NTL=3"]).unwrap_err();
+    let err = stats(&["std:pailou", "-o", out, "-D", "TMM.NTL=3"]).unwrap_err();
     assert!(err.contains("lsys::options::unknown_namespace"), "{err}");
     assert!(err.contains("did you mean `TM`?"), "{err}");
 }

@@ -216,6 +216,9 @@ pub struct LookArgs {
     /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
     pub components: Vec<PathBuf>,
+    /// Level of detail of procedural components: 0 a light preview (bare roofs), 1 roofs with rows of round tiles, 2 twice the tiles.
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=2))]
+    pub detail: u8,
     /// Facets around tubes, spheres and discs (3 to 64).
     #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(3..=64))]
     pub facets: u32,
@@ -225,7 +228,7 @@ pub struct LookArgs {
     /// Print statistics as JSON to standard output (modules, instances, vertices, triangles, bounds, timings).
     #[arg(long)]
     pub stats: bool,
-    /// Warn about placed components whose boxes interpenetrate (always on for `lsys pailou`).
+    /// Check the structure: every Pailou part touches its support, and no two components interpenetrate unless the relation matrix joins them (always on for `lsys pailou`; see docs/pailou.md).
     #[arg(long)]
     pub collisions: bool,
 }

@@ -110,7 +110,7 @@ fn check(args: &CheckArgs, color: bool) -> i32 {
             let search = crate::mesh::ComponentSearch {
                 grammar_dir: super::model::grammar_dir(&Input::from_arg(&c.file)),
                 dirs: args.components.clone(),
-                within: Vec::new(),
+                ..Default::default()
             };
             let missing = search.find_all(p);
             for e in &missing {

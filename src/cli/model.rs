@@ -62,6 +62,7 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     use crate::pailou::{self, graph, PailouType};
     let mut defines = Vec::new();
+    let mut relations_text: Option<String> = None;
     let (layout, kind, title, name) = match &p.graph {
         Some(path) => {
             let text = match std::fs::read_to_string(path) {
@@ -81,8 +82,15 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
                 },
                 None => graph::RELATIONS.to_string(),
             };
-            match graph::read(&path.display().to_string(), &text, &relations) {
+            let found = graph::read(&path.display().to_string(), &text, &relations);
+            if p.relations.is_some() {
+                relations_text = Some(relations);
+            }
+            match found {
                 Ok(g) => {
+                    for u in &g.unplaced {
+                        eprintln!("lsys: warning: graph: {u}");
+                    }
                     defines = g.defines;
                     let stem = path
                         .file_stem()
@@ -129,6 +137,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     let input = pailou::input(&layout, kind, &title, &name);
     // The command line's -D win over the graph's [defines].
     defines.extend(p.define.iter().cloned());
+    toukung_levels(&mut defines);
     if p.emit_graph {
         print!("{}", graph::emit(&layout, kind, &title));
     }
@@ -164,8 +173,27 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         run: &p.run,
         look: &p.look,
         collisions: true,
+        relations: relations_text.as_deref(),
     };
     build_once(&job, out, &p.picture, format, color, Report::Stats).code
+}
+
+/// The Pailou's Toukung levels `NTL` and those of its Toukungs (`TM.NTL`,
+/// `TS.NTL`) agree: the grammar sizes the Toukung rows from `NTL`, so
+/// `-D NTL=7` also reaches the components, and `-D TM.NTL=7` alone sets
+/// the Pailou's `NTL` too (the side Toukungs follow unless given).
+fn toukung_levels(defines: &mut Vec<(String, String)>) {
+    let last = |d: &[(String, String)], n: &str| {
+        d.iter().rev().find(|(k, _)| k == n).map(|(_, v)| v.clone())
+    };
+    let ntl = last(defines, "NTL").or_else(|| last(defines, "TM.NTL"));
+    if let Some(v) = ntl {
+        for name in ["NTL", "TM.NTL", "TS.NTL"] {
+            if last(defines, name).is_none() {
+                defines.push((name.to_string(), v.clone()));
+            }
+        }
+    }
 }
 
 /// One build: the grammar and the options that shape it.
@@ -178,8 +206,10 @@ pub(super) struct Job<'a> {
     source: Option<&'a SourceArgs>,
     run: &'a DeriveRun,
     look: &'a LookArgs,
-    /// Report interpenetrating components.
+    /// Run the structural check (supports and interpenetration).
     collisions: bool,
+    /// The relation matrix for it (`None`: the library's).
+    relations: Option<&'a str>,
 }
 
 /// A build from `lsys build`, `render` or `watch`.
@@ -192,6 +222,7 @@ pub(super) fn model_job(m: &ModelArgs) -> Job<'_> {
         run: &m.run,
         look: &m.look,
         collisions: m.look.collisions,
+        relations: None,
     }
 }
 
@@ -236,6 +267,7 @@ fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
             grammar_dir,
             dirs: m.look.components.clone(),
             within: Vec::new(),
+            detail: m.look.detail,
         },
         mesh: MeshOptions {
             sides: m.look.facets,
@@ -325,21 +357,10 @@ fn build_compiled(
         report(w, color);
     }
     if m.collisions {
-        let found = crate::mesh::collide::collisions(&built.scene);
-        for c in found.iter().take(20) {
-            eprintln!(
-                "lsys: warning: components {} and {} collide ({:.0}% of the smaller one's box is inside the other)",
-                c.a,
-                c.b,
-                c.shared * 100.0
-            );
-        }
-        if found.len() > 20 {
-            eprintln!(
-                "lsys: warning: ... and {} more collisions",
-                found.len() - 20
-            );
-        }
+        structural_warnings(
+            &built.scene,
+            m.relations.unwrap_or(crate::pailou::graph::RELATIONS),
+        );
     }
     if built.scene.triangle_count() == 0 {
         eprintln!(
@@ -373,6 +394,29 @@ fn build_compiled(
             eprintln!("lsys: cannot write {}: {e}", out.display());
             EX_IOERR
         }
+    }
+}
+
+/// Prints the structural check's problems as warnings (at most 40, then
+/// how many more).
+fn structural_warnings(scene: &crate::mesh::Scene, relations: &str) {
+    use crate::mesh::structure;
+    let rules = match structure::Rules::pailou(relations) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("lsys: warning: no structural check: the relation matrix does not read: {e}");
+            return;
+        }
+    };
+    let found = structure::check(scene, &rules);
+    for p in found.iter().take(40) {
+        eprintln!("lsys: warning: structure: {p}");
+    }
+    if found.len() > 40 {
+        eprintln!(
+            "lsys: warning: structure: ... and {} more problems",
+            found.len() - 40
+        );
     }
 }
 

@@ -34,6 +34,10 @@ pub enum Action {
     PitchAround,
     RollHorizontal,
     HeadingUp,
+    /// Mirror the frame: negate L, so that what follows is drawn as the
+    /// mirror image (turns toward L go the other way, components placed
+    /// after it are mirrored in their width).
+    Mirror,
     Cut,
     Push,
     Pop,
@@ -371,6 +375,13 @@ pub const COMMANDS: &[Command] = &[
     cmd("@Dd", (0, 1), "1", ScaleDiv, "divide the step scale by s"),
     cmd("@L", (0, 1), "", Nothing, "label (accepted, draws nothing)"),
     cmd("@H", (0, 0), "", HeadingUp, "turn the heading straight up"),
+    cmd(
+        "@X",
+        (0, 0),
+        "",
+        Mirror,
+        "mirror the frame (negate the left axis): what follows is drawn mirrored, as the paper's `|` between two halves means",
+    ),
 ];
 
 /// The command named `symbol`, if any.

@@ -13,7 +13,7 @@ use super::scene::{Component, Material, Part, TriMesh};
 use crate::stdlib;
 
 /// Where components are looked for, in order.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ComponentSearch {
     /// The grammar file's directory: `components/X.obj` beside it.
     pub grammar_dir: Option<PathBuf>,
@@ -22,6 +22,9 @@ pub struct ComponentSearch {
     /// The grammar components being built around this search, outermost
     /// first (to refuse cycles).
     pub within: Vec<String>,
+    /// Level of detail of procedural components (roofs): 0 preview, 1 the
+    /// default, 2 fine (`--detail`).
+    pub detail: u8,
 }
 
 /// Where a component's OBJ text came from.
@@ -33,6 +36,20 @@ enum Found {
     /// A roof built on the fly.
     Roof(super::roof::RoofKind),
 }
+
+impl Default for ComponentSearch {
+    fn default() -> Self {
+        ComponentSearch {
+            grammar_dir: None,
+            dirs: Vec::new(),
+            within: Vec::new(),
+            detail: DEFAULT_DETAIL,
+        }
+    }
+}
+
+/// The level of detail without `--detail`.
+pub const DEFAULT_DETAIL: u8 = 1;
 
 impl ComponentSearch {
     /// The files tried for `name`, in order: in each directory the OBJ
@@ -130,7 +147,7 @@ impl ComponentSearch {
             Found::Roof(kind) => Ok(Component {
                 name: name.to_string(),
                 parts: vec![Part {
-                    mesh: super::roof::roof(kind),
+                    mesh: super::roof::roof(kind, self.detail),
                     material: None,
                 }],
                 origin: "built-in (procedural)".to_string(),
@@ -336,7 +353,7 @@ mod tests {
         let s = ComponentSearch {
             grammar_dir: Some(PathBuf::from("/nowhere/g")),
             dirs: vec![PathBuf::from("/nowhere/extra")],
-            within: Vec::new(),
+            ..Default::default()
         };
         let mut tried = Vec::new();
         let found = s.load(

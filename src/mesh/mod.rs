@@ -1,13 +1,13 @@
 //! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
 //! spheres and discs, and components loaded once and placed by transform.
 pub mod assemble;
-pub mod collide;
 pub mod components;
 pub mod error;
 pub mod palette;
 pub mod roof;
 pub mod scene;
 pub mod shapes;
+pub mod structure;
 pub mod subgrammar;
 pub mod tube;
 pub use assemble::{assemble_scene, MeshOptions};

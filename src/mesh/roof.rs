@@ -1,9 +1,11 @@
-//! Procedural roofs, built on the fly as the paper does: a roof kind -> a
-//! closed mesh in the unit box (x along the ridge, y up, z depth). The
-//! eaves roof RE is hipped, with the curved (sagging) profile of Chinese
-//! roofs and upturned eaves corners; the clipped roof RC has straight ends
-//! and no corners. Both carry tile ribs down the slopes and a ridge with
-//! raised ends.
+//! Procedural roofs, built on the fly as the paper does: a roof kind and a
+//! level of detail -> a closed mesh in the unit box (x along the ridge, y
+//! up, z depth). The eaves roof RE is hipped, with the curved (sagging)
+//! profile of Chinese roofs and upturned eaves corners; the clipped roof RC
+//! has straight ends and no corners. Both have a ridge whose top is the
+//! box's top. Detail 0 (previews) is the bare shell; detail 1 (the
+//! default) adds rows of round tiles (tongwa) down the front and back
+//! slopes with a disc (wadang) at each eave end; detail 2 doubles them.
 
 use glam::Vec3;
 
@@ -27,15 +29,23 @@ impl RoofKind {
     }
 }
 
-/// Grid cells along the ridge and across the slopes.
+/// Grid cells along the ridge and across the slopes, at detail 1 and 2
+/// (detail 0 halves them).
 const NX: usize = 48;
 const NZ: usize = 16;
+/// The finest detail.
+pub const MAX_DETAIL: u8 = 2;
 /// Shell thickness and the ridge's size, before normalisation.
 const THICK: f32 = 0.05;
 const RIDGE: f32 = 0.07;
 
 /// Height of the roof surface at (x, z), both in [-0.5, 0.5].
 fn height(kind: RoofKind, x: f32, z: f32) -> f32 {
+    surface(kind, x, z) + 0.008 * (x * 28.0 * std::f32::consts::PI).sin().abs()
+}
+
+/// The smooth surface under the tiles.
+fn surface(kind: RoofKind, x: f32, z: f32) -> f32 {
     let tz = (z.abs() / 0.5).min(1.0);
     let t = match kind {
         RoofKind::Clipped => tz,
@@ -48,8 +58,6 @@ fn height(kind: RoofKind, x: f32, z: f32) -> f32 {
     };
     // Steep at the ridge, flattening toward the eaves.
     let mut y = 0.6 * (1.0 - t).powf(1.7);
-    // Tile ribs down the slopes.
-    y += 0.008 * (x * 28.0 * std::f32::consts::PI).sin().abs();
     if kind == RoofKind::Eaves {
         // The corners sweep up.
         let c = (x.abs() / 0.5).powi(6) * tz.powi(4);
@@ -58,17 +66,28 @@ fn height(kind: RoofKind, x: f32, z: f32) -> f32 {
     y
 }
 
-/// The roof's mesh, normalised to the unit box.
-pub fn roof(kind: RoofKind) -> TriMesh {
+/// The roof's mesh at a level of detail (0 to [`MAX_DETAIL`]), normalised
+/// to the unit box.
+pub fn roof(kind: RoofKind, detail: u8) -> TriMesh {
     let mut m = TriMesh::default();
+    let (nx, nz) = if detail == 0 {
+        (NX / 2, NZ / 2)
+    } else {
+        (NX, NZ)
+    };
     let at = |i: usize, k: usize| {
-        let x = -0.5 + i as f32 / NX as f32;
-        let z = -0.5 + k as f32 / NZ as f32;
-        Vec3::new(x, height(kind, x, z), z)
+        let x = -0.5 + i as f32 / nx as f32;
+        let z = -0.5 + k as f32 / nz as f32;
+        let y = if detail == 0 {
+            surface(kind, x, z)
+        } else {
+            height(kind, x, z)
+        };
+        Vec3::new(x, y, z)
     };
     // Top and underside of the shell.
-    for i in 0..NX {
-        for k in 0..NZ {
+    for i in 0..nx {
+        for k in 0..nz {
             let [a, b, c, d] = [at(i, k), at(i + 1, k), at(i + 1, k + 1), at(i, k + 1)];
             quad(&mut m, a, d, c, b);
             let down = Vec3::Y * -THICK;
@@ -77,19 +96,23 @@ pub fn roof(kind: RoofKind) -> TriMesh {
     }
     // The rim: walls between the two surfaces all around.
     let down = Vec3::Y * -THICK;
-    for i in 0..NX {
+    for i in 0..nx {
         let (a, b) = (at(i, 0), at(i + 1, 0));
         quad(&mut m, a, b, b + down, a + down);
-        let (a, b) = (at(i, NZ), at(i + 1, NZ));
+        let (a, b) = (at(i, nz), at(i + 1, nz));
         quad(&mut m, b, a, a + down, b + down);
     }
-    for k in 0..NZ {
+    for k in 0..nz {
         let (a, b) = (at(0, k), at(0, k + 1));
         quad(&mut m, b, a, a + down, b + down);
-        let (a, b) = (at(NX, k), at(NX, k + 1));
+        let (a, b) = (at(nx, k), at(nx, k + 1));
         quad(&mut m, a, b, b + down, a + down);
     }
-    // The ridge along the top, raised at its ends.
+    if detail > 0 {
+        tiles(&mut m, kind, detail);
+    }
+    // The ridge along the top, with end blocks no higher than it (what
+    // stands on a roof stands on its ridge, the top of its box).
     let top = height(kind, 0.0, 0.0);
     let half = match kind {
         RoofKind::Clipped => 0.5,
@@ -104,12 +127,89 @@ pub fn roof(kind: RoofKind) -> TriMesh {
         let x = s * (half - RIDGE * 0.6);
         cuboid(
             &mut m,
-            Vec3::new(x - RIDGE * 0.6, top, -RIDGE * 0.6),
-            Vec3::new(x + RIDGE * 0.6, top + RIDGE * 2.6, RIDGE * 0.6),
+            Vec3::new(x - RIDGE * 0.6, top - RIDGE * 0.6, -RIDGE * 0.6),
+            Vec3::new(x + RIDGE * 0.6, top + RIDGE, RIDGE * 0.6),
         );
     }
     normalise(&mut m);
     m
+}
+
+/// Rows of round tiles down the front and back slopes: half tubes lying on
+/// the surface from just below the ridge to the eave, each closed at the
+/// eave by a disc. 28 rows a side at detail 1, 56 at detail 2; on an eaves
+/// roof only where the slope, not the hip, is under them.
+fn tiles(m: &mut TriMesh, kind: RoofKind, detail: u8) {
+    let rows = 28 * usize::from(detail);
+    let (segments, facets) = (12 * usize::from(detail), 6);
+    let r = 0.35 / rows as f32;
+    for side in [-1.0f32, 1.0] {
+        for t in 0..rows {
+            let x = -0.5 + (t as f32 + 0.5) / rows as f32;
+            // the slope's extent at this x: past the hip line on RE
+            let hip = match kind {
+                RoofKind::Clipped => 0.0,
+                RoofKind::Eaves => ((x.abs() - 0.25) / 0.25).max(0.0),
+            };
+            let z0 = 0.5 * hip.max(0.06);
+            if z0 >= 0.46 {
+                continue;
+            }
+            let ring = |k: usize| {
+                let z = side * (z0 + (0.5 - z0) * k as f32 / segments as f32);
+                let c = Vec3::new(x, surface(kind, x, z), z);
+                (0..=facets)
+                    .map(|f| {
+                        let a = std::f32::consts::PI * f as f32 / facets as f32;
+                        let n = Vec3::new(a.cos(), a.sin(), 0.0);
+                        (c + n * r, n)
+                    })
+                    .collect::<Vec<_>>()
+            };
+            // Rings of shared vertices (smooth round tiles), quads between.
+            let mut prev = ring(0);
+            let mut prev_at = m.vertex_count() as u32;
+            for (p, n) in &prev {
+                m.vertex(*p, *n);
+            }
+            for k in 1..=segments {
+                let next = ring(k);
+                let next_at = m.vertex_count() as u32;
+                for (p, n) in &next {
+                    m.vertex(*p, *n);
+                }
+                for f in 0..facets as u32 {
+                    let (a, b) = (prev_at + f, prev_at + f + 1);
+                    let (c, d) = (next_at + f, next_at + f + 1);
+                    // outward for either slope
+                    if side > 0.0 {
+                        m.triangle(a, b, d);
+                        m.triangle(a, d, c);
+                    } else {
+                        m.triangle(b, a, c);
+                        m.triangle(b, c, d);
+                    }
+                }
+                prev = next;
+                prev_at = next_at;
+            }
+            // the disc at the eave end, facing out
+            let n = Vec3::Z * side;
+            let centre = Vec3::new(x, surface(kind, x, side * 0.5), side * 0.5);
+            let c = m.vertex(centre, n);
+            let first = m.vertex_count() as u32;
+            for (p, _) in &prev {
+                m.vertex(*p, n);
+            }
+            for f in 0..facets as u32 {
+                if side > 0.0 {
+                    m.triangle(c, first + f, first + f + 1);
+                } else {
+                    m.triangle(c, first + f + 1, first + f);
+                }
+            }
+        }
+    }
 }
 
 /// A flat-shaded quad a-b-c-d, counter-clockwise seen from outside.
@@ -145,8 +245,11 @@ mod tests {
 
     #[test]
     fn roofs_fill_the_unit_box_and_face_outward() {
-        for kind in [RoofKind::Clipped, RoofKind::Eaves] {
-            let m = roof(kind);
+        for (kind, detail) in [RoofKind::Clipped, RoofKind::Eaves]
+            .into_iter()
+            .flat_map(|k| (0..=MAX_DETAIL).map(move |d| (k, d)))
+        {
+            let m = roof(kind, detail);
             let (lo, hi) = m.bounds().unwrap();
             assert!(
                 (lo - Vec3::splat(-0.5)).abs().max_element() < 1e-5,
@@ -156,7 +259,14 @@ mod tests {
                 (hi - Vec3::splat(0.5)).abs().max_element() < 1e-5,
                 "{kind:?} {hi}"
             );
-            assert!(m.triangle_count() < 6000, "{}", m.triangle_count());
+            // Every face winds as its normal says.
+            for t in m.indices.chunks_exact(3) {
+                let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+                let n = (b - a).cross(c - a);
+                if n.length() > 1e-9 {
+                    assert!(n.dot(m.normals[t[0] as usize]) > 0.0, "{kind:?} {detail}");
+                }
+            }
             // Signed volume of the closed pieces: positive when outward.
             let vol: f32 = m
                 .indices
@@ -167,6 +277,19 @@ mod tests {
                 })
                 .sum();
             assert!(vol > 0.0, "{kind:?} volume {vol}");
+        }
+    }
+
+    /// Each level has more triangles than the one below; the preview is
+    /// light, the default carries tiles.
+    #[test]
+    fn detail_levels_add_tiles() {
+        for kind in [RoofKind::Clipped, RoofKind::Eaves] {
+            let n: Vec<usize> = (0..=MAX_DETAIL)
+                .map(|d| roof(kind, d).triangle_count())
+                .collect();
+            assert!(n[0] < 2_000 && n[0] < n[1] && n[1] < n[2], "{kind:?} {n:?}");
+            assert!(n[1] > 10_000, "{kind:?} {n:?}");
         }
     }
 

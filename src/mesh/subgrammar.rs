@@ -75,6 +75,7 @@ pub fn grammar_component(
         },
         dirs: search.dirs.clone(),
         within,
+        detail: search.detail,
     };
     let scene = grammars.scene(name, input, &inner).map_err(fail)?;
     // The grammar's own colours become materials of the outer scene (the

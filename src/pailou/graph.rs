@@ -1,7 +1,7 @@
 //! Component graphs: a TOML file of components and attachments (the
 //! paper's iconized graph, Sec. 4.1–4.2) -> every attachment checked against
-//! the relation matrix -> the layout chart, as a [`Layout`]. Also the
-//! reverse: the canonical graph of a style, written as TOML.
+//! the relation matrix -> the layout chart, as a [`Layout`]. The reverse,
+//! the canonical graph of a style, is [`emit`] (in `emit.rs`).
 //!
 //! ```toml
 //! type = "ridge"            # or "pillar"
@@ -16,7 +16,6 @@
 //! ```
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::fmt::Write;
 use std::sync::Arc;
 
 use miette::{Diagnostic, NamedSource, SourceSpan};
@@ -24,6 +23,7 @@ use serde::Deserialize;
 use thiserror::Error;
 use toml::Spanned;
 
+pub use super::emit::emit;
 use super::style::*;
 
 /// The library's relation matrix (`grammar/std/relations.toml`).
@@ -96,6 +96,8 @@ pub struct Graph {
     pub kind: PailouType,
     /// `[defines]`: (name, value) as `-D` would give them.
     pub defines: Vec<(String, String)>,
+    /// Components the layout has no place for, one sentence each.
+    pub unplaced: Vec<String>,
 }
 
 struct Reader<'a> {
@@ -105,6 +107,8 @@ struct Reader<'a> {
     on: BTreeMap<&'a str, Vec<&'a str>>,
     /// id -> what attaches to it.
     under: BTreeMap<&'a str, Vec<&'a str>>,
+    /// Components the layout has taken a decoration or entrance from.
+    used: std::cell::RefCell<BTreeSet<String>>,
 }
 
 impl Reader<'_> {
@@ -128,12 +132,16 @@ impl Reader<'_> {
         self.kinds.get(id).copied().unwrap_or("")
     }
 
-    /// What of `kind` attaches to `id`.
+    /// What of `kind` attaches to `id` (each marked as used).
     fn attached(&self, id: &str, kind: &str) -> Vec<&str> {
-        self.under
+        let found: Vec<&str> = self
+            .under
             .get(id)
             .map(|v| v.iter().copied().filter(|x| self.kind(x) == kind).collect())
-            .unwrap_or_default()
+            .unwrap_or_default();
+        let mut used = self.used.borrow_mut();
+        used.extend(found.iter().map(|x| x.to_string()));
+        found
     }
 
     /// The pillars (or suspended pillars) a lintel rests on.
@@ -174,6 +182,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         kinds: BTreeMap::new(),
         on: BTreeMap::new(),
         under: BTreeMap::new(),
+        used: Default::default(),
     };
     for (id, kind) in &file.components {
         if !KINDS_OF_COMPONENT.contains(&kind.get_ref().as_str()) {
@@ -320,6 +329,28 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             "the Pailou grammar mirrors one half; decorate both halves alike".to_string(),
         ));
     }
+    r.used.borrow_mut().insert(centre.to_string());
+    for half in &halves {
+        for &(lintel, pillar) in half {
+            r.used.borrow_mut().insert(lintel.to_string());
+            r.used.borrow_mut().insert(pillar.to_string());
+        }
+    }
+    let unplaced = {
+        let used = r.used.borrow();
+        r.kinds
+            .iter()
+            .filter(|(id, _)| !used.contains(**id))
+            .map(|(id, kind)| {
+                let on = r.on.get(id).map(|v| v.join(", ")).unwrap_or_default();
+                if on.is_empty() {
+                    format!("`{id}` ({kind}) attaches to nothing and is not placed")
+                } else {
+                    format!("`{id}` ({kind}) on {on} is not placed: the layout has no place for it (docs/pailou.md, \"The layout\")")
+                }
+            })
+            .collect()
+    };
     let defines = file
         .defines
         .iter()
@@ -329,6 +360,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         layout: layouts.into_iter().next().expect("two halves"),
         kind,
         defines,
+        unplaced,
     })
 }
 
@@ -345,6 +377,17 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
             let d = &mut l.dec[i][j];
             decorate(r, current, d);
             if j == 0 {
+                // A Queti may be fixed to a pillar (the matrix allows it):
+                // it decorates the entrance whose outer pillar it is on.
+                let on_pillar = r.attached(outer, "queti");
+                if !on_pillar.is_empty() {
+                    d[QUETI] = true;
+                    d[YUNDAN] |= on_pillar
+                        .iter()
+                        .map(|q| r.attached(q, "yundan").len())
+                        .sum::<usize>()
+                        > 0;
+                }
                 d[PILLAR_BASE] = !r.attached(outer, "pillar_base").is_empty();
                 d[PILLAR_TYPE] = kind == PailouType::Pillar;
                 d[PILLAR_ROOF] = !r.attached(outer, "clipped_roof").is_empty();
@@ -355,9 +398,12 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
                 .attached(standing.first().copied().unwrap_or(""), "lintel")
                 .into_iter()
                 .find(|u| r.supports(u).len() == 2);
-            d[SIDE_CLIPPED_ROOFS] = standing
+            // every one looked at, so that each roof counts as placed
+            let roofs: usize = standing
                 .iter()
-                .any(|s| !r.attached(s, "clipped_roof").is_empty());
+                .map(|s| r.attached(s, "clipped_roof").len())
+                .sum();
+            d[SIDE_CLIPPED_ROOFS] = roofs > 0;
             match above {
                 Some(u) => current = u,
                 None => break,
@@ -370,156 +416,27 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
 fn decorate(r: &Reader, lintel: &str, d: &mut [bool; KINDS]) {
     let has = |k: &str| !r.attached(lintel, k).is_empty();
     let toukungs = r.attached(lintel, "middle_toukung");
-    let on_toukungs = |k: &str| toukungs.iter().any(|t| !r.attached(t, k).is_empty());
+    // every one looked at (no short cut), so that each counts as placed
+    let on_toukungs = |k: &str| {
+        toukungs
+            .iter()
+            .map(|t| r.attached(t, k).len())
+            .sum::<usize>()
+            > 0
+    };
     d[MIDDLE_TOUKUNGS] = !toukungs.is_empty();
     d[SIDE_TOUKUNGS] = has("side_toukung");
-    d[EAVES_ROOF] = has("eaves_roof") || on_toukungs("eaves_roof");
-    d[CLIPPED_ROOF] = has("clipped_roof") || on_toukungs("clipped_roof");
+    d[EAVES_ROOF] = has("eaves_roof") | on_toukungs("eaves_roof");
+    d[CLIPPED_ROOF] = has("clipped_roof") | on_toukungs("clipped_roof");
     let quetis = r.attached(lintel, "queti");
     d[QUETI] = !quetis.is_empty();
-    d[YUNDAN] = quetis.iter().any(|q| !r.attached(q, "yundan").is_empty());
+    d[YUNDAN] = quetis
+        .iter()
+        .map(|q| r.attached(q, "yundan").len())
+        .sum::<usize>()
+        > 0;
     d[FLOWER_BOARD] = has("flower_board");
     d[INSCRIBED_BOARD] = has("inscribed_board");
-}
-
-/// The canonical graph of a layout, as TOML (what `--emit-graph` prints).
-pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
-    let mut comps: Vec<(String, &str)> = Vec::new();
-    let mut attach: Vec<(String, Vec<String>)> = Vec::new();
-    let half = layout.exists.iter().filter(|e| e[0]).count();
-    for side in ["R", "L"] {
-        for i in 0..half {
-            let e = |j: usize| -> String {
-                if i == 0 {
-                    format!("{}{}", i + 1, j + 1)
-                } else {
-                    format!("{}{}{side}", i + 1, j + 1)
-                }
-            };
-            let outer = format!("P{}{side}", i + 1);
-            let inner = if i == 0 {
-                format!("P1{}", if side == "R" { "L" } else { "R" })
-            } else {
-                format!("P{i}{side}")
-            };
-            comps.push((outer.clone(), "pillar"));
-            let mut below: Option<String> = None;
-            for j in 0..=MAX_LEVELS {
-                if !layout.exists[i][j] {
-                    break;
-                }
-                let d = &layout.dec[i][j];
-                let lintel = format!("L{}", e(j));
-                // the central entrance's parts once, from the right half
-                let own = i > 0 || side == "R";
-                let supports = match &below {
-                    None => vec![inner.clone(), outer.clone()],
-                    Some(b) => {
-                        let (a, c) = (format!("S{}a", e(j)), format!("S{}b", e(j)));
-                        if own {
-                            comps.push((a.clone(), "suspended_pillar"));
-                            comps.push((c.clone(), "suspended_pillar"));
-                            attach.push((a.clone(), vec![b.clone()]));
-                            attach.push((c.clone(), vec![b.clone()]));
-                        }
-                        vec![a, c]
-                    }
-                };
-                if own {
-                    comps.push((lintel.clone(), "lintel"));
-                    attach.push((lintel.clone(), supports));
-                    let mut deco = |id: String, k: &'static str, to: String| {
-                        comps.push((id.clone(), k));
-                        attach.push((id, vec![to]));
-                    };
-                    if d[MIDDLE_TOUKUNGS] {
-                        deco(format!("TM{}", e(j)), "middle_toukung", lintel.clone());
-                    }
-                    if d[SIDE_TOUKUNGS] {
-                        deco(format!("TS{}", e(j)), "side_toukung", lintel.clone());
-                    }
-                    let roof_on = if d[MIDDLE_TOUKUNGS] {
-                        format!("TM{}", e(j))
-                    } else {
-                        lintel.clone()
-                    };
-                    if d[EAVES_ROOF] {
-                        deco(format!("RE{}", e(j)), "eaves_roof", roof_on.clone());
-                    }
-                    if d[CLIPPED_ROOF] {
-                        deco(format!("RC{}", e(j)), "clipped_roof", roof_on);
-                    }
-                    if d[FLOWER_BOARD] {
-                        deco(format!("FB{}", e(j)), "flower_board", lintel.clone());
-                    }
-                    if d[INSCRIBED_BOARD] {
-                        deco(format!("IB{}", e(j)), "inscribed_board", lintel.clone());
-                    }
-                    if d[QUETI] {
-                        deco(format!("Q{}", e(j)), "queti", lintel.clone());
-                        if d[YUNDAN] {
-                            deco(format!("Y{}", e(j)), "yundan", format!("Q{}", e(j)));
-                        }
-                    }
-                }
-                if j == 0 {
-                    if d[PILLAR_BASE] {
-                        comps.push((format!("B{}{side}", i + 1), "pillar_base"));
-                        attach.push((format!("B{}{side}", i + 1), vec![outer.clone()]));
-                    }
-                    if d[PILLAR_ROOF] {
-                        comps.push((format!("RP{}{side}", i + 1), "clipped_roof"));
-                        attach.push((format!("RP{}{side}", i + 1), vec![outer.clone()]));
-                    }
-                }
-                below = Some(lintel);
-                let _ = d;
-            }
-        }
-    }
-    // Clipped roofs beside an entrance above stand on its suspended pillars.
-    for (i, levels) in layout.dec.iter().enumerate() {
-        if levels[0][SIDE_CLIPPED_ROOFS] && layout.exists[i][1] {
-            for side in ["R", "L"] {
-                if i == 0 && side == "L" {
-                    continue;
-                }
-                let e = if i == 0 {
-                    "12".to_string()
-                } else {
-                    format!("{}2{side}", i + 1)
-                };
-                for s in ["a", "b"] {
-                    comps.push((format!("RS{e}{s}"), "clipped_roof"));
-                    attach.push((format!("RS{e}{s}"), vec![format!("S{e}{s}")]));
-                }
-            }
-        }
-    }
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "# {title}: a Pailou as a component graph (docs/pailou.md)."
-    );
-    let _ = writeln!(
-        out,
-        "type = \"{}\"",
-        if kind == PailouType::Ridge {
-            "ridge"
-        } else {
-            "pillar"
-        }
-    );
-    let _ = writeln!(out, "centre = \"L11\"\n\n[components]");
-    for (id, k) in &comps {
-        let _ = writeln!(out, "{id} = \"{k}\"");
-    }
-    let _ = writeln!(out, "\n[attach]");
-    for (id, targets) in &attach {
-        let t: Vec<String> = targets.iter().map(|t| format!("\"{t}\"")).collect();
-        let _ = writeln!(out, "{id} = [{}]", t.join(", "));
-    }
-    out
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! The Pailou front-end: a style (`4-3-7`, ridge or pillar type) -> the
 //! standard library's Pailou grammar with its layout tables filled in,
 //! ready to compile (or to print for an expert to continue by hand).
+mod emit;
 pub mod graph;
 pub mod style;
 

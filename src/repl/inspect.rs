@@ -203,7 +203,7 @@ impl Session {
             components: ComponentSearch {
                 grammar_dir: g.source.dir(),
                 dirs: Vec::new(),
-                within: Vec::new(),
+                ..Default::default()
             },
             ..Default::default()
         };

@@ -67,6 +67,15 @@ impl Frame {
         self.l = l * c - u * s;
     }
 
+    /// `@X`: reflects the frame in the plane of H and U (L becomes −L and
+    /// the handedness flips), so that turns toward L go the other way and
+    /// components placed afterwards are mirror images (negative
+    /// determinant).
+    pub fn mirror(&mut self) {
+        self.l = -self.l;
+        self.hand = -self.hand;
+    }
+
     /// Rolls about H until L is horizontal (L = V × H / |V × H|). Leaves the
     /// frame alone when H is vertical, where "horizontal" is undefined.
     pub fn roll_to_horizontal(&mut self) {
@@ -185,6 +194,23 @@ mod tests {
         let mut g = Frame::cpfg();
         g.pitch(90.0);
         assert!(close(g.h, DVec3::Z), "{:?}", g.h);
+    }
+
+    #[test]
+    fn mirror_flips_left_and_handedness_and_keeps_rotations_consistent() {
+        let mut f = Frame::default();
+        f.mirror();
+        assert!(close(f.l, DVec3::X));
+        assert!(close(f.h.cross(f.l), -f.u));
+        // Turning left now goes toward +x, the mirror of the unmirrored turn.
+        f.turn(90.0);
+        assert!(close(f.h, DVec3::X), "{:?}", f.h);
+        f.pitch(30.0);
+        f.roll(20.0);
+        f.orthonormalize();
+        assert!(close(f.h.cross(f.l), -f.u), "{f:?}");
+        f.mirror();
+        assert!(close(f.h.cross(f.l), f.u));
     }
 
     #[test]

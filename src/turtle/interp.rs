@@ -351,6 +351,7 @@ impl Turtle<'_> {
             PitchAround => s.frame.pitch(180.0),
             RollHorizontal => s.frame.roll_to_horizontal(),
             HeadingUp => s.frame.rotate_heading_to(DVec3::Y),
+            Mirror => s.frame.mirror(),
             Push => {
                 self.stack.push(self.state);
                 // A branch draws its own tubes; the parent's chain resumes

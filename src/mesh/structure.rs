@@ -1,0 +1,454 @@
+//! The structural check: a [`Scene`]'s component instances -> the parts
+//! that do not stand. Each instance is its component's unit box carried to
+//! world space (an axis-aligned box around it; the Pailou's parts are all
+//! axis-aligned). Two kinds of problem are reported, each naming both
+//! instances (`MPB#3`, `RC#1`) and a length in model units:
+//!
+//! * **Support.** Every part whose kind the rules know must rest on, hang
+//!   from or touch a part of a kind the relation matrix lets it attach to
+//!   (the ground for ground pillars and bases), within [`TOLERANCE`] along
+//!   its attachment axis: a Toukung's bottom on a lintel's top, a Yundan's
+//!   top under a Queti's bottom, a lintel's ends touching two pillars.
+//! * **Interpenetration.** No two boxes may overlap deeper than
+//!   [`TOLERANCE`] (the smallest overlap over the three axes), except pairs
+//!   joined through each other by a relation of the matrix: a pillar
+//!   through its base and cap, a lintel mortised into its pillars, a Queti
+//!   set against its pillar.
+//!
+//! Symbols of other grammars have no kind: they are checked for
+//! interpenetration only, and never count as joined.
+
+use std::collections::BTreeMap;
+use std::fmt;
+
+use glam::Vec3;
+
+use super::scene::Scene;
+
+/// Contact within this gap counts, and overlaps up to this depth are
+/// allowed, in model units.
+pub const TOLERANCE: f32 = 0.02;
+
+/// The Pailou's component symbols and the kinds the relation matrix names.
+/// `MP` is a `pillar` when it stands on the ground, else a
+/// `suspended_pillar`.
+pub const PAILOU_SYMBOLS: &[(&str, &str)] = &[
+    ("MPB", "pillar_base"),
+    ("MP", "pillar"),
+    ("MBP", "pillar_cap"),
+    ("ML", "lintel"),
+    ("MFB", "flower_board"),
+    ("MIB", "inscribed_board"),
+    ("MQ", "queti"),
+    ("MY", "yundan"),
+    ("TM", "middle_toukung"),
+    ("TS", "side_toukung"),
+    ("RC", "clipped_roof"),
+    ("RE", "eaves_roof"),
+];
+
+/// How a part meets its support.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Mode {
+    /// Its bottom on the support's top.
+    On,
+    /// Its top under the support's bottom.
+    Under,
+    /// Touching or joined into it from any side.
+    Touch,
+}
+
+/// Kinds of symbols and the relation matrix (kind -> kinds that may
+/// attach to it).
+#[derive(Clone, Debug, Default)]
+pub struct Rules {
+    pub symbols: BTreeMap<String, String>,
+    pub accepts: BTreeMap<String, Vec<String>>,
+}
+
+impl Rules {
+    /// The Pailou's symbols with a relation matrix in the TOML form of
+    /// `grammar/std/relations.toml`.
+    pub fn pailou(relations: &str) -> Result<Rules, String> {
+        let accepts: BTreeMap<String, Vec<String>> =
+            toml::from_str(relations).map_err(|e| e.message().to_string())?;
+        Ok(Rules {
+            symbols: PAILOU_SYMBOLS
+                .iter()
+                .map(|&(s, k)| (s.to_string(), k.to_string()))
+                .collect(),
+            accepts,
+        })
+    }
+
+    fn accepts(&self, support: &str, part: &str) -> bool {
+        self.accepts
+            .get(support)
+            .is_some_and(|v| v.iter().any(|k| k == part))
+    }
+
+    /// The kinds `part` may attach to, and how.
+    fn supports(&self, part: &str) -> Vec<(&str, Mode)> {
+        let mut out: Vec<(&str, Mode)> = self
+            .accepts
+            .iter()
+            .filter(|(_, v)| v.iter().any(|k| k == part))
+            .map(|(s, _)| (s.as_str(), mode(part, s)))
+            .collect();
+        out.sort();
+        out
+    }
+
+    /// Joined through each other: a pillar and its base, cap, lintels and
+    /// Quetis, when the matrix relates them.
+    fn joined(&self, a: &str, b: &str) -> bool {
+        let pillar = |k: &str| matches!(k, "pillar" | "suspended_pillar");
+        let through = |p: &str, o: &str| {
+            pillar(p)
+                && matches!(o, "lintel" | "pillar_base" | "pillar_cap" | "queti")
+                && (self.accepts(p, o) || self.accepts(o, p))
+        };
+        through(a, b) || through(b, a)
+    }
+}
+
+fn mode(part: &str, support: &str) -> Mode {
+    match part {
+        "lintel" => Mode::Touch,
+        "queti" | "clipped_roof" if support.ends_with("pillar") => Mode::Touch,
+        "queti" | "yundan" | "flower_board" | "inscribed_board" => Mode::Under,
+        _ => Mode::On,
+    }
+}
+
+/// One structural problem.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Problem {
+    /// `part` (of `kind`) touches none of its supports; `nearest` is the
+    /// closest candidate (or `None`: there is none) and `gap` how far it
+    /// is along the attachment axis (negative: sunk into it).
+    Unsupported {
+        part: String,
+        kind: String,
+        wanted: String,
+        nearest: Option<String>,
+        gap: f32,
+    },
+    /// A lintel touching fewer than two pillars.
+    OneSided { part: String, touching: Vec<String> },
+    /// `a` and `b` overlap by `depth` (the smallest overlap of the axes).
+    Interpenetrate { a: String, b: String, depth: f32 },
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            Problem::Unsupported {
+                part,
+                kind,
+                wanted,
+                nearest: Some(n),
+                gap,
+            } => write!(
+                f,
+                "{part} ({}) is not supported: it should {wanted}; the nearest, {n}, is {} away{}",
+                kind.replace('_', " "),
+                mm(gap.abs()),
+                if *gap < 0.0 { " (sunk into it)" } else { "" }
+            ),
+            Problem::Unsupported {
+                part, kind, wanted, ..
+            } => write!(
+                f,
+                "{part} ({}) is not supported: it should {wanted}, and there is none",
+                kind.replace('_', " ")
+            ),
+            Problem::OneSided { part, touching } => write!(
+                f,
+                "{part} (lintel) rests on {} pillar{} ({}), not two",
+                touching.len(),
+                if touching.len() == 1 { "" } else { "s" },
+                if touching.is_empty() {
+                    "none".to_string()
+                } else {
+                    touching.join(", ")
+                }
+            ),
+            Problem::Interpenetrate { a, b, depth } => {
+                write!(f, "{a} and {b} interpenetrate by {}", mm(*depth))
+            }
+        }
+    }
+}
+
+/// A length in model units, three decimals.
+fn mm(x: f32) -> String {
+    format!("{x:.3}")
+}
+
+struct Part {
+    name: String,
+    kind: Option<String>,
+    lo: Vec3,
+    hi: Vec3,
+}
+
+/// Every structural problem of `scene` under `rules`: support problems in
+/// placement order, then interpenetrating pairs.
+pub fn check(scene: &Scene, rules: &Rules) -> Vec<Problem> {
+    let parts: Vec<Part> = scene
+        .instances
+        .iter()
+        .map(|i| {
+            let corners = (0..8).map(|k| {
+                let c = Vec3::new(
+                    if k & 1 == 0 { -0.5 } else { 0.5 },
+                    if k & 2 == 0 { -0.5 } else { 0.5 },
+                    if k & 4 == 0 { -0.5 } else { 0.5 },
+                );
+                i.transform.transform_point3(c)
+            });
+            let (lo, hi) = super::scene::bounds_of(corners).expect("eight corners");
+            let symbol = &scene.components[i.component].name;
+            let kind = rules.symbols.get(symbol).map(|k| {
+                if k == "pillar" && lo.y > TOLERANCE {
+                    "suspended_pillar".to_string()
+                } else {
+                    k.clone()
+                }
+            });
+            Part {
+                name: format!("{symbol}#{}", i.number),
+                kind,
+                lo,
+                hi,
+            }
+        })
+        .collect();
+    let mut out = Vec::new();
+    for p in &parts {
+        if let Some(kind) = &p.kind {
+            support(p, kind, &parts, rules, &mut out);
+        }
+    }
+    overlaps(&parts, rules, &mut out);
+    out
+}
+
+/// Footprints (x and z) overlap (by more than a rounding error).
+fn footprints_meet(a: &Part, b: &Part) -> bool {
+    let o = a.hi.min(b.hi) - a.lo.max(b.lo);
+    o.x > 1e-4 && o.z > 1e-4
+}
+
+/// How far apart two boxes are (0 when they touch or overlap).
+fn distance(a: &Part, b: &Part) -> f32 {
+    (a.lo - b.hi).max(b.lo - a.hi).max(Vec3::ZERO).length()
+}
+
+/// The gap between `p` and a support `s` in `mode`: along y for On and
+/// Under when the footprints meet (negative: sunk in), else the distance
+/// between the boxes plus the tolerance (never a contact).
+fn gap(p: &Part, s: &Part, mode: Mode) -> f32 {
+    match mode {
+        Mode::On if footprints_meet(p, s) => p.lo.y - s.hi.y,
+        Mode::Under if footprints_meet(p, s) => s.lo.y - p.hi.y,
+        Mode::Touch => distance(p, s),
+        _ => distance(p, s) + 2.0 * TOLERANCE,
+    }
+}
+
+fn support(p: &Part, kind: &str, parts: &[Part], rules: &Rules, out: &mut Vec<Problem>) {
+    if matches!(kind, "pillar" | "pillar_base") {
+        if p.lo.y.abs() > TOLERANCE {
+            out.push(Problem::Unsupported {
+                part: p.name.clone(),
+                kind: kind.to_string(),
+                wanted: "stand on the ground".to_string(),
+                nearest: Some("the ground".to_string()),
+                gap: p.lo.y,
+            });
+        }
+        return;
+    }
+    let wanted = rules.supports(kind);
+    if wanted.is_empty() {
+        return;
+    }
+    let mut touching = Vec::new();
+    let mut nearest: Option<(&Part, f32)> = None;
+    for s in parts {
+        if std::ptr::eq(s, p) {
+            continue;
+        }
+        let Some(sk) = &s.kind else { continue };
+        let Some(&(_, m)) = wanted.iter().find(|(k, _)| k == sk) else {
+            continue;
+        };
+        let g = gap(p, s, m);
+        if g.abs() <= TOLERANCE {
+            touching.push(s.name.clone());
+        } else if nearest.map_or(true, |(_, n)| g.abs() < n.abs()) {
+            nearest = Some((s, g));
+        }
+    }
+    if kind == "lintel" {
+        if touching.len() < 2 {
+            out.push(Problem::OneSided {
+                part: p.name.clone(),
+                touching,
+            });
+        }
+        return;
+    }
+    if touching.is_empty() {
+        let how = |m: Mode| match m {
+            Mode::On => "rest on",
+            Mode::Under => "hang under",
+            Mode::Touch => "touch",
+        };
+        let article = |k: &str| {
+            let k = k.replace('_', " ");
+            if k.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                format!("an {k}")
+            } else {
+                format!("a {k}")
+            }
+        };
+        let mut words: Vec<String> = Vec::new();
+        for m in [Mode::On, Mode::Under, Mode::Touch] {
+            let kinds: Vec<String> = wanted
+                .iter()
+                .filter(|(_, x)| *x == m)
+                .map(|(k, _)| article(k))
+                .collect();
+            if let Some((last, rest)) = kinds.split_last() {
+                let list = if rest.is_empty() {
+                    last.clone()
+                } else {
+                    format!("{} or {last}", rest.join(", "))
+                };
+                words.push(format!("{} {list}", how(m)));
+            }
+        }
+        out.push(Problem::Unsupported {
+            part: p.name.clone(),
+            kind: kind.to_string(),
+            wanted: words.join(" or "),
+            nearest: nearest.map(|(s, _)| s.name.clone()),
+            gap: nearest.map_or(0.0, |(_, g)| g),
+        });
+    }
+}
+
+fn overlaps(parts: &[Part], rules: &Rules, out: &mut Vec<Problem>) {
+    // Sweep along x: only boxes whose x ranges overlap are compared.
+    let mut order: Vec<usize> = (0..parts.len()).collect();
+    order.sort_by(|&p, &q| parts[p].lo.x.total_cmp(&parts[q].lo.x));
+    let mut found = Vec::new();
+    for (n, &p) in order.iter().enumerate() {
+        for &q in &order[n + 1..] {
+            let (a, b) = (&parts[p], &parts[q]);
+            if b.lo.x >= a.hi.x - TOLERANCE {
+                break;
+            }
+            let depth = (a.hi.min(b.hi) - a.lo.max(b.lo)).min_element();
+            if depth <= TOLERANCE {
+                continue;
+            }
+            if let (Some(ka), Some(kb)) = (&a.kind, &b.kind) {
+                if rules.joined(ka, kb) {
+                    continue;
+                }
+            }
+            found.push((p.min(q), p.max(q), depth));
+        }
+    }
+    found.sort_by_key(|x| (x.0, x.1));
+    out.extend(
+        found
+            .into_iter()
+            .map(|(a, b, depth)| Problem::Interpenetrate {
+                a: parts[a].name.clone(),
+                b: parts[b].name.clone(),
+                depth,
+            }),
+    );
+}
+
+/// The problems as lines, for warnings and snapshots (`none` when there
+/// are none).
+pub fn report(problems: &[Problem]) -> String {
+    if problems.is_empty() {
+        return "none\n".to_string();
+    }
+    problems.iter().map(|p| format!("{p}\n")).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::scene::{Component, Instance, Part as MeshPart, TriMesh};
+    use glam::Mat4;
+
+    /// A scene of boxes: (symbol, centre of the bottom face, size).
+    fn scene(boxes: &[(&str, Vec3, Vec3)]) -> Scene {
+        let mut s = Scene::default();
+        let mut numbers: BTreeMap<String, u32> = BTreeMap::new();
+        for &(sym, bottom, size) in boxes {
+            let c = match s.components.iter().position(|c| c.name == sym) {
+                Some(c) => c,
+                None => {
+                    s.components.push(Component {
+                        name: sym.into(),
+                        parts: vec![MeshPart {
+                            mesh: TriMesh::cuboid(Vec3::splat(-0.5), Vec3::splat(0.5)),
+                            material: None,
+                        }],
+                        origin: "test".into(),
+                    });
+                    s.components.len() - 1
+                }
+            };
+            let n = numbers.entry(sym.to_string()).or_default();
+            s.instances.push(Instance {
+                component: c,
+                transform: Mat4::from_translation(bottom + Vec3::Y * size.y * 0.5)
+                    * Mat4::from_scale(size),
+                material: 0,
+                number: *n,
+            });
+            *n += 1;
+        }
+        s
+    }
+
+    fn rules() -> Rules {
+        // The standard library's relation matrix (as `pailou` reads it).
+        Rules::pailou(include_str!("../../grammar/std/relations.toml")).unwrap()
+    }
+
+    /// A Π with a Toukung on its lintel stands; lift the Toukung, sink a
+    /// base, cut a lintel short and push a Queti into the lintel, and each
+    /// is reported with the parts and the length.
+    #[test]
+    fn a_gate_stands_and_each_defect_is_named() {
+        let pillar = Vec3::new(0.4, 4.0, 0.4);
+        let good = [
+            ("MPB", Vec3::new(-2.0, 0.0, 0.0), Vec3::new(0.8, 0.3, 0.8)),
+            ("MPB", Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.8, 0.3, 0.8)),
+            ("MP", Vec3::new(-2.0, 0.0, 0.0), pillar),
+            ("MP", Vec3::new(2.0, 0.0, 0.0), pillar),
+            ("ML", Vec3::new(0.0, 3.6, 0.0), Vec3::new(4.4, 0.4, 0.4)),
+            ("TM", Vec3::new(0.0, 4.0, 0.0), Vec3::new(1.0, 0.5, 1.0)),
+            ("MQ", Vec3::new(-1.5, 3.4, 0.0), Vec3::new(0.6, 0.2, 0.2)),
+        ];
+        assert_eq!(check(&scene(&good), &rules()), vec![]);
+        let mut bad = good;
+        bad[5].1.y = 4.5; // the Toukung floats
+        bad[4].2.x = 3.0; // the lintel reaches one pillar... none
+        bad[6].1 = Vec3::new(-1.0, 3.5, 0.0); // the Queti sinks into the lintel
+        let got = report(&check(&scene(&bad), &rules()));
+        insta::assert_snapshot!(got);
+    }
+}

@@ -1,0 +1,375 @@
+//! `lsys pailou` end to end: the 15 Pailous of the paper's Table 3
+//! (`examples/pailou/*.toml`) built through the binary and read back from
+//! their GLB files: the right half is the left half mirrored (issue 15).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use glam::{Mat4, Vec3};
+
+fn lsys(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The example graphs, sorted by name.
+fn examples() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut graphs: Vec<PathBuf> = std::fs::read_dir(root.join("examples/pailou"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    graphs.sort();
+    graphs
+}
+
+/// Builds `args` to a GLB and returns its nodes: (name, world transform).
+fn nodes(args: &[&str]) -> Vec<(String, Mat4)> {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.glb");
+    let mut full: Vec<&str> = args.to_vec();
+    full.extend(["-o", out.to_str().unwrap()]);
+    let o = lsys(&full);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    let doc = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
+    // Instances are children of the scene's root nodes; compose parents.
+    let mut found = Vec::new();
+    fn walk(n: gltf::Node, parent: Mat4, found: &mut Vec<(String, Mat4)>) {
+        let m = parent * Mat4::from_cols_array_2d(&n.transform().matrix());
+        if let Some(name) = n.name() {
+            found.push((name.to_string(), m));
+        }
+        for c in n.children() {
+            walk(c, m, found);
+        }
+    }
+    for s in doc.scenes() {
+        for n in s.nodes() {
+            walk(n, Mat4::IDENTITY, &mut found);
+        }
+    }
+    found
+}
+
+/// In every example, each side Toukung fans out toward the eaves corner of
+/// the roof it holds (away from the roof's middle): those fanning right
+/// (+x, on the right half's outer corners) are placed by a mirroring
+/// transform (negative determinant), those fanning left are not. Every
+/// handed part off the axis (Toukungs, Quetis, roofs) has a partner at -x
+/// whose transform is its mirror image: R·M, with R the reflection x -> -x
+/// (the same component's mesh, reflected in world space).
+#[test]
+fn right_half_is_the_left_half_mirrored_in_the_glb() {
+    let graphs = examples();
+    assert_eq!(graphs.len(), 15);
+    let reflect = Mat4::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+    let mut side_toukungs = 0;
+    for graph in &graphs {
+        let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        let all = nodes(&["pailou", graph.to_str().unwrap()]);
+        let (mut left, mut right) = (0, 0);
+        for (node, m) in &all {
+            let kind = node.split('#').next().unwrap();
+            if !matches!(kind, "TS" | "TM" | "MQ" | "RE" | "RC") {
+                continue;
+            }
+            let x = m.w_axis.x;
+            if x.abs() < 1e-4 {
+                continue; // on the axis: a central part
+            }
+            let mirror = reflect * *m;
+            let partner = all
+                .iter()
+                .find(|(n, p)| n.split('#').next() == Some(kind) && p.abs_diff_eq(mirror, 1e-3));
+            assert!(
+                partner.is_some(),
+                "{name}: {node} at x = {x} has no mirror image at x = {}",
+                -x
+            );
+            if kind == "TS" {
+                side_toukungs += 1;
+                let det = m.determinant();
+                let fan = m.transform_vector3(Vec3::X).x;
+                // Unmirrored, a side Toukung fans toward -x; mirrored, +x.
+                assert_eq!(det < 0.0, fan > 0.0, "{name}: {node}, det {det}, fan {fan}");
+                // It fans out from under the roof it holds, away from the
+                // roof's middle: toward the eaves corner.
+                let top = m.transform_point3(Vec3::Y * 0.5).y;
+                let roof = all
+                    .iter()
+                    .filter(|(n, _)| n.starts_with("RE#"))
+                    .map(|(_, r)| {
+                        let half = r.transform_vector3(Vec3::X).x.abs() / 2.0;
+                        let bottom = r.transform_point3(Vec3::Y * -0.5).y;
+                        (r.w_axis.x, half, bottom)
+                    })
+                    .find(|&(c, half, bottom)| (bottom - top).abs() < 0.05 && (x - c).abs() < half)
+                    .unwrap_or_else(|| panic!("{name}: {node} holds no eaves roof"));
+                assert!(
+                    (x - roof.0) * fan > 0.0,
+                    "{name}: the fan of {node} at x = {x} points {fan}, toward the middle of its roof at {}",
+                    roof.0
+                );
+                if det < 0.0 {
+                    right += 1;
+                } else {
+                    left += 1;
+                }
+            }
+        }
+        assert_eq!(left, right, "{name}: side Toukungs mirrored and not");
+    }
+    assert!(side_toukungs > 0, "the ridge types have side Toukungs");
+}
+
+/// The warnings of a build: the lines of standard error from the graph
+/// reader and the structural check.
+fn warnings(o: &Output) -> String {
+    stderr(o)
+        .lines()
+        .filter(|l| l.contains("warning: structure:") || l.contains("warning: graph:"))
+        .map(|l| format!("{l}\n"))
+        .collect()
+}
+
+/// Each defect issue 15 lists is kept as a fixture (the grammar the layout
+/// of 28d7830 wrote, `tests/fixtures/pailou/*.lsys`), and the structural
+/// check of `lsys build --collisions` flags it, naming both instances and
+/// the gap or depth.
+#[test]
+fn the_structural_check_flags_each_defect_of_issue_15() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(root.join("tests/fixtures/pailou"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "lsys"))
+        .collect();
+    fixtures.sort();
+    assert_eq!(fixtures.len(), 5);
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.glb");
+    // What each fixture is kept for: a line the report must have.
+    let expected = [
+        ("floating_pillar_roofs", "(middle toukung) is not supported"),
+        (
+            "inscribed_board_without",
+            "MIB#0 (inscribed board) is not supported",
+        ),
+        ("pierced_clipped_roofs", "RC#0 and MP#"),
+        (
+            "pillars_through_roofs",
+            "(suspended pillar) is not supported",
+        ),
+        ("side_roofs_cut_lintel", "ML#0 and RC#"),
+    ];
+    for f in &fixtures {
+        let stem = f.file_stem().unwrap().to_string_lossy().into_owned();
+        let o = lsys(&[
+            "build",
+            f.to_str().unwrap(),
+            "--collisions",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{stem}: {}", stderr(&o));
+        let report = warnings(&o);
+        let (_, line) = expected
+            .iter()
+            .find(|(k, _)| stem.starts_with(k))
+            .unwrap_or_else(|| panic!("{stem}: say what it is kept for"));
+        assert!(report.contains(line), "{stem}: no `{line}` in\n{report}");
+        insta::assert_snapshot!(format!("structure_{stem}"), report);
+    }
+}
+
+/// A Queti fixed to a pillar (the relation matrix allows it) is placed
+/// with its Yundan; a component attached to nothing is reported.
+#[test]
+fn quetis_on_pillars_are_placed_and_unplaced_components_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("q.glb");
+    let o = lsys(&[
+        "pailou",
+        "tests/fixtures/pailou/queti_on_pillar_2-1-1.toml",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(stats["instances"]["MQ"], 2);
+    assert_eq!(stats["instances"]["MY"], 2);
+    let w = warnings(&o);
+    assert!(
+        w.contains("`FB99` (flower_board) attaches to nothing and is not placed"),
+        "{w}"
+    );
+}
+
+/// Every style the generator accepts up to 8-7-7, of both types, builds
+/// with the default proportions without a structural warning.
+#[test]
+fn every_style_up_to_8_7_7_stands() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.glb");
+    let mut built = 0;
+    for ne in [1, 3, 5, 7] {
+        for nr in [0, ne, ne + 1, 2 * ne, 2 * ne + 1, 3 * ne, 3 * ne + 1] {
+            for kind in ["ridge", "pillar"] {
+                let style = format!("{}-{ne}-{nr}", ne + 1);
+                let o = lsys(&[
+                    "pailou",
+                    "--style",
+                    &style,
+                    "--type",
+                    kind,
+                    "-o",
+                    out.to_str().unwrap(),
+                ]);
+                assert!(o.status.success(), "{style} {kind}: {}", stderr(&o));
+                assert_eq!(warnings(&o), "", "{style} {kind}");
+                built += 1;
+            }
+        }
+    }
+    assert_eq!(built, 56);
+}
+
+/// Natural extent (x, y, z) of a standard Toukung grammar with `ntl` levels.
+fn toukung_extent(name: &str, ntl: u32) -> Vec3 {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.glb");
+    let o = lsys(&[
+        "build",
+        &format!("std:{name}"),
+        "-D",
+        &format!("NTL={ntl}"),
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let v = |k: usize, a: usize| stats["bounds"][k][a].as_f64().unwrap() as f32;
+    Vec3::new(v(1, 0) - v(0, 0), v(1, 1) - v(0, 1), v(1, 2) - v(0, 2))
+}
+
+/// Toukungs keep their own proportions: in a Pailou built with NTL levels
+/// every TM and TS node scales its unit box by the same factor on all three
+/// axes times the Toukung's natural extent at NTL levels (the grammar's
+/// formulas for that extent agree with the Toukung grammars), not
+/// stretched along the lintel.
+#[test]
+fn toukungs_are_scaled_alike_on_all_axes_for_their_levels() {
+    for ntl in [3, 5, 7] {
+        let natural = [
+            ("TM", toukung_extent("toukung_middle", ntl)),
+            ("TS", toukung_extent("toukung_side", ntl)),
+        ];
+        let n = format!("NTL={ntl}");
+        let mut seen = 0;
+        for (node, m) in nodes(&["pailou", "--style", "2-1-3", "-D", &n]) {
+            let kind = node.split('#').next().unwrap();
+            let Some((_, e)) = natural.iter().find(|(k, _)| *k == kind) else {
+                continue;
+            };
+            let s = Vec3::new(m.x_axis.length(), m.y_axis.length(), m.z_axis.length()) / *e;
+            let spread = s.max_element() / s.min_element();
+            assert!(
+                spread < 1.01,
+                "NTL {ntl}: {node} scales its natural extent {e} by {s} (squashed)"
+            );
+            seen += 1;
+        }
+        assert!(seen > 10, "NTL {ntl}: {seen} Toukungs");
+    }
+}
+
+/// In every example the main roof (the highest, in the middle) is the
+/// largest: no other roof is deeper or taller.
+#[test]
+fn the_main_roof_is_the_largest() {
+    for graph in examples() {
+        let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        let roofs: Vec<(String, Vec3, f32)> = nodes(&["pailou", graph.to_str().unwrap()])
+            .into_iter()
+            .filter(|(n, _)| n.starts_with("RE#") || n.starts_with("RC#"))
+            .map(|(n, m)| {
+                let size = Vec3::new(m.x_axis.length(), m.y_axis.length(), m.z_axis.length());
+                (n, size, m.w_axis.y + size.y / 2.0)
+            })
+            .collect();
+        let main = roofs
+            .iter()
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+            .unwrap_or_else(|| panic!("{name} has roofs"));
+        for (n, size, _) in &roofs {
+            assert!(
+                size.z <= main.1.z + 1e-4 && size.y <= main.1.y + 1e-4,
+                "{name}: {n} ({size}) is deeper or taller than the main roof {} ({})",
+                main.0,
+                main.1
+            );
+        }
+    }
+}
+
+/// Every example carries Table 3's parameters for its figure, and its
+/// type: Fig. 17 pillar-typed, Figs. 18 and 19 ridge-typed (the captions).
+#[test]
+fn examples_carry_table_3() {
+    // figure: ω, αEW, αLW, αUp, αSide ("" where Table 3 has "-")
+    let table: &[(&str, &str, &str, &str, &str, &str)] = &[
+        ("fig17-1", "9", "10/12", "1", "0.8", ""),
+        ("fig17-2", "9", "10/12", "1", "0.8", "1"),
+        ("fig17-3", "9", "10/12", "1", "0.8", "1"),
+        ("fig17-4", "9", "10/12", "1", "0.8", "0.8"),
+        ("fig18-1", "9", "20/12", "1", "0.3", ""),
+        ("fig18-2", "9", "10/12", "1.1", "0.3", "0.8"),
+        ("fig18-3", "9", "10/12", "1.1", "0.3", "1"),
+        ("fig18-4", "9", "10/12", "1", "", ""),
+        ("fig18-5", "9", "10/12", "1", "", "1"),
+        ("fig18-6", "9", "10/12", "1", "", "1"),
+        ("fig19-1", "9", "10/12", "1", "0.3", "0.4"),
+        ("fig19-2", "9", "10/12", "1", "0.3", "1"),
+        ("fig19-3", "9", "10/12", "1", "0.3", "0.4"),
+        ("fig19-4", "9", "10/12", "1.1", "0.3", "1"),
+        ("fig19-5", "10", "10/12", "1", "", "1"),
+    ];
+    let graphs = examples();
+    assert_eq!(graphs.len(), table.len());
+    for (graph, row) in graphs.iter().zip(table) {
+        let text = std::fs::read_to_string(graph).unwrap();
+        let doc: toml::Table = toml::from_str(&text).unwrap();
+        let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        assert!(name.starts_with(row.0), "{name}");
+        let kind = doc["type"].as_str().unwrap();
+        let want = if row.0.starts_with("fig17") {
+            "pillar"
+        } else {
+            "ridge"
+        };
+        assert_eq!(kind, want, "{name}");
+        let d = doc["defines"].as_table().unwrap();
+        let get = |k: &str| {
+            d.get(k)
+                .map(|v| v.to_string().trim_matches('"').to_string())
+                .unwrap_or_default()
+        };
+        assert_eq!(get("ω"), row.1, "{name} ω");
+        assert_eq!(get("αPW"), "7/61", "{name} αPW");
+        assert_eq!(get("αEW"), row.2, "{name} αEW");
+        assert_eq!(get("αLH"), "6/7", "{name} αLH");
+        assert_eq!(get("αLW"), row.3, "{name} αLW");
+        assert_eq!(get("αUp"), row.4, "{name} αUp");
+        assert_eq!(get("αSide"), row.5, "{name} αSide");
+    }
+}
