@@ -205,3 +205,28 @@ fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
         ]
     );
 }
+
+#[test]
+fn a_lsys_file_selects_its_environment_in_a_header() {
+    // The tentacle model in the paper's notation: the axiom is decomposed
+    // at step 0, so after step k the sensors are those of row k.
+    let text = "environment: collision(radius: 0.01, 3d case: on)\n\
+                derivation length: 10\n\
+                axiom: A\n\
+                ?E(x) : x == 1 --> A\n\
+                ?E(x) : x == 0 -->\n\
+                decomposition\n\
+                A --> [+(45) f(1.41421356) -(45) ?E(1)] [-(45) f(1.41421356) +(45) ?E(1)]\n";
+    let g = lsys::Grammar::from_str("tentacles.lsys", text).unwrap();
+    assert!(
+        g.warnings().render_plain().is_empty(),
+        "{}",
+        g.warnings().render_plain()
+    );
+    let sensors: Vec<u32> = g
+        .steps()
+        .map(|d| d.unwrap().modules().filter(|(n, _)| *n == "?E").count() as u32)
+        .collect();
+    let expected: Vec<u32> = (0..=10u32).map(|k| 2 << k.count_ones()).collect();
+    assert_eq!(sensors, expected);
+}

@@ -16,11 +16,13 @@ pub mod collision;
 pub mod communication;
 mod error;
 pub mod format;
+mod header;
 pub mod light;
 mod sgi;
 
 pub use communication::{configure, Environment, Field};
 pub use error::EnvironmentError;
+pub use header::environment_header;
 
 /// One `?E` of an environment pass, as the environment receives it.
 #[derive(Clone, Debug, PartialEq)]

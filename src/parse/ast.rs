@@ -94,6 +94,8 @@ pub enum HeaderKind {
     Width(Expr),
     /// `dialect: paper|cpfg`, with the name's span.
     Dialect(String, Span),
+    /// `environment: NAME(key: value, ...)`: the text after the colon.
+    Environment(String, Span),
     /// `colour i: #rrggbb`, with the colour's span.
     Colour(Expr, String, Span),
 }
@@ -581,6 +583,9 @@ fn dump_item(out: &mut String, item: &Item) {
                 }
                 HeaderKind::Dialect(d, _) => {
                     let _ = write!(out, "dialect {d}");
+                }
+                HeaderKind::Environment(e, _) => {
+                    let _ = write!(out, "environment {}", e.trim());
                 }
                 HeaderKind::Colour(i, hex, _) => {
                     let _ = write!(out, "colour {i} {hex}");

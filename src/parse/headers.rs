@@ -23,6 +23,7 @@ const HEADERS: &[&str] = &[
     "step",
     "width",
     "dialect",
+    "environment",
     "colour",
     "color",
 ];

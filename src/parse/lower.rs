@@ -182,6 +182,10 @@ impl Lower<'_> {
             Rule::angle_h => HeaderKind::Angle(self.expr(next(&mut inner))?),
             Rule::step_h => HeaderKind::Step(self.expr(next(&mut inner))?),
             Rule::width_h => HeaderKind::Width(self.expr(next(&mut inner))?),
+            Rule::environment_h => {
+                let text = next(&mut inner);
+                HeaderKind::Environment(text.as_str().to_string(), self.span(&text))
+            }
             Rule::dialect_h => {
                 let name = next(&mut inner);
                 HeaderKind::Dialect(name.as_str().to_string(), self.span(&name))

@@ -29,6 +29,8 @@ struct Sections {
     /// production always applies first (no context, condition, probability).
     seen: HashMap<(Table, PredKey), Option<Span>>,
     turtle: super::turtle_headers::TurtleHeaders,
+    /// `environment:` and where it was given.
+    environment: Option<(String, Span)>,
 }
 
 impl Resolver {
@@ -76,7 +78,17 @@ impl Resolver {
         let defines = self.define_infos();
         let mut turtle = std::mem::take(&mut s.turtle.settings);
         let mut environment = None;
-        if let Some(Some(span)) = self
+        if let Some((text, span)) = s.environment.take() {
+            match crate::environment::environment_header(
+                &text,
+                self.sources.named_source(span),
+                span.into(),
+            ) {
+                Ok(env) => environment = Some(env),
+                Err(e) if crate::diag::is_error(&*e) => self.errors.push(miette::Report::new(*e)),
+                Err(e) => self.warnings.push(miette::Report::new(*e)),
+            }
+        } else if let Some(Some(span)) = self
             .symbols
             .get("?E")
             .map(|id| self.symbols.list[id as usize].span)
@@ -254,6 +266,14 @@ impl Resolver {
             HeaderKind::Homomorphism => s.table = Some(Table::Homomorphism),
             HeaderKind::Decomposition => s.table = Some(Table::Decomposition),
             HeaderKind::Module(_) => {}
+            HeaderKind::Environment(text, span) => {
+                if let Some((_, first)) = &s.environment {
+                    let first = *first;
+                    self.duplicate(h, "environment:", first, "a grammar has one environment");
+                } else {
+                    s.environment = Some((text.clone(), *span));
+                }
+            }
             HeaderKind::Angle(_)
             | HeaderKind::Step(_)
             | HeaderKind::Width(_)
