@@ -2,21 +2,13 @@
 //! by extension, `--stats`, atomic outputs, and the geometry of real
 //! examples checked against what the derivation says it must be.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn lsys(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{lsys, stderr};
 
 fn path_str(p: &Path) -> &str {
     p.to_str().unwrap()

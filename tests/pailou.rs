@@ -2,22 +2,14 @@
 //! (`examples/pailou/*.toml`) built through the binary and read back from
 //! their GLB files: the right half is the left half mirrored (issue 15).
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+use common::{lsys, stderr};
 
 use glam::{Mat4, Vec3};
-
-fn lsys(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
 
 /// The example graphs, sorted by name.
 fn examples() -> Vec<PathBuf> {

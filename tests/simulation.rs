@@ -2,18 +2,12 @@
 //! for, environments answer query modules between steps through the
 //! `Environment` seam, and options reach grammar components.
 
-use std::process::{Command, Output};
+mod common;
+
+use common::lsys;
 
 use lsys::derive::{DeriveError, DeriveOptions, ModuleStore};
 use lsys::simulation::{Environment, Simulation, StepContext};
-
-fn lsys(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .unwrap()
-}
 
 const END_FIXTURE: &str = "tests/fixtures/simulation/end_after_target.lsys";
 
