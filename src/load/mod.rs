@@ -98,6 +98,9 @@ pub struct Loaded {
     /// The `#include` lines (their path's span) whose file could not be
     /// loaded: names it would have defined are not reported one by one.
     pub failed_includes: Vec<Span>,
+    /// Every `#include` line that loaded a file: its path's span (in the
+    /// including file) and the file it loaded (editors link the two).
+    pub includes: Vec<(Span, FileId)>,
     /// The files went through the C preprocessor (a cpfg `.l` root), which
     /// took the `-D` definitions.
     pub preprocessed: bool,
