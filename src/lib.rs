@@ -63,6 +63,8 @@ pub mod exit_code;
 pub mod export;
 pub mod lang;
 pub mod load;
+#[cfg(feature = "cli")]
+pub mod lsp;
 pub mod mesh;
 pub mod pailou;
 pub mod parse;

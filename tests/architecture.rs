@@ -35,6 +35,7 @@ const ABOVE: &[&str] = &[
     "exit_code",
     "progress",
     "repl",
+    "lsp",
     "cli",
 ];
 

@@ -1,0 +1,334 @@
+//! The server's main loop. Input: messages from an
+//! [`lsp_server::Connection`]; output: responses and notifications on it.
+//! The loop owns the state (open documents: text, version, analysis),
+//! applies document edits in arrival order, analyses changed documents
+//! once the queue is empty (or before answering a request), and answers
+//! each request against the current analysis of its document.
+
+use std::collections::BTreeMap;
+use std::error::Error;
+
+use lsp_server::{Connection, Message, Notification, Request, Response};
+use lsp_types::notification::{self as notif, Notification as _};
+use lsp_types::request::{self as req, Request as _};
+use lsp_types::*;
+use serde_json::Value;
+
+use super::analysis::{Analysis, ROOT};
+use super::position::LineIndex;
+use super::{complete, diagnostics, hover, lens, navigate};
+use crate::load;
+
+type Result<T> = std::result::Result<T, Box<dyn Error + Send + Sync>>;
+
+struct Document {
+    version: i32,
+    text: String,
+    /// `None` until analysed after the last edit.
+    analysis: Option<Analysis>,
+}
+
+struct Server<'c> {
+    conn: &'c Connection,
+    opts: load::Options,
+    docs: BTreeMap<Url, Document>,
+}
+
+/// What the server offers.
+pub fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        text_document_sync: Some(TextDocumentSyncCapability::Kind(
+            TextDocumentSyncKind::INCREMENTAL,
+        )),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: WorkDoneProgressOptions::default(),
+        })),
+        completion_provider: Some(CompletionOptions {
+            trigger_characters: Some(vec!["~".into(), "@".into(), "<".into(), "\"".into()]),
+            ..CompletionOptions::default()
+        }),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        document_link_provider: Some(DocumentLinkOptions {
+            resolve_provider: Some(false),
+            work_done_progress_options: WorkDoneProgressOptions::default(),
+        }),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: complete::legend(),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                range: None,
+                work_done_progress_options: WorkDoneProgressOptions::default(),
+            },
+        )),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            ..CodeActionOptions::default()
+        })),
+        code_lens_provider: Some(CodeLensOptions {
+            resolve_provider: Some(false),
+        }),
+        ..ServerCapabilities::default()
+    }
+}
+
+/// Serves one client on `conn`: the initialize handshake, then the loop
+/// until `shutdown` and `exit`.
+pub fn serve(conn: Connection, opts: load::Options) -> Result<()> {
+    let (id, _params) = conn.initialize_start()?;
+    let result = InitializeResult {
+        capabilities: capabilities(),
+        server_info: Some(ServerInfo {
+            name: "lsys".into(),
+            version: Some(env!("CARGO_PKG_VERSION").into()),
+        }),
+    };
+    conn.initialize_finish(id, serde_json::to_value(result)?)?;
+    let mut server = Server {
+        conn: &conn,
+        opts,
+        docs: BTreeMap::new(),
+    };
+    server.run()
+}
+
+impl Server<'_> {
+    fn run(&mut self) -> Result<()> {
+        while let Ok(msg) = self.conn.receiver.recv() {
+            match msg {
+                Message::Request(r) => {
+                    if self.conn.handle_shutdown(&r)? {
+                        return Ok(());
+                    }
+                    self.analyse_pending()?;
+                    let response = self.request(r);
+                    self.conn.sender.send(response.into())?;
+                }
+                Message::Notification(n) => {
+                    if n.method == notif::Exit::METHOD {
+                        return Ok(());
+                    }
+                    self.notification(n)?;
+                }
+                Message::Response(_) => {}
+            }
+            if self.conn.receiver.is_empty() {
+                self.analyse_pending()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Analyses every document edited since its last analysis and
+    /// publishes its diagnostics with the version analysed.
+    fn analyse_pending(&mut self) -> Result<()> {
+        for (uri, doc) in &mut self.docs {
+            if doc.analysis.is_some() {
+                continue;
+            }
+            let a = Analysis::new(uri, &doc.text, &self.opts);
+            let params = PublishDiagnosticsParams {
+                uri: uri.clone(),
+                diagnostics: diagnostics::diagnostics(&a),
+                version: Some(doc.version),
+            };
+            doc.analysis = Some(a);
+            self.conn
+                .sender
+                .send(Notification::new(notif::PublishDiagnostics::METHOD.into(), params).into())?;
+        }
+        Ok(())
+    }
+
+    fn notification(&mut self, n: Notification) -> Result<()> {
+        match n.method.as_str() {
+            notif::DidOpenTextDocument::METHOD => {
+                let p: DidOpenTextDocumentParams = serde_json::from_value(n.params)?;
+                self.docs.insert(
+                    p.text_document.uri,
+                    Document {
+                        version: p.text_document.version,
+                        text: p.text_document.text,
+                        analysis: None,
+                    },
+                );
+            }
+            notif::DidChangeTextDocument::METHOD => {
+                let p: DidChangeTextDocumentParams = serde_json::from_value(n.params)?;
+                if let Some(doc) = self.docs.get_mut(&p.text_document.uri) {
+                    for change in p.content_changes {
+                        apply(&mut doc.text, change);
+                    }
+                    doc.version = p.text_document.version;
+                    doc.analysis = None;
+                }
+            }
+            notif::DidSaveTextDocument::METHOD => {
+                // An included file may have changed on disk: analyse all again.
+                for doc in self.docs.values_mut() {
+                    doc.analysis = None;
+                }
+            }
+            notif::DidCloseTextDocument::METHOD => {
+                let p: DidCloseTextDocumentParams = serde_json::from_value(n.params)?;
+                self.docs.remove(&p.text_document.uri);
+                let params = PublishDiagnosticsParams {
+                    uri: p.text_document.uri,
+                    diagnostics: Vec::new(),
+                    version: None,
+                };
+                self.conn.sender.send(
+                    Notification::new(notif::PublishDiagnostics::METHOD.into(), params).into(),
+                )?;
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn request(&mut self, r: Request) -> Response {
+        let id = r.id.clone();
+        match self.answer(r) {
+            Ok(v) => Response::new_ok(id, v),
+            Err(e) => Response::new_err(id, lsp_server::ErrorCode::RequestFailed as i32, e),
+        }
+    }
+
+    fn doc(&self, uri: &Url) -> std::result::Result<&Analysis, String> {
+        self.docs
+            .get(uri)
+            .and_then(|d| d.analysis.as_ref())
+            .ok_or_else(|| format!("{uri} is not open"))
+    }
+
+    fn answer(&self, r: Request) -> std::result::Result<Value, String> {
+        fn params<P: serde::de::DeserializeOwned>(v: Value) -> std::result::Result<P, String> {
+            serde_json::from_value(v).map_err(|e| format!("bad parameters: {e}"))
+        }
+        let json = Ok;
+        match r.method.as_str() {
+            req::HoverRequest::METHOD => {
+                let p: HoverParams = params(r.params)?;
+                let pos = p.text_document_position_params;
+                let a = self.doc(&pos.text_document.uri)?;
+                let occ = a.index.at(ROOT, navigate::offset(a, pos.position));
+                let h = occ.and_then(|o| {
+                    let text = hover::hover(a, o)?;
+                    Some(Hover {
+                        contents: HoverContents::Markup(MarkupContent {
+                            kind: MarkupKind::Markdown,
+                            value: text,
+                        }),
+                        range: navigate::location(a, o.span).map(|l| l.range),
+                    })
+                });
+                json(to(&h))
+            }
+            req::GotoDefinition::METHOD => {
+                let p: GotoDefinitionParams = params(r.params)?;
+                let pos = p.text_document_position_params;
+                let a = self.doc(&pos.text_document.uri)?;
+                let locs = a
+                    .index
+                    .at(ROOT, navigate::offset(a, pos.position))
+                    .map(|o| navigate::definition(a, o))
+                    .unwrap_or_default();
+                json(to(&GotoDefinitionResponse::Array(locs)))
+            }
+            req::References::METHOD => {
+                let p: ReferenceParams = params(r.params)?;
+                let pos = p.text_document_position;
+                let a = self.doc(&pos.text_document.uri)?;
+                let locs = a
+                    .index
+                    .at(ROOT, navigate::offset(a, pos.position))
+                    .map(|o| navigate::references(a, o, p.context.include_declaration))
+                    .unwrap_or_default();
+                json(to(&locs))
+            }
+            req::PrepareRenameRequest::METHOD => {
+                let p: TextDocumentPositionParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                let occ = a
+                    .index
+                    .at(ROOT, navigate::offset(a, p.position))
+                    .ok_or("nothing to rename here")?;
+                navigate::can_rename(a, occ)?;
+                let range = navigate::location(a, occ.span).map(|l| l.range);
+                json(to(&range.map(PrepareRenameResponse::Range)))
+            }
+            req::Rename::METHOD => {
+                let p: RenameParams = params(r.params)?;
+                let pos = p.text_document_position;
+                let a = self.doc(&pos.text_document.uri)?;
+                let occ = a
+                    .index
+                    .at(ROOT, navigate::offset(a, pos.position))
+                    .ok_or("nothing to rename here")?;
+                json(to(&navigate::rename(a, occ, &p.new_name)?))
+            }
+            req::Completion::METHOD => {
+                let p: CompletionParams = params(r.params)?;
+                let pos = p.text_document_position;
+                let a = self.doc(&pos.text_document.uri)?;
+                let offset = LineIndex::new(a.text(ROOT)).offset(pos.position);
+                json(to(&CompletionResponse::Array(complete::completions(
+                    a, offset,
+                ))))
+            }
+            req::SemanticTokensFullRequest::METHOD => {
+                let p: SemanticTokensParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                json(to(&SemanticTokensResult::Tokens(SemanticTokens {
+                    result_id: None,
+                    data: complete::semantic_tokens(a),
+                })))
+            }
+            req::DocumentSymbolRequest::METHOD => {
+                let p: DocumentSymbolParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                json(to(&DocumentSymbolResponse::Nested(navigate::symbols(a))))
+            }
+            req::DocumentLinkRequest::METHOD => {
+                let p: DocumentLinkParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                json(to(&navigate::links(a)))
+            }
+            req::CodeActionRequest::METHOD => {
+                let p: CodeActionParams = params(r.params)?;
+                json(to(&diagnostics::code_actions(
+                    &p.text_document.uri,
+                    &p.context.diagnostics,
+                )))
+            }
+            req::CodeLensRequest::METHOD => {
+                let p: CodeLensParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                json(to(&lens::lenses(a)))
+            }
+            other => Err(format!("lsys lsp does not answer {other}")),
+        }
+    }
+}
+
+/// A result as JSON.
+fn to<T: serde::Serialize>(v: &T) -> Value {
+    serde_json::to_value(v).unwrap_or(Value::Null)
+}
+
+/// Applies one change to a document's text (a range replacement, or the
+/// whole text when the change has no range).
+fn apply(text: &mut String, change: TextDocumentContentChangeEvent) {
+    match change.range {
+        Some(range) => {
+            let ix = LineIndex::new(text);
+            let (s, e) = (ix.offset(range.start), ix.offset(range.end));
+            let e = e.max(s);
+            text.replace_range(s..e, &change.text);
+        }
+        None => *text = change.text,
+    }
+}
