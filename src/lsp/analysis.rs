@@ -50,17 +50,24 @@ impl Analysis {
                 text: text.to_string(),
             },
         };
-        let (sources, items, includes, profile) = match load::load(&input, opts) {
-            Ok(l) => (l.sources, l.items, l.includes, l.profile),
-            Err(_) => (
-                SourceMap::new(),
-                Vec::new(),
-                Vec::new(),
-                crate::lang::Profile::decide("", text, opts.dialect),
-            ),
-        };
+        let (sources, items, includes, profile, result) =
+            match load::load(&input, &pipeline::own_options(opts)) {
+                Ok(l) => (
+                    l.sources.clone(),
+                    l.items.clone(),
+                    l.includes.clone(),
+                    l.profile,
+                    pipeline::compile_loaded(l, opts),
+                ),
+                Err(e) => (
+                    SourceMap::new(),
+                    Vec::new(),
+                    Vec::new(),
+                    crate::lang::Profile::decide("", text, opts.dialect),
+                    Err(Diagnostics::input(e)),
+                ),
+            };
         let index = Index::build(&items, &includes, &profile);
-        let result = pipeline::compile(&input, opts);
         let uris = sources
             .files()
             .iter()
