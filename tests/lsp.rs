@@ -106,6 +106,17 @@ impl Client {
         }
     }
 
+    /// The next `publishDiagnostics` for the file `name`.
+    fn diagnostics_for(&mut self, name: &str) -> Value {
+        let uri = self.uri(name);
+        loop {
+            let d = self.diagnostics();
+            if d["uri"] == json!(uri) {
+                return d;
+            }
+        }
+    }
+
     fn open(&mut self, name: &str, text: &str) -> Value {
         let uri = self.uri(name);
         self.notify(
@@ -204,6 +215,39 @@ fn diagnostics_inside_an_include_point_at_the_include_line() {
     .unwrap();
     let d = c.open("root.lsys", ROOT);
     insta::assert_snapshot!(c.show(&d));
+}
+
+#[test]
+fn an_unsaved_edit_in_an_open_include_reaches_the_including_document() {
+    let mut c = Client::start();
+    c.open("root.lsys", ROOT);
+    c.open("shared.lsys", SHARED);
+    let uri = c.uri("shared.lsys");
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [
+            {"range": {"start": {"line": 1, "character": 11}, "end": {"line": 1, "character": 11}}, "text": ", 1, 2"}
+        ]}),
+    );
+    let root = c.diagnostics_for("root.lsys");
+    let messages: Vec<&str> = root["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| d["message"].as_str().unwrap())
+        .collect();
+    assert_eq!(messages.len(), 1, "{root}");
+    assert!(
+        messages[0].contains("`F` takes 0 to 2 parameters, found 3"),
+        "{root}"
+    );
+    // Closing the include without saving: the disk's text applies again.
+    c.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let root = c.diagnostics_for("root.lsys");
+    assert_eq!(root["diagnostics"], json!([]), "{root}");
 }
 
 #[test]

@@ -153,6 +153,7 @@ impl SourceArgs {
                 DialectArg::Paper => crate::lang::Dialect::Paper,
                 DialectArg::Cpfg => crate::lang::Dialect::Cpfg,
             }),
+            unsaved: Default::default(),
         }
     }
 }

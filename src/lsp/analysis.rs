@@ -100,6 +100,11 @@ impl Analysis {
         self.uris.get(file as usize)?.as_ref()
     }
 
+    /// Whether the model read the file at `uri` (itself or an include).
+    pub fn reads(&self, uri: &Url) -> bool {
+        self.uris.iter().any(|u| u.as_ref() == Some(uri))
+    }
+
     /// The loaded file a diagnostic names (miette gives the source's name).
     pub fn file_named(&self, name: &str) -> Option<FileId> {
         self.sources

@@ -125,11 +125,27 @@ impl Server<'_> {
     /// Analyses every document edited since its last analysis and
     /// publishes its diagnostics with the version analysed.
     fn analyse_pending(&mut self) -> Result<()> {
+        if self.docs.values().all(|d| d.analysis.is_some()) {
+            return Ok(());
+        }
+        // Includes of open documents read the editor's text, not the disk.
+        let unsaved = self
+            .docs
+            .iter()
+            .filter_map(|(uri, d)| {
+                let path = uri.to_file_path().ok()?;
+                Some((std::fs::canonicalize(&path).unwrap_or(path), d.text.clone()))
+            })
+            .collect();
+        let opts = load::Options {
+            unsaved: std::sync::Arc::new(unsaved),
+            ..self.opts.clone()
+        };
         for (uri, doc) in &mut self.docs {
             if doc.analysis.is_some() {
                 continue;
             }
-            let a = Analysis::new(uri, &doc.text, &self.opts);
+            let a = Analysis::new(uri, &doc.text, &opts);
             let params = PublishDiagnosticsParams {
                 uri: uri.clone(),
                 diagnostics: diagnostics::diagnostics(&a),
@@ -165,6 +181,7 @@ impl Server<'_> {
                     doc.version = p.text_document.version;
                     doc.analysis = None;
                 }
+                self.invalidate_readers(&p.text_document.uri);
             }
             notif::DidSaveTextDocument::METHOD => {
                 // An included file may have changed on disk: analyse all again.
@@ -175,6 +192,7 @@ impl Server<'_> {
             notif::DidCloseTextDocument::METHOD => {
                 let p: DidCloseTextDocumentParams = serde_json::from_value(n.params)?;
                 self.docs.remove(&p.text_document.uri);
+                self.invalidate_readers(&p.text_document.uri);
                 let params = PublishDiagnosticsParams {
                     uri: p.text_document.uri,
                     diagnostics: Vec::new(),
@@ -187,6 +205,16 @@ impl Server<'_> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// Documents that include `uri` are analysed again (its text changed,
+    /// or it was closed and the disk's text applies again).
+    fn invalidate_readers(&mut self, uri: &Url) {
+        for doc in self.docs.values_mut() {
+            if doc.analysis.as_ref().is_some_and(|a| a.reads(uri)) {
+                doc.analysis = None;
+            }
+        }
     }
 
     fn request(&mut self, r: Request) -> Response {
