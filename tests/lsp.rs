@@ -378,27 +378,35 @@ fn semantic_tokens_and_symbols() {
     let mut c = Client::start();
     c.open("root.lsys", ROOT);
     let doc = json!({"textDocument": {"uri": c.uri("root.lsys")}});
-    let tokens = c.request("textDocument/semanticTokens/full", doc.clone());
-    let init = c.init_legend();
-    let data: Vec<u32> = serde_json::from_value(tokens["data"].clone()).unwrap();
-    let lines: Vec<&str> = ROOT.lines().collect();
-    let (mut line, mut col) = (0u32, 0u32);
-    let mut out = String::new();
-    for t in data.chunks(5) {
-        line += t[0];
-        col = if t[0] == 0 { col + t[1] } else { t[1] };
-        let text = &lines[line as usize][col as usize..(col + t[2]) as usize];
-        let decl = if t[4] & 1 == 1 { " declaration" } else { "" };
-        out.push_str(&format!(
-            "{line}:{col} {text:?} {}{decl}\n",
-            init[t[3] as usize]
-        ));
-    }
+    let out = c.tokens("root.lsys", ROOT);
     let symbols = c.request("textDocument/documentSymbol", doc);
     insta::assert_snapshot!(format!("{out}\n{}", c.show(&symbols)));
 }
 
 impl Client {
+    /// The semantic tokens of `name` (whose text is `text`), one a line:
+    /// `line:col "text" type [declaration]`.
+    fn tokens(&mut self, name: &str, text: &str) -> String {
+        let doc = json!({"textDocument": {"uri": self.uri(name)}});
+        let tokens = self.request("textDocument/semanticTokens/full", doc);
+        let legend = self.init_legend();
+        let data: Vec<u32> = serde_json::from_value(tokens["data"].clone()).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let (mut line, mut col) = (0u32, 0u32);
+        let mut out = String::new();
+        for t in data.chunks(5) {
+            line += t[0];
+            col = if t[0] == 0 { col + t[1] } else { t[1] };
+            let text = &lines[line as usize][col as usize..(col + t[2]) as usize];
+            let decl = if t[4] & 1 == 1 { " declaration" } else { "" };
+            out.push_str(&format!(
+                "{line}:{col} {text:?} {}{decl}\n",
+                legend[t[3] as usize]
+            ));
+        }
+        out
+    }
+
     fn init_legend(&self) -> Vec<String> {
         lsys::lsp::capabilities()
             .semantic_tokens_provider
@@ -460,4 +468,20 @@ fn standard_library_includes_resolve() {
         "{def}"
     );
     insta::assert_snapshot!(c.show(&json!({"diagnostics": d, "definition": def})));
+}
+
+#[test]
+fn a_cpfg_model_is_preprocessed_and_positions_stay_in_the_file_as_written() {
+    let mut c = Client::start();
+    let text = "\
+#define LEAF [&(30)~l]
+Lsystem: 1
+derivation length: 2
+Axiom: A(LEN)
+A(x) --> F(x) LEAF B(x)
+endlsystem
+";
+    let d = c.open("tree.l", text);
+    let tokens = c.tokens("tree.l", text);
+    insta::assert_snapshot!(format!("{}\n{tokens}", c.show(&d)));
 }

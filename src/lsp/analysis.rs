@@ -27,6 +27,10 @@ pub const ROOT: FileId = 0;
 
 pub struct Analysis {
     pub uri: Url,
+    /// The document's text as the editor has it. For a cpfg model (`.l`)
+    /// the root in [`Analysis::sources`] is the preprocessor's output
+    /// instead: the same lines, but columns move after an expanded macro.
+    pub doc: String,
     pub sources: SourceMap,
     pub items: Vec<(FileId, Item)>,
     /// Each loaded `#include` path's span and the file it loaded.
@@ -85,6 +89,7 @@ impl Analysis {
             .collect();
         Analysis {
             uri: uri.clone(),
+            doc: text.to_string(),
             sources,
             items,
             includes,
@@ -114,8 +119,12 @@ impl Analysis {
             .map(|i| i as FileId)
     }
 
+    /// A loaded file's text ("" when the model could not be loaded).
     pub fn text(&self, file: FileId) -> &str {
-        &self.sources.get(file).text
+        self.sources
+            .files()
+            .get(file as usize)
+            .map_or("", |f| f.text.as_str())
     }
 
     /// The `#include` line (span in the root file) through which `file`

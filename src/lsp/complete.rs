@@ -232,6 +232,7 @@ pub fn legend() -> SemanticTokensLegend {
 /// The root document's tokens, delta-encoded in UTF-16 positions.
 pub fn semantic_tokens(a: &Analysis) -> Vec<SemanticToken> {
     let ix = LineIndex::new(a.text(ROOT));
+    let doc_ix = LineIndex::new(&a.doc);
     let mut out = Vec::new();
     let (mut line, mut col, mut last_end) = (0u32, 0u32, 0u32);
     for o in a.index.occs.iter().filter(|o| o.span.file == ROOT) {
@@ -241,6 +242,12 @@ pub fn semantic_tokens(a: &Analysis) -> Vec<SemanticToken> {
         let start = ix.position(o.span.start as usize);
         let end = ix.position(o.span.end as usize);
         if end.line != start.line {
+            continue;
+        }
+        // A cpfg model's root is the preprocessor's output: keep only the
+        // tokens that are where the document has them.
+        let at = doc_ix.offset(start);
+        if a.doc.get(at..at + o.span.len()) != Some(a.sources.slice(o.span)) {
             continue;
         }
         let ty = TYPES

@@ -41,25 +41,28 @@ pub fn diagnostics(a: &Analysis) -> Vec<Diagnostic> {
     reports.into_iter().map(|d| convert(a, d)).collect()
 }
 
-/// Where a label points: its file and byte range.
+/// Where a label points: the file (by the name of the diagnostic's
+/// source) and the range, measured in the diagnostic's own source text
+/// (for a cpfg model that is the file as written, before the
+/// preprocessor).
 fn label_place(
     a: &Analysis,
     d: &dyn miette::Diagnostic,
     l: &miette::LabeledSpan,
-) -> Option<(FileId, usize, usize)> {
+) -> Option<(FileId, Range)> {
     let src = d.source_code()?;
-    let contents = src.read_span(l.inner(), 0, 0).ok()?;
-    let file = match contents.name() {
+    let whole = src.read_span(&(0, 0).into(), 0, usize::MAX).ok()?;
+    let file = match whole.name() {
         Some(name) => a.file_named(name)?,
         None => ROOT,
     };
-    Some((file, l.offset(), l.offset() + l.len()))
+    let text = String::from_utf8_lossy(whole.data());
+    let ix = LineIndex::new(&text);
+    Some((file, ix.range(l.offset(), l.offset() + l.len())))
 }
 
-fn location(a: &Analysis, file: FileId, start: usize, end: usize) -> Option<Location> {
-    let uri = a.uri_of(file)?.clone();
-    let ix = LineIndex::new(a.text(file));
-    Some(Location::new(uri, ix.range(start, end)))
+fn location(a: &Analysis, file: FileId, range: Range) -> Option<Location> {
+    Some(Location::new(a.uri_of(file)?.clone(), range))
 }
 
 fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
@@ -74,13 +77,13 @@ fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
     let mut related = Vec::new();
     let mut range = Range::default();
     match places.first().copied().flatten() {
-        Some((ROOT, s, e)) => range = root_ix.range(s, e),
-        Some((file, s, e)) => {
+        Some((ROOT, r)) => range = r,
+        Some((file, r)) => {
             if let Some(inc) = a.root_include(file) {
                 range = root_ix.range(inc.start as usize, inc.end as usize);
             }
             message = format!("in {}: {message}", a.sources.get(file).name);
-            if let Some(loc) = location(a, file, s, e) {
+            if let Some(loc) = location(a, file, r) {
                 related.push(DiagnosticRelatedInformation {
                     location: loc,
                     message: labels[0].label().unwrap_or("here").to_string(),
@@ -90,7 +93,7 @@ fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
         None => {}
     }
     for (l, place) in labels.iter().zip(&places).skip(1) {
-        if let Some(loc) = place.and_then(|(f, s, e)| location(a, f, s, e)) {
+        if let Some(loc) = place.and_then(|(f, r)| location(a, f, r)) {
             related.push(DiagnosticRelatedInformation {
                 location: loc,
                 message: l.label().unwrap_or("here").to_string(),
@@ -106,10 +109,11 @@ fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
     let tags = (code.as_deref() == Some("lsys::resolve::unreachable"))
         .then(|| vec![DiagnosticTag::UNNECESSARY]);
     let on_root = matches!(places.first(), Some(Some((ROOT, ..))));
+    let doc_ix = LineIndex::new(&a.doc);
     let fix = help
         .as_deref()
         .filter(|_| on_root)
-        .and_then(|h| fix(a.text(ROOT), &root_ix, range, h));
+        .and_then(|h| fix(&a.doc, &doc_ix, range, h));
     Diagnostic {
         range,
         severity: Some(match d.severity() {
