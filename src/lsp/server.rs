@@ -7,6 +7,7 @@
 
 use std::collections::BTreeMap;
 use std::error::Error;
+use std::panic::{self, AssertUnwindSafe};
 
 use lsp_server::{Connection, Message, Notification, Request, Response};
 use lsp_types::notification::{self as notif, Notification as _};
@@ -26,6 +27,8 @@ struct Document {
     text: String,
     /// `None` until analysed after the last edit.
     analysis: Option<Analysis>,
+    /// Analysing this version panicked (a bug): wait for the next edit.
+    crashed: bool,
 }
 
 struct Server<'c> {
@@ -125,7 +128,11 @@ impl Server<'_> {
     /// Analyses every document edited since its last analysis and
     /// publishes its diagnostics with the version analysed.
     fn analyse_pending(&mut self) -> Result<()> {
-        if self.docs.values().all(|d| d.analysis.is_some()) {
+        if self
+            .docs
+            .values()
+            .all(|d| d.analysis.is_some() || d.crashed)
+        {
             return Ok(());
         }
         // Includes of open documents read the editor's text, not the disk.
@@ -142,16 +149,37 @@ impl Server<'_> {
             ..self.opts.clone()
         };
         for (uri, doc) in &mut self.docs {
-            if doc.analysis.is_some() {
+            if doc.analysis.is_some() || doc.crashed {
                 continue;
             }
-            let a = Analysis::new(uri, &doc.text, &opts);
+            // A bug must not take the editor's server down: report it on
+            // the document and keep serving the others.
+            let analysed = panic::catch_unwind(AssertUnwindSafe(|| {
+                let a = Analysis::new(uri, &doc.text, &opts);
+                let d = diagnostics::diagnostics(&a);
+                (a, d)
+            }));
+            let diagnostics = match analysed {
+                Ok((a, d)) => {
+                    doc.analysis = Some(a);
+                    d
+                }
+                Err(_) => {
+                    doc.analysis = None;
+                    doc.crashed = true;
+                    vec![Diagnostic {
+                        severity: Some(DiagnosticSeverity::ERROR),
+                        source: Some("lsys".into()),
+                        message: "internal error: lsys could not analyse this file. This is a bug in lsys; please report it with the file".into(),
+                        ..Diagnostic::default()
+                    }]
+                }
+            };
             let params = PublishDiagnosticsParams {
                 uri: uri.clone(),
-                diagnostics: diagnostics::diagnostics(&a),
+                diagnostics,
                 version: Some(doc.version),
             };
-            doc.analysis = Some(a);
             self.conn
                 .sender
                 .send(Notification::new(notif::PublishDiagnostics::METHOD.into(), params).into())?;
@@ -169,6 +197,7 @@ impl Server<'_> {
                         version: p.text_document.version,
                         text: p.text_document.text,
                         analysis: None,
+                        crashed: false,
                     },
                 );
             }
@@ -180,6 +209,7 @@ impl Server<'_> {
                     }
                     doc.version = p.text_document.version;
                     doc.analysis = None;
+                    doc.crashed = false;
                 }
                 self.invalidate_readers(&p.text_document.uri);
             }
@@ -187,6 +217,7 @@ impl Server<'_> {
                 // An included file may have changed on disk: analyse all again.
                 for doc in self.docs.values_mut() {
                     doc.analysis = None;
+                    doc.crashed = false;
                 }
             }
             notif::DidCloseTextDocument::METHOD => {
@@ -219,7 +250,9 @@ impl Server<'_> {
 
     fn request(&mut self, r: Request) -> Response {
         let id = r.id.clone();
-        match self.answer(r) {
+        let answer = panic::catch_unwind(AssertUnwindSafe(|| self.answer(r)))
+            .unwrap_or_else(|_| Err("internal error in lsys (a bug; please report it)".into()));
+        match answer {
             Ok(v) => Response::new_ok(id, v),
             Err(e) => Response::new_err(id, lsp_server::ErrorCode::RequestFailed as i32, e),
         }
