@@ -425,11 +425,12 @@ impl Client {
 }
 
 #[test]
-fn quick_fixes_for_a_misspelt_name_and_an_unquoted_include() {
+fn quick_fixes_for_a_misspelt_name_an_unquoted_include_and_a_typographic_character() {
     let mut c = Client::start();
     let text = ROOT
         .replace("F(LEN)\nB", "F(LNE)\nB")
-        .replace("#include \"shared.lsys\"", "#include shared.lsys");
+        .replace("#include \"shared.lsys\"", "#include shared.lsys")
+        .replace("angle: 30", "angle: 30 × 1");
     let d = c.open("root.lsys", &text);
     let mut out = Vec::new();
     for diag in d["diagnostics"].as_array().unwrap() {
@@ -484,4 +485,35 @@ endlsystem
     let d = c.open("tree.l", text);
     let tokens = c.tokens("tree.l", text);
     insta::assert_snapshot!(format!("{}\n{tokens}", c.show(&d)));
+}
+
+#[test]
+fn inlay_hints_show_define_values_and_parameter_names() {
+    let mut c = Client::start();
+    let text = format!("{ROOT}#define W N*2\nC(a, b) --> C(a+W, b) A(a)\n");
+    c.open("root.lsys", &text);
+    let hints = c.request(
+        "textDocument/inlayHint",
+        json!({"textDocument": {"uri": c.uri("root.lsys")},
+               "range": {"start": {"line": 0, "character": 0}, "end": {"line": 20, "character": 0}}}),
+    );
+    let lines: Vec<&str> = text.lines().collect();
+    let out: Vec<String> = hints
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|h| {
+            let (l, c) = (
+                h["position"]["line"].as_u64().unwrap() as usize,
+                h["position"]["character"].as_u64().unwrap() as usize,
+            );
+            format!(
+                "{l}:{c} {} | {}⟨⟩{}",
+                h["label"].as_str().unwrap(),
+                &lines[l][..c],
+                &lines[l][c..]
+            )
+        })
+        .collect();
+    insta::assert_snapshot!(out.join("\n"));
 }

@@ -2,8 +2,8 @@
 //! models. Input: LSP messages (stdio, or any [`lsp_server::Connection`]);
 //! output: diagnostics from the same compiler as `lsys check`, hovers,
 //! definitions, references, renames, completions, semantic tokens,
-//! document symbols and links, quick fixes and code lenses with
-//! production firing counts. See docs/editors.md.
+//! document symbols and links, inlay hints, quick fixes and code lenses
+//! with production firing counts. See docs/editors.md.
 //!
 //! The structure is ruff's and ty's: one synchronous loop ([`server`])
 //! owns the open documents (text and version), applies edits in the order
@@ -18,7 +18,7 @@
 //!              defines, parameters, components, includes), from the syntax
 //! analysis     a document -> load + compile + index
 //! diagnostics  compiler diagnostics -> LSP diagnostics, quick fixes
-//! hover, navigate, complete, lens   the requests
+//! hover, navigate, complete, inlay, lens   the requests
 //! server       the loop
 //! ```
 
@@ -27,6 +27,7 @@ mod complete;
 mod diagnostics;
 mod hover;
 mod index;
+mod inlay;
 mod lens;
 mod navigate;
 pub mod position;

@@ -17,7 +17,7 @@ use serde_json::Value;
 
 use super::analysis::{Analysis, ROOT};
 use super::position::LineIndex;
-use super::{complete, diagnostics, hover, lens, navigate};
+use super::{complete, diagnostics, hover, inlay, lens, navigate};
 use crate::load;
 
 type Result<T> = std::result::Result<T, Box<dyn Error + Send + Sync>>;
@@ -71,6 +71,7 @@ pub fn capabilities() -> ServerCapabilities {
             code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
             ..CodeActionOptions::default()
         })),
+        inlay_hint_provider: Some(OneOf::Left(true)),
         code_lens_provider: Some(CodeLensOptions {
             resolve_provider: Some(false),
         }),
@@ -364,6 +365,11 @@ impl Server<'_> {
                     &p.text_document.uri,
                     &p.context.diagnostics,
                 )))
+            }
+            req::InlayHintRequest::METHOD => {
+                let p: InlayHintParams = params(r.params)?;
+                let a = self.doc(&p.text_document.uri)?;
+                json(to(&inlay::hints(a, p.range.start.line, p.range.end.line)))
             }
             req::CodeLensRequest::METHOD => {
                 let p: CodeLensParams = params(r.params)?;
