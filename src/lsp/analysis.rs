@@ -38,6 +38,9 @@ pub struct Analysis {
     pub index: Index,
     pub result: Result<Compilation, Diagnostics>,
     pub profile: crate::lang::Profile,
+    /// The code lenses, derived once per analysis (the editor asks again
+    /// after every edit and on scrolling).
+    pub lenses: std::cell::OnceCell<Vec<lsp_types::CodeLens>>,
     uris: Vec<Option<Url>>,
 }
 
@@ -96,6 +99,7 @@ impl Analysis {
             index,
             result,
             profile,
+            lenses: Default::default(),
             uris,
         }
     }

@@ -374,7 +374,7 @@ impl Server<'_> {
             req::CodeLensRequest::METHOD => {
                 let p: CodeLensParams = params(r.params)?;
                 let a = self.doc(&p.text_document.uri)?;
-                json(to(&lens::lenses(a)))
+                json(to(a.lenses.get_or_init(|| lens::lenses(a))))
             }
             other => Err(format!("lsys lsp does not answer {other}")),
         }
