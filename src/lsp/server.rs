@@ -101,11 +101,25 @@ pub fn serve(conn: Connection, opts: load::Options) -> Result<()> {
 
 impl Server<'_> {
     fn run(&mut self) -> Result<()> {
+        let mut shut_down = false;
         while let Ok(msg) = self.conn.receiver.recv() {
             match msg {
                 Message::Request(r) => {
-                    if self.conn.handle_shutdown(&r)? {
-                        return Ok(());
+                    if r.method == req::Shutdown::METHOD {
+                        // Answered, then the loop waits for `exit` (or the
+                        // client closing the pipe). Clients may ask twice.
+                        shut_down = true;
+                        self.conn.sender.send(Response::new_ok(r.id, ()).into())?;
+                        continue;
+                    }
+                    if shut_down {
+                        let e = Response::new_err(
+                            r.id,
+                            lsp_server::ErrorCode::InvalidRequest as i32,
+                            "the server is shutting down".into(),
+                        );
+                        self.conn.sender.send(e.into())?;
+                        continue;
                     }
                     self.analyse_pending()?;
                     let response = self.request(r);
