@@ -344,6 +344,14 @@ fn completion() {
     c.open("root.lsys", &text);
     let (l, _) = position_of(&text, "A(2) --> \n");
     let body = c.request("textDocument/completion", c.at("root.lsys", l, 9));
+    let mut typed = c.at("root.lsys", l, 9);
+    typed["context"] = json!({"triggerKind": 2, "triggerCharacter": "<"});
+    let roll = c.request("textDocument/completion", typed);
+    assert_eq!(
+        roll,
+        json!([]),
+        "`<` in a successor is a command, not an include"
+    );
     let include = c.request("textDocument/completion", c.at("root.lsys", l + 1, 9));
     let start = c.request("textDocument/completion", c.at("root.lsys", l + 2, 0));
     let brief = |v: &Value| -> Vec<String> {

@@ -57,7 +57,9 @@ fn item(label: String, kind: CompletionItemKind, detail: String, sort: &str) -> 
 }
 
 /// Completions at byte `offset` of the root document.
-pub fn completions(a: &Analysis, offset: usize) -> Vec<CompletionItem> {
+/// `trigger`: the character typed that asked for completion, if any (`<`
+/// and `"` ask only on an `#include` line; elsewhere `<` is a command).
+pub fn completions(a: &Analysis, offset: usize, trigger: Option<&str>) -> Vec<CompletionItem> {
     let text = a.text(ROOT);
     let offset = offset.min(text.len());
     let line_start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
@@ -65,6 +67,9 @@ pub fn completions(a: &Analysis, offset: usize) -> Vec<CompletionItem> {
     let trimmed = before.trim_start();
     if let Some(rest) = trimmed.strip_prefix("#include") {
         return includes(a, rest);
+    }
+    if matches!(trigger, Some("<" | "\"")) {
+        return Vec::new();
     }
     let mut out = Vec::new();
     let at_line_start = trimmed

@@ -84,6 +84,9 @@ pub fn rename(a: &Analysis, occ: &Occ, new_name: &str) -> Result<WorkspaceEdit, 
     if occ.kind != Kind::Param && crate::lang::lookup(new_name).is_some() {
         return Err(format!("`{new_name}` is a turtle command"));
     }
+    if occ.kind == Kind::Module && a.profile.cpfg_names && new_name.chars().count() > 1 {
+        return Err("module names of a cpfg model are one character".to_string());
+    }
     let mut changes: HashMap<Url, Vec<TextEdit>> = HashMap::new();
     for o in a.index.references(occ) {
         if let Some(loc) = location(a, o.span) {

@@ -351,9 +351,9 @@ impl Server<'_> {
                 let pos = p.text_document_position;
                 let a = self.doc(&pos.text_document.uri)?;
                 let offset = LineIndex::new(a.text(ROOT)).offset(pos.position);
-                json(to(&CompletionResponse::Array(complete::completions(
-                    a, offset,
-                ))))
+                let trigger = p.context.and_then(|c| c.trigger_character);
+                let items = complete::completions(a, offset, trigger.as_deref());
+                json(to(&CompletionResponse::Array(items)))
             }
             req::SemanticTokensFullRequest::METHOD => {
                 let p: SemanticTokensParams = params(r.params)?;
