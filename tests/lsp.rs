@@ -525,3 +525,24 @@ fn inlay_hints_show_define_values_and_parameter_names() {
         .collect();
     insta::assert_snapshot!(out.join("\n"));
 }
+
+#[test]
+fn components_hover_and_definition() {
+    let mut c = Client::start();
+    std::fs::create_dir(c.dir.path().join("components")).unwrap();
+    std::fs::write(c.dir.path().join("components/Gate.obj"), "v 0 0 0\n").unwrap();
+    let text = "#include MP\naxiom: ~MP(1) ~TM(1) ~Gate ~Nope\n";
+    c.open("comp.lsys", text);
+    let mut out = String::new();
+    for needle in ["MP(1)", "TM", "Gate", "Nope"] {
+        let (l, col) = position_of(text, needle);
+        let h = c.request("textDocument/hover", c.at("comp.lsys", l, col));
+        let d = c.request("textDocument/definition", c.at("comp.lsys", l, col));
+        out.push_str(&format!(
+            "--- {needle}\n{}\n{}\n",
+            h["contents"]["value"].as_str().unwrap_or("(none)"),
+            c.show(&d)
+        ));
+    }
+    insta::assert_snapshot!(out);
+}

@@ -6,6 +6,7 @@
 //! component's source, an include's file.
 
 use std::fmt::Write;
+use std::path::PathBuf;
 
 use super::analysis::Analysis;
 use super::index::{formal_params, Kind, Occ};
@@ -168,21 +169,69 @@ fn param(a: &Analysis, occ: &Occ, out: &mut String) {
     }
 }
 
+/// Where component `name` comes from, as `build` looks it up (a file in
+/// `components/` beside the grammar, a roof, a built-in OBJ model, a
+/// standard library grammar), and the file an editor can open for it.
+pub fn component_source(a: &Analysis, name: &str) -> (String, Option<PathBuf>) {
+    let dir = a
+        .uri
+        .to_file_path()
+        .ok()
+        .and_then(|p| p.parent().map(|d| d.join("components")));
+    for ext in ["obj", "lsys"] {
+        if let Some(p) = dir
+            .as_ref()
+            .map(|d| d.join(format!("{name}.{ext}")))
+            .filter(|p| p.is_file())
+        {
+            return (
+                format!("`components/{name}.{ext}` beside the grammar"),
+                Some(p),
+            );
+        }
+    }
+    if a.program()
+        .is_some_and(|p| p.cpfg_surfaces.iter().any(|s| s == name))
+    {
+        return ("a surface the model's view file names".into(), None);
+    }
+    if crate::mesh::roof::RoofKind::from_name(name).is_some() {
+        return ("a roof, built when the model is".into(), None);
+    }
+    if let Some(text) = stdlib::component(name) {
+        let file = cached_component(name, text);
+        return (
+            format!("the built-in OBJ model `grammar/std/components/{name}.obj`"),
+            file,
+        );
+    }
+    if let Some(g) = stdlib::grammar_component(name) {
+        return (
+            format!("the standard library grammar `std:{g}`, derived once and placed"),
+            super::analysis::std_file(g),
+        );
+    }
+    (
+        format!("not found beside the grammar (`components/{name}.obj`) nor built in; `build` also looks in `--components` folders"),
+        None,
+    )
+}
+
+/// A built-in component's OBJ text as a file in the cache folder.
+fn cached_component(name: &str, text: &str) -> Option<PathBuf> {
+    let dir = std::env::temp_dir().join(format!("lsys-std-{}", env!("CARGO_PKG_VERSION")));
+    let path = dir.join(format!("{name}.obj"));
+    if std::fs::read_to_string(&path).ok().as_deref() != Some(text) {
+        std::fs::create_dir_all(&dir).ok()?;
+        std::fs::write(&path, text).ok()?;
+    }
+    Some(path)
+}
+
 fn component(a: &Analysis, occ: &Occ, out: &mut String) {
     let name = &occ.name;
-    let _ = writeln!(out, "component `~{name}`\n");
-    if let Some(g) = stdlib::grammar_component(name) {
-        let _ = write!(
-            out,
-            "the standard library grammar `std:{g}`, derived once and placed"
-        );
-    } else if a.program().is_some_and(|p| p.cpfg_surfaces.contains(name)) {
-        let _ = write!(out, "a surface the model's view file names");
-    } else if stdlib::component(name).is_some() {
-        let _ = write!(out, "a built-in OBJ model (`grammar/std/components/{name}.obj`); a `{name}.obj` in a components folder replaces it");
-    } else {
-        let _ = write!(out, "an OBJ model `{name}.obj` looked up at build time beside the grammar and in `--components-dir` folders");
-    }
+    let (source, _) = component_source(a, name);
+    let _ = write!(out, "component `~{name}`: {source}");
     if a.index.definitions(occ).next().is_some() {
         let _ = write!(out, "\n\ndeclared with `#include {name}`");
     }

@@ -38,10 +38,21 @@ pub fn definition(a: &Analysis, occ: &Occ) -> Vec<Location> {
             .into_iter()
             .collect();
     }
-    a.index
+    let mut out: Vec<Location> = a
+        .index
         .definitions(occ)
         .filter_map(|o| location(a, o.span))
-        .collect()
+        .collect();
+    if occ.kind == Kind::Component {
+        // The model (OBJ or grammar) the component places.
+        if let Some(uri) = super::hover::component_source(a, &occ.name)
+            .1
+            .and_then(|p| Url::from_file_path(p).ok())
+        {
+            out.push(Location::new(uri, Range::default()));
+        }
+    }
+    out
 }
 
 pub fn references(a: &Analysis, occ: &Occ, with_declarations: bool) -> Vec<Location> {
