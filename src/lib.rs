@@ -42,9 +42,10 @@
 //!
 //! With the default `cli` feature: [`cli`] (the binary's commands, `watch`
 //! among them), [`repl`] (`lsys repl`: step, edit, inspect a grammar
-//! interactively) and [`progress`] (progress bars on standard error).
+//! interactively), [`lsp`] (`lsys lsp`: the language server for editors)
+//! and [`progress`] (progress bars on standard error).
 //! `default-features = false` builds the library without them (no clap,
-//! rustyline, notify, ctrlc, indicatif, dirs).
+//! rustyline, notify, ctrlc, indicatif, dirs, lsp-server, lsp-types).
 
 mod api;
 
@@ -64,6 +65,8 @@ pub mod exit_code;
 pub mod export;
 pub mod lang;
 pub mod load;
+#[cfg(feature = "cli")]
+pub mod lsp;
 pub mod mesh;
 pub mod pailou;
 pub mod parse;

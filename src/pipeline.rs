@@ -32,12 +32,28 @@ pub struct UnknownNamespace {
 /// namespaced ones (`TM.NTL=5`) are kept for its grammar components and
 /// must name a component the grammar places.
 pub fn compile(input: &Input, opts: &Options) -> Result<Compilation, Diagnostics> {
+    let loaded = load::load(input, &own_options(opts)).map_err(Diagnostics::input)?;
+    compile_loaded(loaded, opts)
+}
+
+/// The options loading gets: the grammar's own defines, without the
+/// namespaced ones.
+pub fn own_options(opts: &Options) -> Options {
+    Options {
+        defines: opts.split_defines().0,
+        ..opts.clone()
+    }
+}
+
+/// The rest of [`compile`] for a model already loaded with
+/// [`own_options`] (the language server keeps the loaded syntax, so it
+/// loads once and compiles from that).
+pub fn compile_loaded(loaded: load::Loaded, opts: &Options) -> Result<Compilation, Diagnostics> {
     let (own, namespaced) = opts.split_defines();
     let own_opts = Options {
         defines: own,
         ..opts.clone()
     };
-    let loaded = load::load(input, &own_opts).map_err(Diagnostics::input)?;
     let files = loaded.sources.disk_paths();
     let resolved = match resolve::resolve(loaded, &own_opts) {
         Err(f) => return Err(Diagnostics::new(f.diagnostics).with_files(files)),

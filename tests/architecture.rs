@@ -36,6 +36,7 @@ const ABOVE: &[&str] = &[
     "exit_code",
     "progress",
     "repl",
+    "lsp",
     "cli",
 ];
 

@@ -48,6 +48,17 @@ pub enum Command {
     Repl(ReplArgs),
     /// Rebuild the output whenever the grammar or a file it includes changes (Ctrl-C stops).
     Watch(BuildArgs),
+    /// Run the language server on standard input and output (for editors; see docs/editors.md).
+    Lsp(LspArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct LspArgs {
+    /// Override a #define in every grammar the server compiles: -D NAME=VALUE (repeatable).
+    #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
+    pub define: Vec<(String, String)>,
+    #[command(flatten)]
+    pub source: SourceArgs,
 }
 
 #[derive(Args, Debug)]
@@ -142,6 +153,7 @@ impl SourceArgs {
                 DialectArg::Paper => crate::lang::Dialect::Paper,
                 DialectArg::Cpfg => crate::lang::Dialect::Cpfg,
             }),
+            unsaved: Default::default(),
         }
     }
 }

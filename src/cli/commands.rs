@@ -33,6 +33,7 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
             emit_stdout(|out| out.write_all(crate::lang::commands::help_text().as_bytes()))
         }
         Command::Watch(b) => super::watch::watch_cmd(b, color),
+        Command::Lsp(l) => crate::lsp::run_stdio(l.source.options(&l.define)),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {
             file: r.file.clone(),
             defines: r.define.clone(),

@@ -224,6 +224,22 @@ impl<'p> Derivation<'p> {
         self.fast.is_some()
     }
 
+    /// Counts how many times each main production applies from now on
+    /// (an editor's code lens). Counting takes the general engine, never
+    /// the fast or parallel path, which do not look at productions one by
+    /// one.
+    pub fn counting_firings(mut self) -> Derivation<'p> {
+        self.fast = None;
+        self.st.fired = vec![0; self.tab.program.productions.len()];
+        self
+    }
+
+    /// With [`Derivation::counting_firings`]: the number of times each
+    /// main production (`Program::productions`, in order) applied so far.
+    pub fn firings(&self) -> &[u64] {
+        &self.st.fired
+    }
+
     /// Tests: always use the general engine.
     #[doc(hidden)]
     pub fn without_fast_path(mut self) -> Derivation<'p> {

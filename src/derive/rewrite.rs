@@ -145,6 +145,9 @@ pub(crate) struct State {
     levels: Vec<Level>,
     pub(crate) warnings: Vec<DepthWarning>,
     pub(crate) step: u32,
+    /// When counting (see `Derivation::counting_firings`): how many times
+    /// each main production applied; empty otherwise.
+    pub(crate) fired: Vec<u64>,
 }
 
 impl State {
@@ -169,6 +172,7 @@ impl State {
             levels: Vec::new(),
             warnings: Vec::new(),
             step: 0,
+            fired: Vec::new(),
         }
     }
 }
@@ -542,6 +546,9 @@ pub(crate) fn rewrite(
             off += a;
             continue;
         };
+        if t == Table::Main && !st.fired.is_empty() {
+            st.fired[p] += 1;
+        }
         let shape = &rules.shapes[p];
         let site = Site::Prod(t, p);
         let binds = mem::take(&mut st.binds);

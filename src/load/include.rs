@@ -72,6 +72,8 @@ pub(super) struct IncludeFinder {
     roots_shown: Vec<PathBuf>,
     /// `--include-dir`: searched after the including file's folder.
     include_dirs: Vec<PathBuf>,
+    /// Unsaved texts by canonical path (see `Options::unsaved`).
+    unsaved: std::sync::Arc<std::collections::HashMap<PathBuf, String>>,
 }
 
 impl IncludeFinder {
@@ -79,7 +81,11 @@ impl IncludeFinder {
     /// working folder for text and library grammars) and the
     /// `--include-dir`s: a grammar from someone else cannot read
     /// ../../etc/passwd, nor show its lines in a diagnostic.
-    pub(super) fn new(root_dir: PathBuf, include_dirs: &[PathBuf]) -> IncludeFinder {
+    pub(super) fn new(
+        root_dir: PathBuf,
+        include_dirs: &[PathBuf],
+        unsaved: std::sync::Arc<std::collections::HashMap<PathBuf, String>>,
+    ) -> IncludeFinder {
         // A missing `--include-dir` allows nothing: it cannot be
         // canonicalised, so nothing starts with it.
         let mut roots = vec![std::fs::canonicalize(&root_dir).unwrap_or_else(|_| root_dir.clone())];
@@ -94,6 +100,7 @@ impl IncludeFinder {
             roots,
             roots_shown,
             include_dirs: include_dirs.to_vec(),
+            unsaved,
         }
     }
 
@@ -163,6 +170,9 @@ impl IncludeFinder {
                         full.display(),
                     ),
                 });
+            }
+            if let Some(text) = self.unsaved.get(&real) {
+                return Ok(text.clone());
             }
         }
         Ok(())

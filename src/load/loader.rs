@@ -40,6 +40,7 @@ impl Loader {
                 warnings: Vec::new(),
                 broken: Vec::new(),
                 failed_includes: Vec::new(),
+                includes: Vec::new(),
                 preprocessed: false,
                 profile,
                 side: SideFiles::default(),
@@ -207,6 +208,7 @@ impl Loader {
             return;
         }
         let id = self.loaded.sources.add(file);
+        self.loaded.includes.push((span, id));
         self.file(id);
     }
 }

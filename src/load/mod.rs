@@ -74,6 +74,10 @@ pub struct Options {
     /// `--dialect`: overrides the profile the file's name and `dialect:`
     /// header would give.
     pub dialect: Option<crate::lang::Dialect>,
+    /// Files being edited and not saved (an editor's open documents), by
+    /// canonical path: an include of one of them reads this text instead
+    /// of the file on disk.
+    pub unsaved: std::sync::Arc<std::collections::HashMap<PathBuf, String>>,
 }
 
 impl Default for Options {
@@ -84,6 +88,7 @@ impl Default for Options {
             max_include_depth: MAX_INCLUDE_DEPTH,
             parse: crate::parse::Limits::default(),
             dialect: None,
+            unsaved: Default::default(),
         }
     }
 }
@@ -101,6 +106,9 @@ pub struct Loaded {
     /// The `#include` lines (their path's span) whose file could not be
     /// loaded: names it would have defined are not reported one by one.
     pub failed_includes: Vec<Span>,
+    /// Every `#include` line that loaded a file: its path's span (in the
+    /// including file) and the file it loaded (editors link the two).
+    pub includes: Vec<(Span, FileId)>,
     /// The files went through the C preprocessor (a cpfg `.l` root), which
     /// took the `-D` definitions.
     pub preprocessed: bool,
@@ -127,7 +135,7 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
     }
     .filter(|d| !d.as_os_str().is_empty())
     .unwrap_or_else(|| PathBuf::from("."));
-    let finder = include::IncludeFinder::new(root_dir, &opts.include_dirs);
+    let finder = include::IncludeFinder::new(root_dir, &opts.include_dirs, opts.unsaved.clone());
     let model = match &root.origin {
         Origin::Disk(p) => Some(p.clone()),
         _ => None,

@@ -4,7 +4,7 @@
 //! folded. All errors of all files are collected and reported together.
 //! Resolve reads no file: loading read them all.
 
-mod alphabet;
+pub mod alphabet;
 mod brackets;
 mod cstmt;
 pub mod error;

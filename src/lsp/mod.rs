@@ -1,0 +1,55 @@
+//! `lsys lsp`: a language server for `.lsys` grammars and cpfg `.l`
+//! models. Input: LSP messages (stdio, or any [`lsp_server::Connection`]);
+//! output: diagnostics from the same compiler as `lsys check`, hovers,
+//! definitions, references, renames, completions, semantic tokens,
+//! document symbols and links, inlay hints, quick fixes and code lenses
+//! with production firing counts. See docs/editors.md.
+//!
+//! The structure is ruff's and ty's: one synchronous loop ([`server`])
+//! owns the open documents (text and version), applies edits in the order
+//! they arrive, analyses a document again only once no message is waiting
+//! (a burst of keystrokes is compiled once), answers requests against the
+//! current analysis and publishes diagnostics with the version they were
+//! computed for.
+//!
+//! ```text
+//! position     byte offsets <-> LSP (UTF-16) positions
+//! index        every named occurrence of the model (modules, commands,
+//!              defines, parameters, components, includes), from the syntax
+//! analysis     a document -> load + compile + index
+//! diagnostics  compiler diagnostics -> LSP diagnostics, quick fixes
+//! hover, navigate, complete, inlay, lens   the requests
+//! server       the loop
+//! ```
+
+mod analysis;
+mod complete;
+mod diagnostics;
+mod hover;
+mod index;
+mod inlay;
+mod lens;
+mod navigate;
+pub mod position;
+mod server;
+
+pub use server::{capabilities, serve};
+
+/// Runs the server over standard input and output until the client asks
+/// it to exit; the process's exit code.
+pub fn run_stdio(opts: crate::load::Options) -> i32 {
+    let (connection, io) = lsp_server::Connection::stdio();
+    let result = serve(connection, opts);
+    let joined = io.join();
+    match (result, joined) {
+        (Ok(()), Ok(())) => 0,
+        (Err(e), _) => {
+            eprintln!("lsys lsp: {e}");
+            1
+        }
+        (_, Err(e)) => {
+            eprintln!("lsys lsp: {e}");
+            1
+        }
+    }
+}
