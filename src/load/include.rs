@@ -146,8 +146,14 @@ impl IncludeFinder {
 
     /// Reads the file at `full` if it is inside the allowed folders and is
     /// a text file of at most [`MAX_SOURCE_BYTES`].
+    /// An editor's unsaved text of the file wins over the disk's.
     pub(super) fn read(&self, full: &Path) -> Result<String, Refused> {
         self.confined(full)?;
+        if let Ok(real) = std::fs::canonicalize(full) {
+            if let Some(text) = self.unsaved.get(&real) {
+                return Ok(text.clone());
+            }
+        }
         self.read_text(full)
     }
 
@@ -170,9 +176,6 @@ impl IncludeFinder {
                         full.display(),
                     ),
                 });
-            }
-            if let Some(text) = self.unsaved.get(&real) {
-                return Ok(text.clone());
             }
         }
         Ok(())
