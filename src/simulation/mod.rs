@@ -36,6 +36,9 @@ pub struct Simulation<'p> {
     target: u32,
     environments: Vec<Box<dyn Environment + 'p>>,
     ended: bool,
+    /// Environments answer the axiom before step 1 too (guided modeling;
+    /// cpfg's `environment display: before`).
+    pass_on_axiom: bool,
 }
 
 impl<'p> Simulation<'p> {
@@ -91,6 +94,7 @@ impl<'p> Simulation<'p> {
             target,
             environments,
             ended: false,
+            pass_on_axiom: false,
         }
     }
 
@@ -102,6 +106,25 @@ impl<'p> Simulation<'p> {
         target: u32,
     ) -> Result<Simulation<'p>, DeriveError> {
         let mut s = Simulation::bare(derivation, program, compiled, opts, target);
+        s.answer(true)?;
+        Ok(s)
+    }
+
+    /// [`Simulation::new`] with `extra` environments answering from the
+    /// axiom on (after the built-in ones), and, with `pass_on_axiom`, a
+    /// pass over the axiom before step 1 as over every later string.
+    pub fn with_environments(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+        extra: Vec<Box<dyn Environment + 'p>>,
+        pass_on_axiom: bool,
+    ) -> Result<Simulation<'p>, DeriveError> {
+        let derivation = Derivation::new(program, compiled, opts.clone())?;
+        let mut s = Simulation::bare(derivation, program, compiled, opts, target);
+        s.environments.extend(extra);
+        s.pass_on_axiom = pass_on_axiom;
         s.answer(true)?;
         Ok(s)
     }
@@ -144,7 +167,7 @@ impl<'p> Simulation<'p> {
         // cpfg runs an environment pass after each step but the last: the
         // axiom gets none (unlike the turtle's `?P`, which every
         // interpretation fills).
-        if self.derivation.step_number() > 0 {
+        if self.derivation.step_number() > 0 || self.pass_on_axiom {
             self.answer(false)?;
         }
         self.derivation.rewrite_step()?;
