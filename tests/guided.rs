@@ -99,3 +99,29 @@ fn the_run_is_deterministic() {
     let l = load("links.toml");
     assert_eq!(run(&l), run(&l));
 }
+
+#[test]
+fn a_local_update_equals_a_full_recompute() {
+    let l = load("links.toml");
+    let before = run(&l);
+    // g3 (index 2) shortened: only g3 re-derives; g1 replays its message.
+    let mut l3 = load("links.toml");
+    l3.spec.guides[2].points = vec![
+        glam::DVec2::new(0.0, 4.0),
+        glam::DVec2::new(4.0, 4.0),
+        glam::DVec2::new(4.0, 6.0),
+        glam::DVec2::new(0.0, 6.0),
+    ];
+    assert_eq!(guided::run::downstream(&l3, 2).len(), 1);
+    let updated = guided::update(&l3, &before, 2).unwrap();
+    assert_eq!(updated, run(&l3));
+    assert_ne!(updated, before);
+    // g1 moved its top edge down: g1, g2 and g3 all re-derive.
+    let mut l1 = load("links.toml");
+    l1.spec.guides[0].points[2].y = 3.5;
+    l1.spec.guides[0].points[3].y = 3.5;
+    assert_eq!(guided::run::downstream(&l1, 0).len(), 3);
+    let updated = guided::update(&l1, &before, 0).unwrap();
+    assert_eq!(updated, run(&l1));
+    assert_ne!(updated, before);
+}

@@ -228,6 +228,9 @@ pub struct LookArgs {
     /// Warn about placed components whose boxes interpenetrate (always on for `lsys pailou`).
     #[arg(long)]
     pub collisions: bool,
+    /// With a guided scene (FILE.toml, docs/guided.md): draw its guides and links too.
+    #[arg(long)]
+    pub guides: bool,
 }
 
 /// `lsys pailou`: a Pailou from a component graph or a style.

@@ -166,12 +166,16 @@ pub fn overlay(spec: &SceneSpec, width: f32, guide_colour: u32, link_colour: u32
     for l in &spec.links {
         let (a, b) = spec.guides[l.from].edge(l.from_edge);
         let (c, e) = spec.guides[l.to].edge(l.to_edge);
+        // From the source edge's middle to a point inside the target guide:
+        // an arrow's shaft with a barb, visible also between snapped guides.
         let (m0, m1) = ((a + b) * 0.5, (c + e) * 0.5);
-        let n = spec.guides[l.from].inward_normal(l.from_edge);
-        let s = (b - a).length().min(1.0) * 0.2;
-        let mid = (m0 + m1) * 0.5 - n * s;
+        let n = spec.guides[l.to].inward_normal(l.to_edge);
+        let s = (e - c).length() * 0.15;
+        let tip = m1 + n * s;
+        let back = n.perp() * s * 0.3 - n * s * 0.3;
+        let start = m0 + spec.guides[l.from].inward_normal(l.from_edge) * s * 0.5;
         d.chains.push(chain(
-            vec![pt(m0, 0.0), pt(mid, 0.0), pt(m1, 0.0)],
+            vec![pt(start, 0.0), pt(tip, 0.0), pt(tip + back, 0.0)],
             link_colour,
         ));
     }

@@ -16,6 +16,7 @@
 //! See docs/guided.md for the file format, the query layout and the token
 //! rules.
 
+pub mod build;
 pub mod draw;
 pub mod geometry;
 pub mod load;

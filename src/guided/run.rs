@@ -146,7 +146,7 @@ fn execute<'p>(
 ) -> Result<Outcome, DeriveError> {
     let spec = &l.spec;
     let steps = spec.steps;
-    let active = |g: usize| frozen.as_ref().is_none_or(|(_, set)| set.contains(&g));
+    let active = |g: usize| frozen.as_ref().map_or(true, |(_, set)| set.contains(&g));
     let world = Rc::new(RefCell::new(World {
         spec,
         tokens: spec
