@@ -125,3 +125,103 @@ fn a_local_update_equals_a_full_recompute() {
     assert_eq!(updated, run(&l1));
     assert_ne!(updated, before);
 }
+
+fn seeds_in(o: &Outcome, l: &Loaded, guide: &str) -> usize {
+    let g = l.spec.guides.iter().position(|g| g.name == guide).unwrap();
+    o.seeds.iter().filter(|s| s.guide == g).count()
+}
+
+#[test]
+fn palm_example() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_palm_trunk_is_cut_at_its_guide() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    let trunk = &o.seeds[0];
+    // Nothing but segments is left: the tip after the touching ?X is cut.
+    assert!(!trunk.string.contains('?'), "{}", trunk.string);
+    let pts = points(&o, 0, 0);
+    let last = pts.last().unwrap();
+    // The last segment reaches the top edge (y = 8) or a little past it.
+    assert!(last.1 >= 8.0 - 1e-6 && last.1 < 8.3, "{last:?}");
+    assert_eq!(o.messages.iter().filter(|m| m.0.link == 0).count(), 1);
+}
+
+#[test]
+fn the_palm_sends_one_seed_per_token_and_none_over_a_zero_token_link() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    assert_eq!(
+        seeds_in(&o, &l, "crown"),
+        1,
+        "navigation links never seed the crown"
+    );
+    for leaf in [
+        "leaf_right",
+        "leaf_upper_right",
+        "leaf_upper_left",
+        "leaf_left",
+    ] {
+        assert_eq!(seeds_in(&o, &l, leaf), 1, "{leaf}");
+    }
+    // The frond sent to link 15 (no tokens) reached its edge ...
+    let crown = o.seeds.iter().find(|s| s.guide == 1).unwrap();
+    assert_eq!(crown.string.matches('[').count(), 5);
+    // ... and seeded nothing.
+    assert_eq!(seeds_in(&o, &l, "leaf_top"), 0);
+    assert_eq!(o.tokens[5].used, 0);
+}
+
+/// Three parallel lines reach the right edge of g1, whose link to g2 has
+/// two tokens: two seeds in g2, the first two lines in string order.
+const TOKENS: &str = r#"
+steps = 20
+[[guide]]
+name = "g1"
+grammar = "line.lsys"
+points = [[0, 0], [2, 0], [2, 3], [0, 3]]
+[[guide]]
+name = "g2"
+grammar = "line.lsys"
+points = [[2, 0], [4, 0], [4, 3], [2, 3]]
+[[link]]
+from = "g1"
+from_edge = 1
+to = "g2"
+to_edge = 3
+tokens = 2
+continuity = "C1"
+[[seeds]]
+guide = "g1"
+position = [0, 2.5]
+heading = 0
+[[seeds]]
+guide = "g1"
+position = [0, 1.5]
+heading = 0
+[[seeds]]
+guide = "g1"
+position = [0, 0.5]
+heading = 0
+"#;
+
+#[test]
+fn a_link_sends_as_many_messages_as_it_has_tokens() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/guided");
+    let l = guided::load_text("tokens.toml", TOKENS, &base, &Default::default()).unwrap();
+    let o = run(&l);
+    assert_eq!(seeds_in(&o, &l, "g2"), 2);
+    let ys: Vec<f64> = o
+        .seeds
+        .iter()
+        .filter(|s| s.guide == 1)
+        .map(|s| s.at.origin.y)
+        .collect();
+    assert_eq!(ys, vec![2.5, 1.5]);
+    assert_eq!((o.tokens[0].used, o.tokens[0].free()), (2, 0));
+}

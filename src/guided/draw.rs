@@ -133,8 +133,8 @@ pub fn elements(d: &Drawing, seed: usize) -> Vec<Element> {
         .collect()
 }
 
-/// Guides (colour `guide_colour`) and links (`link_colour`, from the
-/// middle of the source edge to the middle of the target edge) as chains
+/// Guides (colour `guide_colour`) and links (`link_colour`: an arrow out
+/// of the source edge's middle, one into the target edge's) as chains
 /// of width `width`; a guide with a height is drawn as a prism.
 pub fn overlay(spec: &SceneSpec, width: f32, guide_colour: u32, link_colour: u32) -> Drawing {
     let mut d = Drawing::default();
@@ -164,20 +164,21 @@ pub fn overlay(spec: &SceneSpec, width: f32, guide_colour: u32, link_colour: u32
         }
     }
     for l in &spec.links {
-        let (a, b) = spec.guides[l.from].edge(l.from_edge);
-        let (c, e) = spec.guides[l.to].edge(l.to_edge);
-        // From the source edge's middle to a point inside the target guide:
-        // an arrow's shaft with a barb, visible also between snapped guides.
-        let (m0, m1) = ((a + b) * 0.5, (c + e) * 0.5);
-        let n = spec.guides[l.to].inward_normal(l.to_edge);
-        let s = (e - c).length() * 0.15;
-        let tip = m1 + n * s;
-        let back = n.perp() * s * 0.3 - n * s * 0.3;
-        let start = m0 + spec.guides[l.from].inward_normal(l.from_edge) * s * 0.5;
-        d.chains.push(chain(
-            vec![pt(start, 0.0), pt(tip, 0.0), pt(tip + back, 0.0)],
-            link_colour,
-        ));
+        // An arrow across the source edge's middle, pointing out; and one
+        // across the target edge's middle, pointing in (snapped guides:
+        // one arrow).
+        for (g, e, sign) in [(l.from, l.from_edge, -1.0), (l.to, l.to_edge, 1.0)] {
+            let (a, b) = spec.guides[g].edge(e);
+            let m = (a + b) * 0.5;
+            let n = spec.guides[g].inward_normal(e) * sign;
+            let s = (b - a).length().min(2.0) * 0.2;
+            let (from, tip) = (m - n * s, m + n * s);
+            let back = (n.perp() - n) * s * 0.35;
+            d.chains.push(chain(
+                vec![pt(from, 0.0), pt(tip, 0.0), pt(tip + back, 0.0)],
+                link_colour,
+            ));
+        }
     }
     d
 }

@@ -225,7 +225,25 @@ pub fn read(name: &str, text: &str) -> Result<SceneSpec, Box<SceneError>> {
     let mut by_name: BTreeMap<String, usize> = BTreeMap::new();
     let mut ids: BTreeMap<i64, Range<usize>> = BTreeMap::new();
     let mut guides = Vec::new();
-    let count = file.guide.len() as i64;
+    // Default ids count up from 1 over guides, then links, skipping the
+    // ids the file gives explicitly.
+    let explicit: std::collections::BTreeSet<i64> = file
+        .guide
+        .iter()
+        .filter_map(|g| g.id.as_ref().map(|i| *i.get_ref()))
+        .chain(
+            file.link
+                .iter()
+                .filter_map(|l| l.id.as_ref().map(|i| *i.get_ref())),
+        )
+        .collect();
+    let mut next_id = 0i64;
+    let mut fresh = || loop {
+        next_id += 1;
+        if !explicit.contains(&next_id) {
+            return next_id;
+        }
+    };
     for (k, g) in file.guide.iter().enumerate() {
         let gname = g.name.get_ref().clone();
         if by_name.insert(gname.clone(), k).is_some() {
@@ -256,7 +274,7 @@ pub fn read(name: &str, text: &str) -> Result<SceneSpec, Box<SceneError>> {
         }
         let (id, id_span) = match &g.id {
             Some(i) => (*i.get_ref(), i.span()),
-            None => (k as i64 + 1, g.name.span()),
+            None => (fresh(), g.name.span()),
         };
         guides.push(Guide {
             name: gname,
@@ -282,7 +300,7 @@ pub fn read(name: &str, text: &str) -> Result<SceneSpec, Box<SceneError>> {
         })
     };
     let mut links = Vec::new();
-    for (k, l) in file.link.iter().enumerate() {
+    for l in &file.link {
         let from = guide(&l.from)?;
         let to = guide(&l.to)?;
         for (g, e) in [(from, &l.from_edge), (to, &l.to_edge)] {
@@ -315,7 +333,7 @@ pub fn read(name: &str, text: &str) -> Result<SceneSpec, Box<SceneError>> {
         };
         let (id, id_span) = match &l.id {
             Some(i) => (*i.get_ref(), i.span()),
-            None => (count + k as i64 + 1, l.from.span()),
+            None => (fresh(), l.from.span()),
         };
         check_id(&r, &mut ids, id, id_span)?;
         links.push(Link {
@@ -385,7 +403,7 @@ fn check_id(
             span,
             format!("the id {id} is used twice"),
             "the second use",
-            "guides and links share one id space (defaults: guides 1.., then links)".into(),
+            "guides and links share one id space (defaults count up from 1, guides first, skipping explicit ids)".into(),
         ));
     }
     Ok(())
