@@ -24,6 +24,7 @@ use super::draw;
 use super::load::Loaded;
 use super::queries::{Element, GuidedQueries, Message, Placement, World};
 use super::tokens::LinkTokens;
+use crate::derive::number::{NumberFormat, NumberStyle};
 use crate::derive::{DeriveError, DeriveOptions};
 use crate::simulation::{Environment, Simulation};
 use crate::turtle::Drawing;
@@ -49,7 +50,7 @@ pub struct SeedRun {
     pub at: Placement,
     pub payload: Vec<f64>,
     pub grammar: usize,
-    /// The final string, as `lsys derive` prints it.
+    /// The final string, as `lsys derive --precision 4` prints it.
     pub string: String,
     /// Placed and clipped.
     pub drawing: Drawing,
@@ -295,7 +296,13 @@ fn execute<'p>(
             sim.finish()?;
             let comp = &l.grammars[s.run.grammar];
             s.run.drawing = placed(l, &s.run, &sim)?;
-            s.run.string = sim.current().display(&comp.program.symbols);
+            s.run.string = sim.current().display_with(
+                &comp.program.symbols,
+                NumberFormat {
+                    f32: false,
+                    style: NumberStyle::Decimals(4),
+                },
+            );
             seeds.push(s.run);
         }
     }
