@@ -225,3 +225,29 @@ fn a_link_sends_as_many_messages_as_it_has_tokens() {
     assert_eq!(ys, vec![2.5, 1.5]);
     assert_eq!((o.tokens[0].used, o.tokens[0].free()), (2, 0));
 }
+
+#[test]
+fn spiral_example() {
+    let l = load("spiral.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_spiral_sends_one_lateral_branch_per_link() {
+    let l = load("spiral.toml");
+    let o = run(&l);
+    let main = &o.seeds[0];
+    // The tip passes within reach of each link for many steps; the
+    // reservation keeps it to one branch each.
+    assert_eq!(main.string.matches('[').count(), 3, "{}", main.string);
+    for g in ["east", "north", "west"] {
+        assert_eq!(seeds_in(&o, &l, g), 1, "{g}");
+    }
+    assert!(o
+        .tokens
+        .iter()
+        .all(|t| t.used == 1 && t.reserved.is_empty()));
+    // The main spiral shrinks by 0.995 a step and stops below S0 / 3.
+    assert!(main.string.ends_with("F(0.1001)"), "{}", main.string);
+}

@@ -154,7 +154,7 @@ impl GuidedQueries<'_> {
                     } else if named {
                         w.tokens[li].target(self.seed)
                     } else {
-                        w.tokens[li].visible_to(self.seed)
+                        w.tokens[li].visible()
                     };
                     if kind == Kind::Cross && named {
                         w.tokens[li].target(self.seed);

@@ -34,10 +34,12 @@ impl LinkTokens {
         self.reserved.contains(&seed)
     }
 
-    /// A navigation link (no tokens at all) or one with a token this seed
-    /// may still use: what a query that names no id sees.
-    pub fn visible_to(&self, seed: usize) -> bool {
-        self.total == 0 || self.free() > 0 || self.holds(seed)
+    /// A navigation link (no tokens at all) or one with a free token: what
+    /// a query that names no id sees. A reserved token is hidden from such
+    /// queries, the holder's own included: the module that reserved it
+    /// names the link (the spiral's tip must not send a second branch).
+    pub fn visible(&self) -> bool {
+        self.total == 0 || self.free() > 0
     }
 
     /// A query of `seed` names this link (`id_test`): it keeps or takes a
@@ -89,9 +91,9 @@ mod tests {
     fn a_reservation_bars_others_until_released() {
         let mut t = LinkTokens::new(1);
         assert!(t.target(3));
-        assert!(!t.visible_to(4));
+        assert!(!t.visible());
         assert!(!t.target(4));
-        assert!(t.visible_to(3));
+        assert!(t.target(3));
         t.end_pass();
         assert_eq!(t.reserved, vec![3]);
         // A pass where seed 3 no longer targets the link frees the token.
@@ -105,7 +107,7 @@ mod tests {
     #[test]
     fn a_zero_token_link_guides_but_never_sends() {
         let mut t = LinkTokens::new(0);
-        assert!(t.visible_to(0) && t.target(0));
+        assert!(t.visible() && t.target(0));
         assert!(!t.use_token(0));
     }
 
