@@ -251,3 +251,42 @@ fn the_spiral_sends_one_lateral_branch_per_link() {
     // The main spiral shrinks by 0.995 a step and stops below S0 / 3.
     assert!(main.string.ends_with("F(0.1001)"), "{}", main.string);
 }
+
+#[test]
+fn street_example() {
+    let l = load("street.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_street_keeps_its_heading_across_guides() {
+    let l = load("street.toml");
+    let o = run(&l);
+    // Each quarter's arterial starts where the centre's crossed the edge,
+    // heading as the centre's did.
+    for (name, heading) in [
+        ("east", 30.0),
+        ("north", 120.0),
+        ("west", -150.0),
+        ("south", -60.0),
+    ] {
+        let g = l.spec.guides.iter().position(|g| g.name == name).unwrap();
+        let seed = o.seeds.iter().find(|s| s.guide == g).unwrap();
+        let h: f64 = seed.at.heading;
+        assert!((h - heading).abs() < 1e-6, "{name}: {h}");
+        let p = seed.at.origin;
+        let dir = (heading.to_radians().cos(), heading.to_radians().sin());
+        assert!(
+            off_line((p.x, p.y), (0.0, 0.0), dir) < 1e-6,
+            "{name}: {p:?}"
+        );
+        // The quarter's first segment continues the line.
+        let pts = points(&o, g, 0);
+        assert!(
+            off_line(pts[1], (0.0, 0.0), dir) < 1e-5,
+            "{name}: {:?}",
+            pts[1]
+        );
+    }
+}
