@@ -290,3 +290,65 @@ fn the_street_keeps_its_heading_across_guides() {
         );
     }
 }
+
+#[test]
+fn tree_example() {
+    let l = load("tree.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// The modules outside brackets: the main axis.
+fn main_axis(s: &str) -> Vec<&str> {
+    let mut depth = 0;
+    let mut out = Vec::new();
+    for m in s.split(' ') {
+        match m {
+            "[" => depth += 1,
+            "]" => depth -= 1,
+            _ if depth == 0 => out.push(m),
+            _ => {}
+        }
+    }
+    out
+}
+
+#[test]
+fn the_tree_passes_the_level_through_x() {
+    let l = load("tree.toml");
+    let o = run(&l);
+    let trunk = &o.seeds[0].string;
+    let segments = main_axis(trunk)
+        .iter()
+        .filter(|m| m.starts_with('F'))
+        .count();
+    let crown = o.seeds.iter().find(|s| s.guide == 1).unwrap();
+    // The level reached at the crown's link: the trunk's segments.
+    assert_eq!(crown.payload, vec![segments as f64]);
+    // The boughs leave the trunk at 3 and 7 segments and cross their
+    // links a few segments later; each seed got its own level.
+    let right = o.seeds.iter().find(|s| s.guide == 2).unwrap().payload[0];
+    let left = o.seeds.iter().find(|s| s.guide == 3).unwrap().payload[0];
+    assert!(
+        right > 3.0 && right < left && left < segments as f64,
+        "{right} {left}"
+    );
+    // A higher level leaves fewer levels to grow: the crown's cluster is
+    // the smallest of the three though its guide is the largest.
+    let fs = |g: usize| {
+        o.seeds
+            .iter()
+            .find(|s| s.guide == g)
+            .unwrap()
+            .string
+            .matches('F')
+            .count()
+    };
+    assert!(
+        fs(1) < fs(2) && fs(1) < fs(3),
+        "{} {} {}",
+        fs(1),
+        fs(2),
+        fs(3)
+    );
+}
