@@ -352,3 +352,45 @@ fn the_tree_passes_the_level_through_x() {
         fs(3)
     );
 }
+
+#[test]
+fn pailou_entrance_example() {
+    let l = load("pailou_entrance.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// Bracket caps per row (placements of the rows' seed, by height).
+fn caps_per_row(o: &Outcome) -> Vec<usize> {
+    let mut rows: std::collections::BTreeMap<i64, usize> = Default::default();
+    for p in &o.seeds[0].drawing.placements {
+        let y = p.transform.w_axis.y;
+        *rows.entry((y * 100.0).round() as i64).or_default() += 1;
+    }
+    rows.into_values().collect()
+}
+
+#[test]
+fn the_toukung_rows_stop_at_their_guide() {
+    let l = load("pailou_entrance.toml");
+    let o = run(&l);
+    let rows = caps_per_row(&o);
+    assert_eq!(rows.len(), 6, "{rows:?}");
+    assert!(rows.windows(2).all(|w| w[0] >= w[1]), "{rows:?}");
+    assert!(rows[0] > rows[5], "{rows:?}");
+    let guide = &l.spec.guides[0].points;
+    for p in &o.seeds[0].drawing.placements {
+        let c = glam::DVec2::new(p.transform.w_axis.x as f64, p.transform.w_axis.y as f64);
+        assert!(guided::geometry::inside(c, guide), "{c:?}");
+    }
+    // A wider trapezoid: the same grammar fills longer rows.
+    let mut wide = load("pailou_entrance.toml");
+    for p in &mut wide.spec.guides[0].points {
+        p.x *= 1.5;
+    }
+    let more = caps_per_row(&run(&wide));
+    assert!(
+        more.iter().zip(&rows).all(|(m, r)| m > r),
+        "{more:?} {rows:?}"
+    );
+}
