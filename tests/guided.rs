@@ -394,3 +394,41 @@ fn the_toukung_rows_stop_at_their_guide() {
         "{more:?} {rows:?}"
     );
 }
+
+/// One guide (id 1), a link (id 2) on its right edge, a seed at (1, 1)
+/// heading up (+y).
+const QUERIES: &str = r#"
+steps = 1
+[[guide]]
+name = "g"
+grammar = "queries.lsys"
+points = [[0, 0], [4, 0], [4, 4], [0, 4]]
+[[guide]]
+name = "h"
+grammar = "queries.lsys"
+points = [[4, 0], [8, 0], [8, 4], [4, 4]]
+[[link]]
+from = "g"
+from_edge = 1
+to = "h"
+to_edge = 3
+tokens = 0
+continuity = "C1"
+[[seeds]]
+guide = "g"
+position = [1, 1]
+heading = 90
+"#;
+
+#[test]
+fn the_query_modules_answer_in_one_layout() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/guided");
+    let l = guided::load_text("queries.toml", QUERIES, &base, &Default::default()).unwrap();
+    let o = run(&l);
+    // Outputs first (found, d, beta, id_out), then inputs; the closest
+    // link is 3 to the right (beta -90), the closest boundary 1 behind
+    // (beta 180, the bottom edge before the left one), the boundary 3
+    // ahead; a short ?X hits nothing, a long one the top edge (id 1);
+    // id_test 99 names nothing. ?X's payload (7) passes through.
+    insta::assert_snapshot!(o.strings(&l), @"g#0 (explicit): ?DL(1,3,-90,3,0) ?DG(1,1,180,1,0) ?DA(1,1,180,1,0) ?NL(0,0,0,0) ?NG(1,3,1,0) ?NA(1,3,1,0) ?X(0,0,0.5,0,0,7) ?X(1,1,5,0,0,7) ?DL(0,0,0,0,99) ?NL(0,0,0,99)");
+}
