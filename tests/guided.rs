@@ -432,3 +432,58 @@ fn the_query_modules_answer_in_one_layout() {
     // id_test 99 names nothing. ?X's payload (7) passes through.
     insta::assert_snapshot!(o.strings(&l), @"g#0 (explicit): ?DL(1,3,-90,3,0) ?DG(1,1,180,1,0) ?DA(1,1,180,1,0) ?NL(0,0,0,0) ?NG(1,3,1,0) ?NA(1,3,1,0) ?X(0,0,0.5,0,0,7) ?X(1,1,5,0,0,7) ?DL(0,0,0,0,99) ?NL(0,0,0,99)");
 }
+
+fn lsys(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn lsys_render_and_build_read_a_scene() {
+    let dir = std::env::temp_dir().join(format!("lsys-guided-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("links.png");
+    let o = lsys(&[
+        "render",
+        "examples/guided/links.toml",
+        "-o",
+        png.to_str().unwrap(),
+        "--guides",
+        "--size",
+        "64x48",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::metadata(&png).unwrap().len() > 0);
+    let glb = dir.join("links.glb");
+    let o = lsys(&[
+        "build",
+        "examples/guided/links.toml",
+        "-o",
+        glb.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(o.status.success());
+    let stats = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stats.contains("\"seeds\":4") && stats.contains("\"messages\":2"),
+        "{stats}"
+    );
+    // A mistake in the scene is a located diagnostic and exit code 65.
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "steps = 1\n[[guide]]\nname = \"g\"\ngrammar = \"x.lsys\"\npoints = [[0, 0], [1, 1]]\n",
+    )
+    .unwrap();
+    let o = lsys(&["build", bad.to_str().unwrap(), "-o", glb.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(65));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("lsys::guided::scene") && err.contains("at least 3"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
