@@ -487,3 +487,23 @@ fn lsys_render_and_build_read_a_scene() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_local_update_of_the_palm_equals_a_full_recompute() {
+    let l = load("palm.toml");
+    let before = run(&l);
+    // A leaf guide stretched: only that leaf re-derives.
+    let mut leaf = load("palm.toml");
+    for p in leaf.spec.guides[2].points.iter_mut().skip(2) {
+        p.x += 1.0;
+    }
+    let updated = guided::update(&leaf, &before, 2).unwrap();
+    assert_eq!(updated, run(&leaf));
+    assert_ne!(updated.seeds[2], before.seeds[2]);
+    assert_eq!(updated.seeds[0], before.seeds[0]);
+    // The crown widened: the crown and the five leaves downstream.
+    let mut crown = load("palm.toml");
+    crown.spec.guides[1].points[3].x += 0.5;
+    assert_eq!(guided::run::downstream(&crown, 1).len(), 6);
+    assert_eq!(guided::update(&crown, &before, 1).unwrap(), run(&crown));
+}

@@ -266,7 +266,7 @@ fn execute<'p>(
                 turn_of_guide = Some(g);
             }
             let first = live.len();
-            for (m, r, g) in &sent {
+            for (m, _, _) in &sent {
                 let link = &spec.links[m.link];
                 new_seed(
                     &mut live,
@@ -278,8 +278,6 @@ fn execute<'p>(
                     l.guide_grammar[link.to],
                     pass,
                 )?;
-                // Its first step belongs to this pass.
-                let _ = (r, g);
             }
             messages.extend(sent);
             round_seeds = (first..live.len()).collect();
