@@ -63,6 +63,7 @@ pub mod environment;
 #[cfg(feature = "cli")]
 pub mod exit_code;
 pub mod export;
+pub mod guided;
 pub mod lang;
 pub mod load;
 #[cfg(feature = "cli")]

@@ -31,6 +31,7 @@ const STAGES: &[&str] = &[
 const ABOVE: &[&str] = &[
     "pipeline",
     "build",
+    "guided",
     "pailou",
     "api",
     "exit_code",

@@ -243,6 +243,9 @@ pub struct LookArgs {
     /// Check the structure: every Pailou part touches its support, and no two components interpenetrate unless the relation matrix joins them (always on for `lsys pailou`; see docs/pailou.md).
     #[arg(long)]
     pub collisions: bool,
+    /// With a guided scene (FILE.toml, docs/guided.md): draw its guides and links too.
+    #[arg(long)]
+    pub guides: bool,
 }
 
 /// `lsys pailou`: a Pailou from a component graph or a style.

@@ -4,6 +4,7 @@
 
 mod args;
 mod commands;
+mod guided;
 mod model;
 mod watch;
 

@@ -22,6 +22,9 @@ use crate::progress::Progress;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match format_of(&b.output) {
+        Ok(f) if is_scene(&b.model) => {
+            super::guided::build_scene(&b.model, &b.output, &b.picture, f, color)
+        }
         Ok(f) => {
             build_once(
                 &model_job(&b.model),
@@ -48,6 +51,9 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
+    if is_scene(&r.model) {
+        return super::guided::build_scene(&r.model, &r.output, &r.picture, Format::Png, color);
+    }
     build_once(
         &model_job(&r.model),
         &r.output,
@@ -57,6 +63,11 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         Report::Stats,
     )
     .code
+}
+
+/// A guided scene (`FILE.toml`, docs/guided.md) rather than a grammar.
+fn is_scene(m: &ModelArgs) -> bool {
+    m.common.file.ends_with(".toml")
 }
 
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
@@ -420,7 +431,7 @@ fn structural_warnings(scene: &crate::mesh::Scene, relations: &str) {
     }
 }
 
-fn picture(pic: &PictureArgs) -> render::RenderOptions {
+pub(super) fn picture(pic: &PictureArgs) -> render::RenderOptions {
     render::RenderOptions {
         view: pic.view,
         width: pic.size.0,
@@ -440,7 +451,7 @@ fn summary(built: &Built, out: &Path, bytes: u64, took: Duration) -> String {
     )
 }
 
-fn ms(d: Duration) -> f64 {
+pub(super) fn ms(d: Duration) -> f64 {
     (d.as_secs_f64() * 1e6).round() / 1e3
 }
 

@@ -5,7 +5,6 @@
 //! matrix); all strokes become one mesh with a primitive per material in a
 //! node named `strokes`.
 
-use std::borrow::Cow;
 use std::collections::HashMap;
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
@@ -52,10 +51,22 @@ pub enum ExportError {
 
 /// The scene as a binary glTF (`.glb`) file.
 pub fn to_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
+    let mut out = Vec::new();
+    write_glb(scene, &mut out)?;
+    Ok(out)
+}
+
+/// Writes the scene as a binary glTF (`.glb`) file to `out`: the header,
+/// the JSON chunk and the binary chunk straight from the buffer, with no
+/// copy of the whole file in memory. Returns the bytes written.
+pub fn write_glb(scene: &Scene, out: &mut dyn std::io::Write) -> Result<u64, ExportError> {
     let (root, bin) = build(scene)?;
-    let json = json::serialize::to_vec(&root)?;
-    // GLB lengths are u32: header 12, chunk headers 8 each, chunks padded to 4.
-    let length = 12 + 8 + padded(json.len()) + if bin.is_empty() { 0 } else { 8 + bin.len() };
+    let mut json = json::serialize::to_vec(&root)?;
+    // The JSON chunk is padded with spaces, the binary one (already padded
+    // by `build`) with zeros.
+    json.resize(padded(json.len()), b' ');
+    // GLB lengths are u32: header 12, chunk headers 8 each.
+    let length = 12 + 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
     if length as u64 > u64::from(u32::MAX) {
         return Err(ExportError::TooLarge {
             format: "GLB",
@@ -63,18 +74,24 @@ pub fn to_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
             limit: u32::MAX.into(),
         });
     }
-    let glb = gltf::binary::Glb {
-        header: gltf::binary::Header {
-            magic: *b"glTF",
-            version: 2,
-            length: length as u32,
-        },
-        json: Cow::Owned(json),
-        // An empty scene has no buffer, and then no BIN chunk either.
-        bin: (!bin.is_empty()).then_some(Cow::Owned(bin)),
-    };
-    glb.to_vec()
-        .map_err(|e| ExportError::Io(std::io::Error::other(e.to_string())))
+    let u32le = |n: usize| (n as u32).to_le_bytes();
+    let mut head = Vec::with_capacity(28);
+    head.extend_from_slice(b"glTF");
+    head.extend_from_slice(&2u32.to_le_bytes());
+    head.extend_from_slice(&u32le(length));
+    head.extend_from_slice(&u32le(json.len()));
+    head.extend_from_slice(b"JSON");
+    out.write_all(&head)?;
+    out.write_all(&json)?;
+    // An empty scene has no buffer, and then no BIN chunk either.
+    if !bin.is_empty() {
+        let mut chunk = Vec::with_capacity(8);
+        chunk.extend_from_slice(&u32le(bin.len()));
+        chunk.extend_from_slice(b"BIN\0");
+        out.write_all(&chunk)?;
+        out.write_all(&bin)?;
+    }
+    Ok(length as u64)
 }
 
 /// The scene as one self-contained `.gltf` JSON file (buffer as data URI).
@@ -96,10 +113,25 @@ fn padded(n: usize) -> usize {
 /// The document and its binary buffer (padded to 4 bytes; empty when the
 /// scene draws nothing, and then the document has no buffer).
 fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError> {
+    // Every triangle mesh is written once (components' parts once however
+    // often they are placed, baked placements aside): reserving that much
+    // spares the buffer its doublings, each a copy of everything so far.
+    let estimate: usize = scene
+        .strokes
+        .iter()
+        .map(|s| &s.mesh)
+        .chain(
+            scene
+                .components
+                .iter()
+                .flat_map(|c| c.parts.iter().map(|p| &p.mesh)),
+        )
+        .map(|m| m.positions.len() * 24 + m.indices.len() * 4 + 12)
+        .sum();
     let mut b = Builder {
         scene,
         root: json::Root::default(),
-        bin: Vec::new(),
+        bin: Vec::with_capacity(estimate),
         materials: vec![None; scene.materials.len()],
         parts: HashMap::new(),
         meshes: HashMap::new(),

@@ -64,13 +64,20 @@ pub fn write_scene(
     let mut files = AtomicFiles::new();
     let bytes: u64;
     match format {
-        Format::Glb | Format::Gltf => {
-            let data = if format == Format::Glb {
-                gltf::to_glb(scene)
-            } else {
-                gltf::to_gltf(scene)
-            }
-            .map_err(export_err)?;
+        Format::Glb => {
+            // Written straight into the file: no copy of the whole model.
+            let mut written = 0;
+            files.write(out, |w| -> Result<(), WriteError> {
+                written = gltf::write_glb(scene, w).map_err(|e| match e {
+                    gltf::ExportError::Io(e) => WriteError::Io(e),
+                    e => export_err(e),
+                })?;
+                Ok(())
+            })?;
+            bytes = written;
+        }
+        Format::Gltf => {
+            let data = gltf::to_gltf(scene).map_err(export_err)?;
             bytes = data.len() as u64;
             files.write(out, |w| w.write_all(&data))?;
         }

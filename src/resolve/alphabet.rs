@@ -117,8 +117,17 @@ impl Alphabet {
             }
             TokKind::Query => {
                 // `?` + one letter (`?P`, `?H`, ...); the rest is words.
+                // The guided modeling queries `?DL ?DG ?DA ?NL ?NG ?NA`
+                // (docs/guided.md) are two letters.
                 let rest = &text[1..];
-                let n = rest.chars().next().map_or(0, char::len_utf8);
+                let guided = ["DL", "DG", "DA", "NL", "NG", "NA"]
+                    .iter()
+                    .any(|g| rest.starts_with(g));
+                let n = if guided {
+                    2
+                } else {
+                    rest.chars().next().map_or(0, char::len_utf8)
+                };
                 let mut out = vec![Piece {
                     name: format!("?{}", &rest[..n]),
                     start: 0,

@@ -106,6 +106,22 @@ impl<'p> Simulation<'p> {
         Ok(s)
     }
 
+    /// [`Simulation::new`] with `extra` environments answering from the
+    /// axiom on (after the built-in ones).
+    pub fn with_environments(
+        program: &'p Program,
+        compiled: &'p Compiled,
+        opts: DeriveOptions,
+        target: u32,
+        extra: Vec<Box<dyn Environment + 'p>>,
+    ) -> Result<Simulation<'p>, DeriveError> {
+        let derivation = Derivation::new(program, compiled, opts.clone())?;
+        let mut s = Simulation::bare(derivation, program, compiled, opts, target);
+        s.environments.extend(extra);
+        s.answer(true)?;
+        Ok(s)
+    }
+
     /// Adds an environment; it answers after the ones already there,
     /// starting with the next step.
     pub fn with_environment(mut self, env: Box<dyn Environment + 'p>) -> Simulation<'p> {

@@ -1,0 +1,509 @@
+//! Guided procedural modeling (docs/guided.md): the examples of
+//! `examples/guided/` derived, their strings snapshotted, and the paper's
+//! properties checked.
+
+use std::path::Path;
+
+use lsys::guided::{self, Loaded, Origin, Outcome};
+
+fn load(name: &str) -> Loaded {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/guided")
+        .join(name);
+    match guided::load_file(&p, &Default::default()) {
+        Ok(l) => l,
+        Err(e) => panic!("{}", lsys::diag::render_plain(e.as_ref())),
+    }
+}
+
+fn run(l: &Loaded) -> Outcome {
+    guided::run(l).unwrap()
+}
+
+#[test]
+fn links_example() {
+    let l = load("links.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// The drawn points of a seed, in order.
+fn points(o: &Outcome, guide: usize, index: usize) -> Vec<(f64, f64)> {
+    let s = o
+        .seeds
+        .iter()
+        .find(|s| s.guide == guide && s.index == index)
+        .expect("the seed");
+    s.drawing
+        .chains
+        .iter()
+        .flat_map(|c| c.points.iter().map(|p| (p.pos.x as f64, p.pos.y as f64)))
+        .collect()
+}
+
+/// Distance of `p` from the line through `a` with direction `dir`.
+fn off_line(p: (f64, f64), a: (f64, f64), dir: (f64, f64)) -> f64 {
+    let (dx, dy) = (p.0 - a.0, p.1 - a.1);
+    (dx * dir.1 - dy * dir.0).abs() / (dir.0.hypot(dir.1))
+}
+
+#[test]
+fn a_c1_link_keeps_a_straight_line_straight() {
+    let l = load("links.toml");
+    let o = run(&l);
+    let g2 = points(&o, 1, 0);
+    assert!(g2.len() > 2);
+    let dir = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    for p in points(&o, 0, 0).into_iter().chain(g2.iter().copied()) {
+        assert!(off_line(p, (0.5, 1.0), dir) < 1e-5, "{p:?} leaves the line");
+    }
+    // The seed starts on the shared edge, where the line crosses it.
+    let y = 1.0 + 3.5 * 30f64.to_radians().tan();
+    assert!((g2[0].0 - 4.0).abs() < 1e-5 && (g2[0].1 - y).abs() < 1e-5);
+}
+
+#[test]
+fn a_c0_link_keeps_only_the_point() {
+    let l = load("links.toml");
+    let o = run(&l);
+    let g3 = points(&o, 2, 0);
+    let x = 0.5 + 1.5 / 80f64.to_radians().tan();
+    assert!(
+        (g3[0].0 - x).abs() < 1e-5 && (g3[0].1 - 4.0).abs() < 1e-5,
+        "{g3:?}"
+    );
+    // The heading is g3's inward normal (+y), not the incoming 80°.
+    for p in &g3 {
+        assert!((p.0 - x).abs() < 1e-5, "{p:?}");
+    }
+    assert!(o
+        .seeds
+        .iter()
+        .any(|s| s.origin == Origin::Message { link: 1, pass: 4 }));
+}
+
+#[test]
+fn an_element_whose_centre_leaves_the_guide_is_clipped() {
+    let l = load("links.toml");
+    let o = run(&l);
+    // g1's first line derives 9 segments; the ninth's centre is past x = 4.
+    let s = &o.seeds[0];
+    assert_eq!(s.string.matches('F').count(), 9);
+    let pts = points(&o, 0, 0);
+    assert_eq!(pts.len(), 9, "8 segments drawn: {pts:?}");
+    assert!(pts.iter().all(|p| p.0 <= 4.0 + 1e-9));
+}
+
+#[test]
+fn the_run_is_deterministic() {
+    let l = load("links.toml");
+    assert_eq!(run(&l), run(&l));
+}
+
+#[test]
+fn a_local_update_equals_a_full_recompute() {
+    let l = load("links.toml");
+    let before = run(&l);
+    // g3 (index 2) shortened: only g3 re-derives; g1 replays its message.
+    let mut l3 = load("links.toml");
+    l3.spec.guides[2].points = vec![
+        glam::DVec2::new(0.0, 4.0),
+        glam::DVec2::new(4.0, 4.0),
+        glam::DVec2::new(4.0, 6.0),
+        glam::DVec2::new(0.0, 6.0),
+    ];
+    assert_eq!(guided::run::downstream(&l3, 2).len(), 1);
+    let updated = guided::update(&l3, &before, 2).unwrap();
+    assert_eq!(updated, run(&l3));
+    assert_ne!(updated, before);
+    // g1 moved its top edge down: g1, g2 and g3 all re-derive.
+    let mut l1 = load("links.toml");
+    l1.spec.guides[0].points[2].y = 3.5;
+    l1.spec.guides[0].points[3].y = 3.5;
+    assert_eq!(guided::run::downstream(&l1, 0).len(), 3);
+    let updated = guided::update(&l1, &before, 0).unwrap();
+    assert_eq!(updated, run(&l1));
+    assert_ne!(updated, before);
+}
+
+fn seeds_in(o: &Outcome, l: &Loaded, guide: &str) -> usize {
+    let g = l.spec.guides.iter().position(|g| g.name == guide).unwrap();
+    o.seeds.iter().filter(|s| s.guide == g).count()
+}
+
+#[test]
+fn palm_example() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_palm_trunk_is_cut_at_its_guide() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    let trunk = &o.seeds[0];
+    // Nothing but segments is left: the tip after the touching ?X is cut.
+    assert!(!trunk.string.contains('?'), "{}", trunk.string);
+    let pts = points(&o, 0, 0);
+    let last = pts.last().unwrap();
+    // The last segment reaches the top edge (y = 8) or a little past it.
+    assert!(last.1 >= 8.0 - 1e-6 && last.1 < 8.3, "{last:?}");
+    assert_eq!(o.messages.iter().filter(|m| m.0.link == 0).count(), 1);
+}
+
+#[test]
+fn the_palm_sends_one_seed_per_token_and_none_over_a_zero_token_link() {
+    let l = load("palm.toml");
+    let o = run(&l);
+    assert_eq!(
+        seeds_in(&o, &l, "crown"),
+        1,
+        "navigation links never seed the crown"
+    );
+    for leaf in [
+        "leaf_right",
+        "leaf_upper_right",
+        "leaf_upper_left",
+        "leaf_left",
+    ] {
+        assert_eq!(seeds_in(&o, &l, leaf), 1, "{leaf}");
+    }
+    // The frond sent to link 15 (no tokens) reached its edge ...
+    let crown = o.seeds.iter().find(|s| s.guide == 1).unwrap();
+    assert_eq!(crown.string.matches('[').count(), 5);
+    // ... and seeded nothing.
+    assert_eq!(seeds_in(&o, &l, "leaf_top"), 0);
+    assert_eq!(o.tokens[5].used, 0);
+}
+
+/// Three parallel lines reach the right edge of g1, whose link to g2 has
+/// two tokens: two seeds in g2, the first two lines in string order.
+const TOKENS: &str = r#"
+steps = 20
+[[guide]]
+name = "g1"
+grammar = "line.lsys"
+points = [[0, 0], [2, 0], [2, 3], [0, 3]]
+[[guide]]
+name = "g2"
+grammar = "line.lsys"
+points = [[2, 0], [4, 0], [4, 3], [2, 3]]
+[[link]]
+from = "g1"
+from_edge = 1
+to = "g2"
+to_edge = 3
+tokens = 2
+continuity = "C1"
+[[seeds]]
+guide = "g1"
+position = [0, 2.5]
+heading = 0
+[[seeds]]
+guide = "g1"
+position = [0, 1.5]
+heading = 0
+[[seeds]]
+guide = "g1"
+position = [0, 0.5]
+heading = 0
+"#;
+
+#[test]
+fn a_link_sends_as_many_messages_as_it_has_tokens() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/guided");
+    let l = guided::load_text("tokens.toml", TOKENS, &base, &Default::default()).unwrap();
+    let o = run(&l);
+    assert_eq!(seeds_in(&o, &l, "g2"), 2);
+    let ys: Vec<f64> = o
+        .seeds
+        .iter()
+        .filter(|s| s.guide == 1)
+        .map(|s| s.at.origin.y)
+        .collect();
+    assert_eq!(ys, vec![2.5, 1.5]);
+    assert_eq!((o.tokens[0].used, o.tokens[0].free()), (2, 0));
+}
+
+#[test]
+fn spiral_example() {
+    let l = load("spiral.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_spiral_sends_one_lateral_branch_per_link() {
+    let l = load("spiral.toml");
+    let o = run(&l);
+    let main = &o.seeds[0];
+    // The tip passes within reach of each link for many steps; the
+    // reservation keeps it to one branch each.
+    assert_eq!(main.string.matches('[').count(), 3, "{}", main.string);
+    for g in ["east", "north", "west"] {
+        assert_eq!(seeds_in(&o, &l, g), 1, "{g}");
+    }
+    assert!(o
+        .tokens
+        .iter()
+        .all(|t| t.used == 1 && t.reserved.is_empty()));
+    // The main spiral shrinks by 0.995 a step and stops below S0 / 3.
+    assert!(main.string.ends_with("F(0.1001)"), "{}", main.string);
+}
+
+#[test]
+fn street_example() {
+    let l = load("street.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+#[test]
+fn the_street_keeps_its_heading_across_guides() {
+    let l = load("street.toml");
+    let o = run(&l);
+    // Each quarter's arterial starts where the centre's crossed the edge,
+    // heading as the centre's did.
+    for (name, heading) in [
+        ("east", 30.0),
+        ("north", 120.0),
+        ("west", -150.0),
+        ("south", -60.0),
+    ] {
+        let g = l.spec.guides.iter().position(|g| g.name == name).unwrap();
+        let seed = o.seeds.iter().find(|s| s.guide == g).unwrap();
+        let h: f64 = seed.at.heading;
+        assert!((h - heading).abs() < 1e-6, "{name}: {h}");
+        let p = seed.at.origin;
+        let dir = (heading.to_radians().cos(), heading.to_radians().sin());
+        assert!(
+            off_line((p.x, p.y), (0.0, 0.0), dir) < 1e-6,
+            "{name}: {p:?}"
+        );
+        // The quarter's first segment continues the line.
+        let pts = points(&o, g, 0);
+        assert!(
+            off_line(pts[1], (0.0, 0.0), dir) < 1e-5,
+            "{name}: {:?}",
+            pts[1]
+        );
+    }
+}
+
+#[test]
+fn tree_example() {
+    let l = load("tree.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// The modules outside brackets: the main axis.
+fn main_axis(s: &str) -> Vec<&str> {
+    let mut depth = 0;
+    let mut out = Vec::new();
+    for m in s.split(' ') {
+        match m {
+            "[" => depth += 1,
+            "]" => depth -= 1,
+            _ if depth == 0 => out.push(m),
+            _ => {}
+        }
+    }
+    out
+}
+
+#[test]
+fn the_tree_passes_the_level_through_x() {
+    let l = load("tree.toml");
+    let o = run(&l);
+    let trunk = &o.seeds[0].string;
+    let segments = main_axis(trunk)
+        .iter()
+        .filter(|m| m.starts_with('F'))
+        .count();
+    let crown = o.seeds.iter().find(|s| s.guide == 1).unwrap();
+    // The level reached at the crown's link: the trunk's segments.
+    assert_eq!(crown.payload, vec![segments as f64]);
+    // The boughs leave the trunk at 3 and 7 segments and cross their
+    // links a few segments later; each seed got its own level.
+    let right = o.seeds.iter().find(|s| s.guide == 2).unwrap().payload[0];
+    let left = o.seeds.iter().find(|s| s.guide == 3).unwrap().payload[0];
+    assert!(
+        right > 3.0 && right < left && left < segments as f64,
+        "{right} {left}"
+    );
+    // A higher level leaves fewer levels to grow: the crown's cluster is
+    // the smallest of the three though its guide is the largest.
+    let fs = |g: usize| {
+        o.seeds
+            .iter()
+            .find(|s| s.guide == g)
+            .unwrap()
+            .string
+            .matches('F')
+            .count()
+    };
+    assert!(
+        fs(1) < fs(2) && fs(1) < fs(3),
+        "{} {} {}",
+        fs(1),
+        fs(2),
+        fs(3)
+    );
+}
+
+#[test]
+fn pailou_entrance_example() {
+    let l = load("pailou_entrance.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// Bracket caps per row (placements of the rows' seed, by height).
+fn caps_per_row(o: &Outcome) -> Vec<usize> {
+    let mut rows: std::collections::BTreeMap<i64, usize> = Default::default();
+    for p in &o.seeds[0].drawing.placements {
+        let y = p.transform.w_axis.y;
+        *rows.entry((y * 100.0).round() as i64).or_default() += 1;
+    }
+    rows.into_values().collect()
+}
+
+#[test]
+fn the_toukung_rows_stop_at_their_guide() {
+    let l = load("pailou_entrance.toml");
+    let o = run(&l);
+    let rows = caps_per_row(&o);
+    assert_eq!(rows.len(), 6, "{rows:?}");
+    assert!(rows.windows(2).all(|w| w[0] >= w[1]), "{rows:?}");
+    assert!(rows[0] > rows[5], "{rows:?}");
+    let guide = &l.spec.guides[0].points;
+    for p in &o.seeds[0].drawing.placements {
+        let c = glam::DVec2::new(p.transform.w_axis.x as f64, p.transform.w_axis.y as f64);
+        assert!(guided::geometry::inside(c, guide), "{c:?}");
+    }
+    // A wider trapezoid: the same grammar fills longer rows.
+    let mut wide = load("pailou_entrance.toml");
+    for p in &mut wide.spec.guides[0].points {
+        p.x *= 1.5;
+    }
+    let more = caps_per_row(&run(&wide));
+    assert!(
+        more.iter().zip(&rows).all(|(m, r)| m > r),
+        "{more:?} {rows:?}"
+    );
+}
+
+/// One guide (id 1), a link (id 2) on its right edge, a seed at (1, 1)
+/// heading up (+y).
+const QUERIES: &str = r#"
+steps = 1
+[[guide]]
+name = "g"
+grammar = "queries.lsys"
+points = [[0, 0], [4, 0], [4, 4], [0, 4]]
+[[guide]]
+name = "h"
+grammar = "queries.lsys"
+points = [[4, 0], [8, 0], [8, 4], [4, 4]]
+[[link]]
+from = "g"
+from_edge = 1
+to = "h"
+to_edge = 3
+tokens = 0
+continuity = "C1"
+[[seeds]]
+guide = "g"
+position = [1, 1]
+heading = 90
+"#;
+
+#[test]
+fn the_query_modules_answer_in_one_layout() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/guided");
+    let l = guided::load_text("queries.toml", QUERIES, &base, &Default::default()).unwrap();
+    let o = run(&l);
+    // Outputs first (found, d, beta, id_out), then inputs; the closest
+    // link is 3 to the right (beta -90), the closest boundary 1 behind
+    // (beta 180, the bottom edge before the left one), the boundary 3
+    // ahead; a short ?X hits nothing, a long one the top edge (id 1);
+    // id_test 99 names nothing. ?X's payload (7) passes through.
+    insta::assert_snapshot!(o.strings(&l), @"g#0 (explicit): ?DL(1,3,-90,3,0) ?DG(1,1,180,1,0) ?DA(1,1,180,1,0) ?NL(0,0,0,0) ?NG(1,3,1,0) ?NA(1,3,1,0) ?X(0,0,0.5,0,0,7) ?X(1,1,5,0,0,7) ?DL(0,0,0,0,99) ?NL(0,0,0,99)");
+}
+
+fn lsys(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn lsys_render_and_build_read_a_scene() {
+    let dir = std::env::temp_dir().join(format!("lsys-guided-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("links.png");
+    let o = lsys(&[
+        "render",
+        "examples/guided/links.toml",
+        "-o",
+        png.to_str().unwrap(),
+        "--guides",
+        "--size",
+        "64x48",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::metadata(&png).unwrap().len() > 0);
+    let glb = dir.join("links.glb");
+    let o = lsys(&[
+        "build",
+        "examples/guided/links.toml",
+        "-o",
+        glb.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(o.status.success());
+    let stats = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        stats.contains("\"seeds\":4") && stats.contains("\"messages\":2"),
+        "{stats}"
+    );
+    // A mistake in the scene is a located diagnostic and exit code 65.
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "steps = 1\n[[guide]]\nname = \"g\"\ngrammar = \"x.lsys\"\npoints = [[0, 0], [1, 1]]\n",
+    )
+    .unwrap();
+    let o = lsys(&["build", bad.to_str().unwrap(), "-o", glb.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(65));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("lsys::guided::scene") && err.contains("at least 3"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_local_update_of_the_palm_equals_a_full_recompute() {
+    let l = load("palm.toml");
+    let before = run(&l);
+    // A leaf guide stretched: only that leaf re-derives.
+    let mut leaf = load("palm.toml");
+    for p in leaf.spec.guides[2].points.iter_mut().skip(2) {
+        p.x += 1.0;
+    }
+    let updated = guided::update(&leaf, &before, 2).unwrap();
+    assert_eq!(updated, run(&leaf));
+    assert_ne!(updated.seeds[2], before.seeds[2]);
+    assert_eq!(updated.seeds[0], before.seeds[0]);
+    // The crown widened: the crown and the five leaves downstream.
+    let mut crown = load("palm.toml");
+    crown.spec.guides[1].points[3].x += 0.5;
+    assert_eq!(guided::run::downstream(&crown, 1).len(), 6);
+    assert_eq!(guided::update(&crown, &before, 1).unwrap(), run(&crown));
+}
