@@ -206,6 +206,51 @@ fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
     );
 }
 
+/// The tentacle model without an environment of its own.
+const TENTACLES: &str = "derivation length: 6\n\
+    axiom: A\n\
+    ?E(x) : x == 1 --> A\n\
+    ?E(x) : x == 0 -->\n\
+    decomposition\n\
+    A --> [+(45) f(1.41421356) -(45) ?E(1)] [-(45) f(1.41421356) +(45) ?E(1)]\n";
+
+fn sensors(g: &lsys::Grammar) -> Vec<u32> {
+    g.steps()
+        .map(|d| d.unwrap().modules().filter(|(n, _)| *n == "?E").count() as u32)
+        .collect()
+}
+
+#[test]
+fn an_environment_can_come_from_the_options() {
+    let pascal: Vec<u32> = (0..=6u32).map(|k| 2 << k.count_ones()).collect();
+    // Without one, `?E` keeps its 1 and every tip grows: 2^(k+1).
+    let alone = lsys::Grammar::from_str("t.lsys", TENTACLES).unwrap();
+    assert_eq!(
+        sensors(&alone),
+        (0..=6u32).map(|k| 2 << k).collect::<Vec<_>>()
+    );
+    let g = lsys::Grammar::options()
+        .environment("collision(radius: 0.01, 3d case: on)")
+        .from_str("t.lsys", TENTACLES)
+        .unwrap();
+    assert_eq!(sensors(&g), pascal);
+    // The command line's `--environment` is the same option.
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("t.lsys");
+    std::fs::write(&file, TENTACLES).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["derive", file.to_str().unwrap(), "--every", "--environment"])
+        .arg("collision(radius: 0.01, 3d case: on)")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let counts: Vec<u32> = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .map(|l| l.matches("?E").count() as u32)
+        .collect();
+    assert_eq!(counts, pascal);
+}
+
 #[test]
 fn a_lsys_file_selects_its_environment_in_a_header() {
     // The tentacle model in the paper's notation: the axiom is decomposed

@@ -72,6 +72,14 @@ impl GrammarOptions {
         self
     }
 
+    /// The environment that answers `?E` when the grammar names none, as
+    /// the `environment:` header writes it (`collision(radius: 0.01)`,
+    /// `light(transmittance: 0.3)`; see `docs/environments.md`).
+    pub fn environment(mut self, spec: &str) -> Self {
+        self.build.source.environment = Some(spec.to_string());
+        self
+    }
+
     /// A folder components (`~X`: `X.obj`, `X.lsys`) are looked for in,
     /// after `components/` beside the grammar.
     pub fn components_dir(mut self, dir: impl AsRef<Path>) -> Self {

@@ -127,6 +127,11 @@ pub struct SourceArgs {
     /// `dialect:` header say.
     #[arg(long, value_enum, value_name = "DIALECT")]
     pub dialect: Option<DialectArg>,
+    /// The environment that answers `?E` when the grammar names none, as
+    /// the `environment:` header writes it: `collision(radius: 0.01)`,
+    /// `light(transmittance: 0.3)`.
+    #[arg(long, value_name = "SPEC")]
+    pub environment: Option<String>,
 }
 
 /// `--dialect`.
@@ -154,6 +159,7 @@ impl SourceArgs {
                 DialectArg::Cpfg => crate::lang::Dialect::Cpfg,
             }),
             unsaved: Default::default(),
+            environment: self.environment.clone(),
         }
     }
 }

@@ -78,6 +78,9 @@ pub struct Options {
     /// canonical path: an include of one of them reads this text instead
     /// of the file on disk.
     pub unsaved: std::sync::Arc<std::collections::HashMap<PathBuf, String>>,
+    /// `--environment SPEC`: the environment that answers `?E` when the
+    /// grammar chooses none (`collision(radius: 0.01)`, as the header).
+    pub environment: Option<String>,
 }
 
 impl Default for Options {
@@ -89,6 +92,7 @@ impl Default for Options {
             parse: crate::parse::Limits::default(),
             dialect: None,
             unsaved: Default::default(),
+            environment: None,
         }
     }
 }

@@ -72,6 +72,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_angle: loaded.side.angle,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
+        environment_option: opts.environment.clone(),
         view_functions: loaded.side.functions,
         broken: loaded.broken,
         failed_includes: loaded.failed_includes,
@@ -142,6 +143,8 @@ pub(crate) struct Resolver {
     pub cpfg_surfaces: Vec<String>,
     /// A cpfg model's environment files (`-e FILE.e`).
     pub environment_files: Option<crate::load::EnvironmentFiles>,
+    /// `--environment SPEC`, used when the grammar names none.
+    pub environment_option: Option<String>,
     /// The view file's functions (or why they could not be read), read
     /// while loading; `func` takes them.
     pub view_functions: crate::load::ViewFunctions,

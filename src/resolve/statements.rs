@@ -78,6 +78,17 @@ impl Resolver {
         let defines = self.define_infos();
         let mut turtle = std::mem::take(&mut s.turtle.settings);
         let mut environment = None;
+        if s.environment.is_none() && self.environment_files.is_none() {
+            if let Some(text) = self.environment_option.take() {
+                // The option as a source of its own, for its diagnostics.
+                let id = self.sources.add(crate::source::SourceFile::new(
+                    "--environment",
+                    crate::source::Origin::Memory,
+                    text.clone(),
+                ));
+                s.environment = Some((text.clone(), Span::new(id, 0, text.len())));
+            }
+        }
         if let Some((text, span)) = s.environment.take() {
             match crate::environment::environment_header(
                 &text,
