@@ -275,3 +275,34 @@ fn a_lsys_file_selects_its_environment_in_a_header() {
     let expected: Vec<u32> = (0..=10u32).map(|k| 2 << k.count_ones()).collect();
     assert_eq!(sensors, expected);
 }
+
+#[test]
+fn density_is_low_away_from_the_pattern_and_its_gradient_points_away() {
+    use lsys::environment::density::{Density, Settings as DensitySettings};
+    let at = |p: [f32; 3], params: &[f64]| query(params, p);
+    let one_point = DensitySettings {
+        one_point: true,
+        return_vector: false,
+    };
+    // Alone: no other part, no source: density 0, no gradient (angle 90).
+    let r = Density::new(one_point.clone()).respond(&[at([0.0; 3], &[0.0, 0.0, 0.0])]);
+    assert_eq!(r[0], [Some(0.0), Some(90.0), Some(0.0)]);
+    // A part one unit along +x: 1/(1+1) here; the field falls away from
+    // it, so the gradient (downhill) points along -x: 180 degrees.
+    let q = [
+        at([0.0; 3], &[0.0, 0.0, 0.0]),
+        at([1.0, 0.0, 0.0], &[0.0, 0.0]),
+    ];
+    let r = Density::new(one_point.clone()).respond(&q);
+    assert_eq!(r[0][0], Some(0.5));
+    assert_eq!(r[0][1], Some(180.0));
+    let expected = 1.0 / (1.0 + 0.25) - 1.0 / (1.0 + 2.25);
+    assert!((r[0][2].unwrap() - expected).abs() < 1e-6, "{:?}", r[0]);
+    // Two-parameter queries are parts of the pattern, not answered;
+    // a one-parameter query is a source: strength / (1 + distance).
+    assert_eq!(r[1], [None, None]);
+    let src = [at([0.0; 3], &[0.0, 0.0, 0.0]), at([0.0, 1.0, 0.0], &[2.0])];
+    let r = Density::new(one_point).respond(&src);
+    assert_eq!(r[0][0], Some(1.0));
+    assert_eq!(r[1], [None]);
+}

@@ -8,12 +8,12 @@ use miette::SourceSpan;
 
 use super::error::EnvironmentError;
 use super::format::Conversion;
-use super::{clover, collision, light, Program};
+use super::{clover, collision, density, light, Program};
 use crate::load::EnvironmentFiles;
 use crate::source::SourceMap;
 
 /// The environmental programs lsys runs, by their vlab names.
-pub const PROGRAMS: [&str; 3] = ["honda81", "chiba", "clover"];
+pub const PROGRAMS: [&str; 4] = ["honda81", "chiba", "density", "clover"];
 
 /// A turtle field sent with each query, with its format's conversions.
 #[derive(Clone, Debug, PartialEq)]
@@ -53,6 +53,7 @@ pub enum Settings {
     Collision(collision::Settings),
     Light(light::Settings),
     Clover(clover::Settings),
+    Density(density::Settings),
 }
 
 /// An environment as configured by a model's files: what a simulation
@@ -72,6 +73,7 @@ impl Environment {
             Settings::Collision(s) => Box::new(collision::Collision::new(s.clone())),
             Settings::Light(s) => Box::new(light::Light::new(s.clone())),
             Settings::Clover(s) => Box::new(clover::Clover::new(s.clone())),
+            Settings::Density(s) => Box::new(density::Density::new(s.clone())),
         }
     }
 
@@ -165,6 +167,7 @@ pub fn configure(
         "honda81" => Settings::Collision(collision::Settings::read(spec_text, bad)?),
         "chiba" => Settings::Light(light::Settings::read(spec_text, bad)?),
         "clover" => Settings::Clover(clover::Settings::read(spec_text, &files.data, bad)?),
+        "density" => Settings::Density(density::Settings::read(spec_text, bad)?),
         _ => {
             return Err(Box::new(EnvironmentError::UnknownProgram {
                 name,

@@ -12,14 +12,15 @@ use miette::{NamedSource, SourceSpan};
 
 use super::communication::{Environment, Field, FieldKind, Settings};
 use super::error::EnvironmentError;
-use super::{collision, light};
+use super::{collision, density, light};
 
 /// The names the header accepts, and the vlab program each is.
-pub const NAMES: [(&str, &str); 4] = [
+pub const NAMES: [(&str, &str); 5] = [
     ("collision", "honda81"),
     ("honda81", "honda81"),
     ("light", "chiba"),
     ("chiba", "chiba"),
+    ("density", "density"),
 ];
 
 /// Reads the header's text (what follows `environment:`), which starts at
@@ -79,6 +80,7 @@ pub fn environment_header(
     };
     let settings = match program {
         "honda81" => Settings::Collision(collision::Settings::read(&spec, bad)?),
+        "density" => Settings::Density(density::Settings::read(&spec, bad)?),
         _ => Settings::Light(light::Settings::read(&spec, bad)?),
     };
     let fields = [

@@ -4,7 +4,8 @@
 //! communication file formats them); output: for each query, the
 //! parameters the environment sets. The programs are native versions of
 //! the Virtual Laboratory's environmental programs (`ENVIRO/` in the vlab
-//! sources): [`collision`] (honda81), [`light`] (chiba) and [`clover`]; a
+//! sources): [`collision`] (honda81), [`light`] (chiba), [`density`] and
+//! [`clover`]; a
 //! model chooses one with its `.e` communication file ([`communication`]).
 //!
 //! This stage does no I/O and knows nothing of the turtle or of derive:
@@ -14,6 +15,7 @@
 pub mod clover;
 pub mod collision;
 pub mod communication;
+pub mod density;
 mod error;
 pub mod format;
 mod header;
