@@ -13,6 +13,7 @@ mod environment;
 mod error;
 mod include;
 mod loader;
+mod surface;
 mod view;
 
 use std::path::{Path, PathBuf};
@@ -22,6 +23,7 @@ use miette::Report;
 pub use environment::EnvironmentFiles;
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
+pub use surface::{CpfgSurface, Patch as SurfacePatch};
 pub use view::{SideFiles, ViewFunctions};
 
 use crate::parse::ast::Item;

@@ -100,13 +100,14 @@ impl ComponentSearch {
             .filter(|(_, s)| s.kind == crate::resolve::SymbolKind::Component)
             .filter_map(|(id, s)| {
                 let name = s.name.trim_start_matches(['~', '∼']);
-                let searched = self.find(name).err()?;
                 // A cpfg model's view file names its surfaces.
-                if program.cpfg_surfaces.iter().any(|s| s == name) {
-                    return Some(MeshError::CpfgSurface {
+                if let Some(surface) = program.cpfg_surfaces.iter().find(|s| s.name == name) {
+                    return surface.patches.as_ref().err().map(|why| MeshError::CpfgSurface {
                         name: name.to_string(),
+                        why: why.clone(),
                     });
                 }
+                let searched = self.find(name).err()?;
                 Some(super::assemble::missing(
                     program,
                     id as crate::resolve::SymId,

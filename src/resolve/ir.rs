@@ -311,7 +311,7 @@ pub struct Program {
     pub functions: Vec<crate::lang::spline::SplineFn>,
     /// The cpfg surfaces a model's view file names (`surface: NAME ...`):
     /// `~NAME` draws one.
-    pub cpfg_surfaces: Vec<String>,
+    pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// The environment that answers `?E` (a cpfg model's `-e FILE.e`).
     pub environment: Option<crate::environment::Environment>,
 }

@@ -139,7 +139,7 @@ pub(crate) struct Resolver {
     /// The turning angle of a cpfg model's view file, read while loading.
     pub view_angle: Option<f64>,
     /// The cpfg surfaces the view file names (`~NAME`).
-    pub cpfg_surfaces: Vec<String>,
+    pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).
     pub environment_files: Option<crate::load::EnvironmentFiles>,
     /// The view file's functions (or why they could not be read), read
