@@ -137,3 +137,33 @@ fn a_broken_function_file_points_at_its_line() {
     assert!(stderr.contains("lsys::load::view_file"), "{stderr}");
     assert!(stderr.contains("plant.v:2:"), "{stderr}");
 }
+
+/// `~p(2)` draws the Bézier patch of the surface file the view file names
+/// (size 1 in the view file, `SIZE: 2` in the file, 2 × 2 units): a 2 × 3
+/// grid of quads, both faces, with its contact point at the turtle and
+/// its height along the turtle's heading. `~q`, whose file is missing,
+/// draws nothing in `build` and is a warning in `check`.
+#[test]
+fn a_view_file_surface_is_drawn_as_cpfg_places_it() {
+    let g = lsys::Grammar::from_path(fixture("surface").join("petal.l")).expect("compiles");
+    let scene = g.build(1).expect("builds");
+    assert_eq!(scene.instance_count(), 1);
+    assert_eq!(scene.triangle_count(), 2 * 3 * 2 * 2);
+    let (lo, hi) = scene.mesh().bounds().expect("something is drawn");
+    let mut extent = (hi - lo).to_array();
+    extent.sort_by(f32::total_cmp);
+    for (e, want) in extent.iter().zip([0.0, 2.0, 2.0]) {
+        assert!((e - want).abs() < 1e-4, "extent {extent:?}");
+    }
+    // The contact point is the turtle's position, the origin: the patch
+    // starts there along the heading (+y) and spreads ±1 across it.
+    assert!(lo.y.abs() < 1e-4 && (hi.y - 2.0).abs() < 1e-4, "{lo} {hi}");
+    let out = lsys(&fixture("surface"), &["check", "petal.l"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("lsys::mesh::cpfg_surface") && stderr.contains("missing.s"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("`~p`"), "{stderr}");
+}
