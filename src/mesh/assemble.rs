@@ -139,9 +139,17 @@ pub fn assemble_scene(
                         Ok(patches) => super::surface::surface_component(s, patches),
                         Err(_) => continue,
                     },
-                    None => search.load(name, &mut b.scene.materials, grammars, |searched| {
+                    None => match search.load(name, &mut b.scene.materials, grammars, |searched| {
                         missing(program, p.symbol, name, searched)
-                    })?,
+                    }) {
+                        Ok(c) => c,
+                        // cpfg draws nothing for a surface its view file
+                        // does not name.
+                        Err(MeshError::MissingComponent(_)) if program.profile.cpfg_model_file => {
+                            continue
+                        }
+                        Err(e) => return Err(e),
+                    },
                 };
                 b.scene.components.push(c);
                 numbers.push(0);

@@ -108,6 +108,14 @@ impl ComponentSearch {
                     });
                 }
                 let searched = self.find(name).err()?;
+                if program.profile.cpfg_model_file {
+                    return Some(MeshError::CpfgSurface {
+                        name: name.to_string(),
+                        why: format!(
+                            "the view file has no `surface: {name}` line, and no component `{name}.obj` was found"
+                        ),
+                    });
+                }
                 Some(super::assemble::missing(
                     program,
                     id as crate::resolve::SymId,

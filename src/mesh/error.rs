@@ -13,7 +13,7 @@ pub enum MeshError {
     #[diagnostic(transparent)]
     MissingComponent(Box<MissingComponent>),
 
-    #[error("cpfg surface `~{name}` (a `surface:` of the view file) cannot be drawn: {why}")]
+    #[error("cpfg surface `~{name}` cannot be drawn: {why}")]
     #[diagnostic(
         code(lsys::mesh::cpfg_surface),
         severity(Warning),
