@@ -8,6 +8,7 @@
 //! file read is in the [`SourceMap`]; no later stage reads the disk for the
 //! grammar.
 
+mod colours;
 mod cpfg;
 mod environment;
 mod error;
@@ -157,6 +158,9 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
                 environment::read_environment_files(&model, &finder, &mut loaded.sources);
             loaded.environment = env;
             loaded.errors.extend(errors);
+            let (colours, warnings) = colours::read_colour_files(&model, &finder);
+            loaded.side.colours = colours;
+            loaded.warnings.extend(warnings);
         }
     }
     Ok(loaded)

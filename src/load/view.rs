@@ -32,6 +32,10 @@ pub struct SideFiles {
     /// The surfaces of its `surface: NAME FILE.s SIZE S T` lines (`~NAME`
     /// draws the surface), in file order, each file read and parsed.
     pub surfaces: Vec<CpfgSurface>,
+    /// The colours of a cpfg model's colour map and material files (`-m`,
+    /// `-M` in `specifications`): colour index and sRGB, later entries
+    /// winning.
+    pub colours: Vec<(usize, [f32; 3])>,
 }
 
 /// The functions `func(id, x)` reads. Errors in the files are reported by
@@ -73,6 +77,7 @@ pub(super) fn read_side_files(
                 angle: None,
                 functions: ViewFunctions::Failed(vec![Report::new(e)]),
                 surfaces: Vec::new(),
+                colours: Vec::new(),
             };
         }
     };
@@ -92,6 +97,7 @@ pub(super) fn read_side_files(
         angle,
         functions: functions(id, &view, finder, sources),
         surfaces,
+        colours: Vec::new(),
     }
 }
 

@@ -70,6 +70,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         warned_at: Default::default(),
         strings: Vec::new(),
         view_angle: loaded.side.angle,
+        view_colours: loaded.side.colours,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
         view_functions: loaded.side.functions,
@@ -138,6 +139,8 @@ pub(crate) struct Resolver {
     pub strings: Vec<String>,
     /// The turning angle of a cpfg model's view file, read while loading.
     pub view_angle: Option<f64>,
+    /// The colours of a cpfg model's colour map and material files.
+    pub view_colours: Vec<(usize, [f32; 3])>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).
