@@ -167,3 +167,54 @@ fn a_view_file_surface_is_drawn_as_cpfg_places_it() {
     );
     assert!(!stderr.contains("`~p`"), "{stderr}");
 }
+
+/// A cpfg model's colour map (`-m`) and material file (`-M`), named in
+/// its `specifications`, colour its indices instead of lsys's palette;
+/// the view file's `initial color:` is the turtle's first index. Our own
+/// files, written here: map index 2 is red, material 3 is blue.
+#[test]
+fn colour_maps_and_materials_colour_a_cpfg_model() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let write = |name: &str, bytes: &[u8]| std::fs::write(dir.join(name), bytes).unwrap();
+    write(
+        "plant.l",
+        b"Lsystem: 1\nderivation length: 0\nAxiom: F ; F\nendlsystem\n",
+    );
+    write("plant.v", b"initial color: 2\n");
+    write(
+        "specifications",
+        b"generate:\n\tcpfg -m plant.map -M plant.mat plant.l plant.v\n",
+    );
+    let mut map = vec![0u8; 768];
+    map[6..9].copy_from_slice(&[255, 0, 0]);
+    write("plant.map", &map);
+    let mut mat = vec![0u8; 15 * 4];
+    for (i, m) in mat.chunks_exact_mut(15).enumerate() {
+        m[0] = i as u8;
+        m[5..8].copy_from_slice(&[204, 204, 204]);
+    }
+    mat[45 + 5..45 + 8].copy_from_slice(&[0, 0, 255]);
+    write("plant.mat", &mat);
+    let g = lsys::Grammar::from_path(dir.join("plant.l")).expect("compiles");
+    let scene = g.build(0).expect("builds");
+    let mesh = scene.mesh();
+    let colours: Vec<[f32; 3]> = mesh
+        .strokes
+        .iter()
+        .map(|s| mesh.materials[s.material].rgb)
+        .collect();
+    // Materials win over the map for indices 0..=3; index 2 is the
+    // material's grey, 3 its blue.
+    assert_eq!(colours, vec![[0.8, 0.8, 0.8], [0.0, 0.0, 1.0]]);
+    // Without the material file, index 2 is the map's red.
+    std::fs::remove_file(dir.join("plant.mat")).unwrap();
+    let out = lsys(dir, &["check", "plant.l"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("lsys::load::colour_file"), "{stderr}");
+    let g = lsys::Grammar::from_path(dir.join("plant.l")).expect("compiles");
+    let scene = g.build(0).expect("builds");
+    let mesh = scene.mesh();
+    let first = mesh.materials[mesh.strokes[0].material].rgb;
+    assert_eq!(first, [1.0, 0.0, 0.0]);
+}

@@ -36,6 +36,8 @@ pub struct SideFiles {
     /// `-M` in `specifications`): colour index and sRGB, later entries
     /// winning.
     pub colours: Vec<(usize, [f32; 3])>,
+    /// The view file's `initial color:` (the turtle's first colour index).
+    pub initial_colour: Option<u32>,
 }
 
 /// The functions `func(id, x)` reads. Errors in the files are reported by
@@ -78,6 +80,7 @@ pub(super) fn read_side_files(
                 functions: ViewFunctions::Failed(vec![Report::new(e)]),
                 surfaces: Vec::new(),
                 colours: Vec::new(),
+                initial_colour: None,
             };
         }
     };
@@ -98,6 +101,7 @@ pub(super) fn read_side_files(
         functions: functions(id, &view, finder, sources),
         surfaces,
         colours: Vec::new(),
+        initial_colour: initial_colour(&sources.get(id).text),
     }
 }
 
@@ -261,6 +265,18 @@ fn functions(
     } else {
         ViewFunctions::Failed(errors)
     }
+}
+
+/// The colour index a view file's `initial color:` line gives.
+fn initial_colour(text: &str) -> Option<u32> {
+    text.lines().find_map(|line| {
+        let (key, rest) = line.split_once(':')?;
+        let key = key.trim().to_ascii_lowercase();
+        (key == "initial color" || key == "initial colour")
+            .then(|| rest.split_whitespace().next()?.parse::<f64>().ok())
+            .flatten()
+            .map(|c| c.max(0.0) as u32)
+    })
 }
 
 /// The turning angle a view file's text gives, computed in `f32` as cpfg

@@ -367,6 +367,9 @@ pub struct TurtleSettings {
     pub width: Option<f64>,
     /// `colour i: #rrggbb` entries, sRGB 0..=1, in file order.
     pub palette: Vec<(usize, [f32; 3])>,
+    /// The turtle's first colour index (a cpfg view file's `initial
+    /// color:`); 0 without it.
+    pub colour: Option<u32>,
 }
 
 impl Program {

@@ -71,6 +71,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         strings: Vec::new(),
         view_angle: loaded.side.angle,
         view_colours: loaded.side.colours,
+        view_initial_colour: loaded.side.initial_colour,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
         view_functions: loaded.side.functions,
@@ -141,6 +142,8 @@ pub(crate) struct Resolver {
     pub view_angle: Option<f64>,
     /// The colours of a cpfg model's colour map and material files.
     pub view_colours: Vec<(usize, [f32; 3])>,
+    /// The turtle's first colour index, from a cpfg view file.
+    pub view_initial_colour: Option<u32>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).

@@ -111,6 +111,11 @@ impl Resolver {
         if self.profile.cpfg_model_file && turtle.angle.is_none() {
             turtle.angle = self.view_angle;
         }
+        // The view file's first colour index means something only with
+        // the model's own colours (lsys's 16-colour palette would wrap it).
+        if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
+            turtle.colour = self.view_initial_colour;
+        }
         // Its colours are in its colour map and material files; the
         // file's own `colour i:` headers come after, and win.
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
