@@ -48,8 +48,9 @@ pub struct Patch {
 /// The most subdivisions cpfg makes along s or t.
 const MAX_PRECISION: u32 = 10;
 
-/// Reads one `surface:` line's words after the colon (`f leaf.s 1.5 3 3`)
-/// and the file's text. `None` when the line names no surface.
+/// The name, file, size and s, t precision (0: the file's) of one
+/// `surface:` line's words after the colon (`f leaf.s 1.5 3 3`). `None`
+/// when the line names no surface and file.
 pub fn surface_line(words: &[&str]) -> Option<(String, String, f64, u32, u32)> {
     let name = words.first()?.to_string();
     let file = words.get(1)?.to_string();
@@ -60,10 +61,13 @@ pub fn surface_line(words: &[&str]) -> Option<(String, String, f64, u32, u32)> {
     Some((name, file, size, s, t))
 }
 
+/// A surface file's patches and the precision it gives, if any.
+pub type Parsed = (Vec<Patch>, Option<(u32, u32)>);
+
 /// A `.s` file's patches placed for a surface of size `size`, and the
 /// file's precision (s, t) when it gives one. `Err` says what is wrong and
 /// on which line.
-pub fn parse_surface(text: &str, size: f64) -> Result<(Vec<Patch>, Option<(u32, u32)>), String> {
+pub fn parse_surface(text: &str, size: f64) -> Result<Parsed, String> {
     let mut c = Cursor::new(text);
     for _ in 0..6 {
         c.number("the control points' extent (six numbers)")?;
