@@ -137,3 +137,84 @@ fn a_broken_function_file_points_at_its_line() {
     assert!(stderr.contains("lsys::load::view_file"), "{stderr}");
     assert!(stderr.contains("plant.v:2:"), "{stderr}");
 }
+
+/// `~p(2)` draws the Bézier patch of the surface file the view file names
+/// (size 1 in the view file, `SIZE: 2` in the file, 2 × 2 units): a 2 × 3
+/// grid of quads, both faces, with its contact point at the turtle and
+/// its height along the turtle's heading. `~q`, whose file is missing,
+/// draws nothing in `build` and is a warning in `check`.
+#[test]
+fn a_view_file_surface_is_drawn_as_cpfg_places_it() {
+    let g = lsys::Grammar::from_path(fixture("surface").join("petal.l")).expect("compiles");
+    let scene = g.build(1).expect("builds");
+    assert_eq!(scene.instance_count(), 1);
+    assert_eq!(scene.triangle_count(), 2 * 3 * 2 * 2);
+    let (lo, hi) = scene.mesh().bounds().expect("something is drawn");
+    let mut extent = (hi - lo).to_array();
+    extent.sort_by(f32::total_cmp);
+    for (e, want) in extent.iter().zip([0.0, 2.0, 2.0]) {
+        assert!((e - want).abs() < 1e-4, "extent {extent:?}");
+    }
+    // The contact point is the turtle's position, the origin: the patch
+    // starts there along the heading (+y) and spreads ±1 across it.
+    assert!(lo.y.abs() < 1e-4 && (hi.y - 2.0).abs() < 1e-4, "{lo} {hi}");
+    let out = lsys(&fixture("surface"), &["check", "petal.l"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("lsys::mesh::cpfg_surface") && stderr.contains("missing.s"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("`~p`"), "{stderr}");
+}
+
+/// A cpfg model's colour map (`-m`) and material file (`-M`), named in
+/// its `specifications`, colour its indices instead of lsys's palette;
+/// the view file's `initial color:` is the turtle's first index. Our own
+/// files, written here: map index 2 is red, material 3 is blue.
+#[test]
+fn colour_maps_and_materials_colour_a_cpfg_model() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let write = |name: &str, bytes: &[u8]| std::fs::write(dir.join(name), bytes).unwrap();
+    write(
+        "plant.l",
+        b"Lsystem: 1\nderivation length: 0\nAxiom: F ; F\nendlsystem\n",
+    );
+    write("plant.v", b"initial color: 2\n");
+    write(
+        "specifications",
+        b"generate:\n\tcpfg -m plant.map -M plant.mat plant.l plant.v\n",
+    );
+    let mut map = vec![0u8; 768];
+    map[6..9].copy_from_slice(&[255, 0, 0]);
+    write("plant.map", &map);
+    let mut mat = vec![0u8; 15 * 4];
+    for (i, m) in mat.chunks_exact_mut(15).enumerate() {
+        m[0] = i as u8;
+        m[5..8].copy_from_slice(&[204, 204, 204]);
+    }
+    mat[45 + 5..45 + 8].copy_from_slice(&[0, 0, 255]);
+    write("plant.mat", &mat);
+    let g = lsys::Grammar::from_path(dir.join("plant.l")).expect("compiles");
+    let scene = g.build(0).expect("builds");
+    let mesh = scene.mesh();
+    let colours: Vec<[f32; 3]> = mesh
+        .strokes
+        .iter()
+        .map(|s| mesh.materials[s.material].rgb)
+        .collect();
+    // Materials win over the map for indices 0..=3; index 2 is the
+    // material's grey, 3 its blue.
+    assert_eq!(colours, vec![[0.8, 0.8, 0.8], [0.0, 0.0, 1.0]]);
+    // Without the material file, index 2 is the map's red.
+    std::fs::remove_file(dir.join("plant.mat")).unwrap();
+    let out = lsys(dir, &["check", "plant.l"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("lsys::load::colour_file"), "{stderr}");
+    let g = lsys::Grammar::from_path(dir.join("plant.l")).expect("compiles");
+    let scene = g.build(0).expect("builds");
+    let mesh = scene.mesh();
+    let first = mesh.materials[mesh.strokes[0].material].rgb;
+    assert_eq!(first, [1.0, 0.0, 0.0]);
+}

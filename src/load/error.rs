@@ -143,6 +143,16 @@ pub enum LoadError {
     },
 
     /// The view file exists but cannot be read.
+    /// A colour map or material file named in `specifications` that
+    /// cannot be used: lsys's palette stands in.
+    #[error("cannot use the colour file {path}: {why}")]
+    #[diagnostic(
+        code(lsys::load::colour_file),
+        severity(Warning),
+        help("the model is drawn with lsys's palette for the colours this file would give")
+    )]
+    ColourFile { path: String, why: String },
+
     #[error("cannot use the view file {path}")]
     #[diagnostic(code(lsys::load::view_file))]
     ViewUnreadable {

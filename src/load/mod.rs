@@ -8,11 +8,13 @@
 //! file read is in the [`SourceMap`]; no later stage reads the disk for the
 //! grammar.
 
+mod colours;
 mod cpfg;
 mod environment;
 mod error;
 mod include;
 mod loader;
+mod surface;
 mod view;
 
 use std::path::{Path, PathBuf};
@@ -22,6 +24,7 @@ use miette::Report;
 pub use environment::EnvironmentFiles;
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
+pub use surface::{CpfgSurface, Patch as SurfacePatch};
 pub use view::{SideFiles, ViewFunctions};
 
 use crate::parse::ast::Item;
@@ -159,6 +162,9 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
                 environment::read_environment_files(&model, &finder, &mut loaded.sources);
             loaded.environment = env;
             loaded.errors.extend(errors);
+            let (colours, warnings) = colours::read_colour_files(&model, &finder);
+            loaded.side.colours = colours;
+            loaded.warnings.extend(warnings);
         }
     }
     Ok(loaded)

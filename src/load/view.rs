@@ -13,6 +13,7 @@ use miette::Report;
 
 use super::error::LoadError;
 use super::include::IncludeFinder;
+use super::surface::{self, CpfgSurface};
 use crate::lang::spline::{parse_func, parse_gallery, SplineFn};
 use crate::lang::Profile;
 use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
@@ -28,9 +29,15 @@ pub struct SideFiles {
     pub angle: Option<f64>,
     /// The view file's functions, in `func` order.
     pub functions: ViewFunctions,
-    /// The names its `surface: NAME FILE.s ...` lines give cpfg surfaces
-    /// (`~NAME` draws the surface), in file order.
-    pub surfaces: Vec<String>,
+    /// The surfaces of its `surface: NAME FILE.s SIZE S T` lines (`~NAME`
+    /// draws the surface), in file order, each file read and parsed.
+    pub surfaces: Vec<CpfgSurface>,
+    /// The colours of a cpfg model's colour map and material files (`-m`,
+    /// `-M` in `specifications`): colour index and sRGB, later entries
+    /// winning.
+    pub colours: Vec<(usize, [f32; 3])>,
+    /// The view file's `initial color:` (the turtle's first colour index).
+    pub initial_colour: Option<u32>,
 }
 
 /// The functions `func(id, x)` reads. Errors in the files are reported by
@@ -72,6 +79,8 @@ pub(super) fn read_side_files(
                 angle: None,
                 functions: ViewFunctions::Failed(vec![Report::new(e)]),
                 surfaces: Vec::new(),
+                colours: Vec::new(),
+                initial_colour: None,
             };
         }
     };
@@ -85,25 +94,65 @@ pub(super) fn read_side_files(
     } else {
         None
     };
-    let surfaces = surface_names(&sources.get(id).text);
+    let surfaces = surfaces(id, &view, finder, sources);
     SideFiles {
         view: Some(id),
         angle,
         functions: functions(id, &view, finder, sources),
         surfaces,
+        colours: Vec::new(),
+        initial_colour: initial_colour(&sources.get(id).text),
     }
 }
 
-/// The names of a view file's `surface:` lines.
-fn surface_names(text: &str) -> Vec<String> {
-    text.lines()
-        .filter_map(|line| {
-            let (key, rest) = line.split_once(':')?;
-            (key.trim().eq_ignore_ascii_case("surface"))
-                .then(|| rest.split_whitespace().next().map(str::to_string))
-                .flatten()
-        })
-        .collect()
+/// The surfaces of a view file's `surface:` lines, each `.s` file read
+/// (confined as includes are) and added to `sources`. A file that cannot
+/// be read or parsed keeps the reason: cpfg then draws nothing for it.
+fn surfaces(
+    view_id: FileId,
+    view: &Path,
+    finder: &IncludeFinder,
+    sources: &mut SourceMap,
+) -> Vec<CpfgSurface> {
+    let dir = view.parent().unwrap_or(Path::new("."));
+    let text = sources.get(view_id).text.clone();
+    let mut out = Vec::new();
+    for line in text.lines() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        if !key.trim().eq_ignore_ascii_case("surface") {
+            continue;
+        }
+        let words: Vec<&str> = rest.split_whitespace().collect();
+        let Some((name, file, size, s, t)) = surface::surface_line(&words) else {
+            continue;
+        };
+        let path = dir.join(&file);
+        let (patches, file_precision) = match finder.read(&path) {
+            Ok(body) => {
+                let id = sources.add(SourceFile::new(
+                    path.display().to_string(),
+                    Origin::Disk(path.clone()),
+                    body,
+                ));
+                match surface::parse_surface(&sources.get(id).text, size) {
+                    Ok((p, precision)) => (Ok(p), precision),
+                    Err(e) => (Err(format!("{}: {e}", path.display())), None),
+                }
+            }
+            Err(r) => (Err(r.message()), None),
+        };
+        let (s, t) = surface::precision((s, t), file_precision);
+        out.push(CpfgSurface {
+            name,
+            file,
+            s,
+            t,
+            patches,
+        });
+    }
+    out
 }
 
 /// The view file cpfg would read for `model`, if there is one. A
@@ -216,6 +265,18 @@ fn functions(
     } else {
         ViewFunctions::Failed(errors)
     }
+}
+
+/// The colour index a view file's `initial color:` line gives.
+fn initial_colour(text: &str) -> Option<u32> {
+    text.lines().find_map(|line| {
+        let (key, rest) = line.split_once(':')?;
+        let key = key.trim().to_ascii_lowercase();
+        (key == "initial color" || key == "initial colour")
+            .then(|| rest.split_whitespace().next()?.parse::<f64>().ok())
+            .flatten()
+            .map(|c| c.max(0.0) as u32)
+    })
 }
 
 /// The turning angle a view file's text gives, computed in `f32` as cpfg

@@ -191,7 +191,7 @@ pub fn component_source(a: &Analysis, name: &str) -> (String, Option<PathBuf>) {
         }
     }
     if a.program()
-        .is_some_and(|p| p.cpfg_surfaces.iter().any(|s| s == name))
+        .is_some_and(|p| p.cpfg_surfaces.iter().any(|s| s.name == name))
     {
         return ("a surface the model's view file names".into(), None);
     }

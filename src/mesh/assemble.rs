@@ -130,9 +130,27 @@ pub fn assemble_scene(
             None => {
                 let symbol = &program.symbols.list[p.symbol as usize];
                 let name = symbol.name.trim_start_matches('~');
-                let c = search.load(name, &mut b.scene.materials, grammars, |searched| {
-                    missing(program, p.symbol, name, searched)
-                })?;
+                // A cpfg model's view file names its surfaces; one whose
+                // file could not be used draws nothing, as in cpfg (`lsys
+                // check` says why).
+                let surface = program.cpfg_surfaces.iter().find(|s| s.name == name);
+                let c = match surface {
+                    Some(s) => match &s.patches {
+                        Ok(patches) => super::surface::surface_component(s, patches),
+                        Err(_) => continue,
+                    },
+                    None => match search.load(name, &mut b.scene.materials, grammars, |searched| {
+                        missing(program, p.symbol, name, searched)
+                    }) {
+                        Ok(c) => c,
+                        // cpfg draws nothing for a surface its view file
+                        // does not name.
+                        Err(MeshError::MissingComponent(_)) if program.profile.cpfg_model_file => {
+                            continue
+                        }
+                        Err(e) => return Err(e),
+                    },
+                };
                 b.scene.components.push(c);
                 numbers.push(0);
                 let index = b.scene.components.len() - 1;

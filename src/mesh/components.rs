@@ -100,11 +100,20 @@ impl ComponentSearch {
             .filter(|(_, s)| s.kind == crate::resolve::SymbolKind::Component)
             .filter_map(|(id, s)| {
                 let name = s.name.trim_start_matches(['~', '∼']);
-                let searched = self.find(name).err()?;
                 // A cpfg model's view file names its surfaces.
-                if program.cpfg_surfaces.iter().any(|s| s == name) {
+                if let Some(surface) = program.cpfg_surfaces.iter().find(|s| s.name == name) {
+                    return surface.patches.as_ref().err().map(|why| MeshError::CpfgSurface {
+                        name: name.to_string(),
+                        why: why.clone(),
+                    });
+                }
+                let searched = self.find(name).err()?;
+                if program.profile.cpfg_model_file {
                     return Some(MeshError::CpfgSurface {
                         name: name.to_string(),
+                        why: format!(
+                            "the view file has no `surface: {name}` line, and no component `{name}.obj` was found"
+                        ),
                     });
                 }
                 Some(super::assemble::missing(

@@ -13,13 +13,13 @@ pub enum MeshError {
     #[diagnostic(transparent)]
     MissingComponent(Box<MissingComponent>),
 
-    #[error("cpfg surface `~{name}` (a `surface:` of the view file) cannot be drawn yet")]
+    #[error("cpfg surface `~{name}` cannot be drawn: {why}")]
     #[diagnostic(
         code(lsys::mesh::cpfg_surface),
         severity(Warning),
-        help("the model derives as cpfg does, but lsys does not read cpfg surface files (.s) yet, so `build` and `render` stop at its first `~{name}`")
+        help("`build` and `render` draw nothing for `~{name}`, as cpfg does; fix the surface file or its `surface:` line")
     )]
-    CpfgSurface { name: String },
+    CpfgSurface { name: String, why: String },
 
     #[error("cannot read component `~{name}` from {path}: {cause}")]
     #[diagnostic(

@@ -9,6 +9,7 @@ pub mod scene;
 pub mod shapes;
 pub mod structure;
 pub mod subgrammar;
+pub mod surface;
 pub mod tube;
 pub use assemble::{assemble_scene, MeshOptions};
 pub use components::ComponentSearch;

@@ -311,7 +311,7 @@ pub struct Program {
     pub functions: Vec<crate::lang::spline::SplineFn>,
     /// The cpfg surfaces a model's view file names (`surface: NAME ...`):
     /// `~NAME` draws one.
-    pub cpfg_surfaces: Vec<String>,
+    pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// The environment that answers `?E` (a cpfg model's `-e FILE.e`).
     pub environment: Option<crate::environment::Environment>,
 }
@@ -367,6 +367,9 @@ pub struct TurtleSettings {
     pub width: Option<f64>,
     /// `colour i: #rrggbb` entries, sRGB 0..=1, in file order.
     pub palette: Vec<(usize, [f32; 3])>,
+    /// The turtle's first colour index (a cpfg view file's `initial
+    /// color:`); 0 without it.
+    pub colour: Option<u32>,
 }
 
 impl Program {

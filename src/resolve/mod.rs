@@ -70,6 +70,8 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         warned_at: Default::default(),
         strings: Vec::new(),
         view_angle: loaded.side.angle,
+        view_colours: loaded.side.colours,
+        view_initial_colour: loaded.side.initial_colour,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
         environment_option: opts.environment.clone(),
@@ -139,8 +141,12 @@ pub(crate) struct Resolver {
     pub strings: Vec<String>,
     /// The turning angle of a cpfg model's view file, read while loading.
     pub view_angle: Option<f64>,
+    /// The colours of a cpfg model's colour map and material files.
+    pub view_colours: Vec<(usize, [f32; 3])>,
+    /// The turtle's first colour index, from a cpfg view file.
+    pub view_initial_colour: Option<u32>,
     /// The cpfg surfaces the view file names (`~NAME`).
-    pub cpfg_surfaces: Vec<String>,
+    pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).
     pub environment_files: Option<crate::load::EnvironmentFiles>,
     /// `--environment SPEC`, used when the grammar names none.

@@ -122,6 +122,18 @@ impl Resolver {
         if self.profile.cpfg_model_file && turtle.angle.is_none() {
             turtle.angle = self.view_angle;
         }
+        // The view file's first colour index means something only with
+        // the model's own colours (lsys's 16-colour palette would wrap it).
+        if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
+            turtle.colour = self.view_initial_colour;
+        }
+        // Its colours are in its colour map and material files; the
+        // file's own `colour i:` headers come after, and win.
+        if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
+            let mut palette = std::mem::take(&mut self.view_colours);
+            palette.append(&mut turtle.palette);
+            turtle.palette = palette;
+        }
         let vars = self.take_vars();
         let mut take = |t| tables.remove(&t).unwrap_or_default();
         Some(Program {

@@ -218,7 +218,7 @@ fn interpret_with(
                 Frame::default()
             },
             width: opts.width,
-            colour: 0,
+            colour: program.turtle.colour.unwrap_or(0),
             scale: 1.0,
             chain: None,
             cylinder: None,
