@@ -148,38 +148,15 @@ struct Builder {
 }
 
 impl Builder {
-    /// The names the grammar defines, as resolve's `build_alphabet`
-    /// collects them, and every `#define` name (a use may come first).
+    /// The names the grammar defines, as resolve builds its alphabet, and
+    /// every `#define` name (a use may come first).
     fn alphabet_and_defines(&mut self, items: &[(FileId, Item)]) {
+        self.alphabet = crate::resolve::alphabet::grammar_alphabet(items, self.cpfg_names);
         for (_, item) in items {
-            match item {
-                Item::Production(p) => {
-                    for t in &p.pred {
-                        if let PatTok::Module(m) = t {
-                            if m.kind == TokKind::Word && !self.cpfg_names {
-                                self.alphabet.add_word(&m.text);
-                            }
-                        }
-                    }
+            if let Item::Define(ds) = item {
+                for d in ds {
+                    self.defines.insert(d.name.name.clone());
                 }
-                Item::Header(h) => {
-                    if let HeaderKind::Module(ds) = &h.kind {
-                        for d in ds {
-                            self.alphabet.add_word(&d.name.name);
-                        }
-                    }
-                }
-                Item::Include(ast::Include::Components(cs)) => {
-                    for c in cs {
-                        self.alphabet.add_component(&c.name);
-                    }
-                }
-                Item::Define(ds) => {
-                    for d in ds {
-                        self.defines.insert(d.name.name.clone());
-                    }
-                }
-                _ => {}
             }
         }
     }

@@ -6,7 +6,8 @@
 use std::collections::HashSet;
 
 use crate::lang as turtle;
-use crate::parse::ast::TokKind;
+use crate::parse::ast::{self, Item, PatTok, TokKind};
+use crate::source::FileId;
 
 /// One piece of a split run.
 #[derive(Clone, Debug, PartialEq)]
@@ -186,4 +187,39 @@ fn longest(s: &str, has: impl Fn(&str) -> bool) -> Option<usize> {
 
 pub fn is_word_char(c: char) -> bool {
     c.is_alphanumeric() || c == '_'
+}
+
+/// The names a grammar defines, as resolve splits module runs with them:
+/// predecessors written as whole words (except with cpfg's one-character
+/// names), `module` declarations and `#include` components. Resolve and
+/// the language server both build their alphabet here.
+pub fn grammar_alphabet(items: &[(FileId, Item)], cpfg_names: bool) -> Alphabet {
+    let mut alphabet = Alphabet::new();
+    for (_, item) in items {
+        match item {
+            Item::Production(p) => {
+                for t in &p.pred {
+                    if let PatTok::Module(m) = t {
+                        if m.kind == TokKind::Word && !cpfg_names {
+                            alphabet.add_word(&m.text);
+                        }
+                    }
+                }
+            }
+            Item::Header(h) => {
+                if let ast::HeaderKind::Module(ds) = &h.kind {
+                    for d in ds {
+                        alphabet.add_word(&d.name.name);
+                    }
+                }
+            }
+            Item::Include(ast::Include::Components(cs)) => {
+                for c in cs {
+                    alphabet.add_component(&c.name);
+                }
+            }
+            _ => {}
+        }
+    }
+    alphabet
 }

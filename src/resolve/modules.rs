@@ -23,39 +23,19 @@ impl Resolver {
     /// Collects the names the grammar defines: predecessors (whole words as
     /// written), `module` declarations and `#include` components.
     pub(super) fn build_alphabet(&mut self, items: &[(u32, Item)]) {
+        self.alphabet = super::alphabet::grammar_alphabet(items, self.profile.cpfg_names);
+        // The predecessors' names, in file order, become the first symbols.
         let mut preds: Vec<(String, Span)> = Vec::new();
         for (_, item) in items {
-            match item {
-                Item::Production(p) => {
-                    for t in &p.pred {
-                        if let PatTok::Module(m) = t {
-                            if self.profile.cpfg_names && m.kind == TokKind::Word {
-                                // cpfg's names are single characters.
-                                for c in m.text.chars() {
-                                    preds.push((c.to_string(), m.span));
-                                }
-                                continue;
-                            }
-                            if m.kind == TokKind::Word {
-                                self.alphabet.add_word(&m.text);
-                            }
-                            preds.push((m.text.clone(), m.span));
-                        }
-                    }
+            let Item::Production(p) = item else { continue };
+            for t in &p.pred {
+                let PatTok::Module(m) = t else { continue };
+                if self.profile.cpfg_names && m.kind == TokKind::Word {
+                    // cpfg's names are single characters.
+                    preds.extend(m.text.chars().map(|c| (c.to_string(), m.span)));
+                } else {
+                    preds.push((m.text.clone(), m.span));
                 }
-                Item::Header(h) => {
-                    if let HeaderKind::Module(ds) = &h.kind {
-                        for d in ds {
-                            self.alphabet.add_word(&d.name.name);
-                        }
-                    }
-                }
-                Item::Include(ast::Include::Components(cs)) => {
-                    for c in cs {
-                        self.alphabet.add_component(&c.name);
-                    }
-                }
-                _ => {}
             }
         }
         // Brackets first, so that their ids are the fixed OPEN/CLOSE.
