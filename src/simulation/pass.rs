@@ -5,11 +5,9 @@
 //! parameters the environmental program sets written back out.
 
 use super::environment::{Environment, StepContext};
-use crate::derive::{self, DeriveError, ModuleStore};
+use crate::derive::{DeriveError, ModuleStore};
 use crate::environment::communication::FieldKind;
 use crate::environment::{self, Program, Query};
-use crate::resolve::Program as Grammar;
-use crate::turtle::{self, QuerySite, TurtleOptions};
 
 /// Runs a model's environmental program before every step.
 pub struct EnvironmentPass {
@@ -39,59 +37,20 @@ impl EnvironmentPass {
     }
 }
 
-/// The `?E` sites of `string`, as the turtle finds them in the string it
-/// draws: the homomorphism's output when it keeps every `?E` in order,
-/// else the string itself.
-fn sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Vec<QuerySite> {
-    let grammar: &Grammar = ctx.program;
-    let Some(e) = grammar.symbols.get("?E") else {
-        return Vec::new();
-    };
-    let opts = TurtleOptions::new(grammar, None, None, None);
-    let own: Vec<QuerySite> = turtle::query_sites(grammar, string, &opts)
-        .unwrap_or_default()
-        .into_iter()
-        .filter(|s| s.sym == e)
-        .collect();
-    if grammar.homomorphism.is_empty() {
-        return own;
-    }
-    let dopts = derive::DeriveOptions {
-        seed: Some(ctx.opts.effective_seed(grammar)),
-        ..ctx.opts.clone()
-    };
-    let drawn = derive::homomorphism(grammar, ctx.compiled, string, &dopts, ctx.step)
-        .ok()
-        .and_then(|h| turtle::query_sites(grammar, &h.modules, &opts).ok());
-    match drawn {
-        Some(d) => {
-            let d: Vec<QuerySite> = d.into_iter().filter(|s| s.sym == e).collect();
-            if d.len() == own.len() {
-                // The string's modules, at the places the turtle draws them.
-                own.iter()
-                    .zip(d)
-                    .map(|(o, d)| QuerySite {
-                        index: o.index,
-                        offset: o.offset,
-                        arity: o.arity,
-                        ..d
-                    })
-                    .collect()
-            } else {
-                own
-            }
-        }
-        None => own,
-    }
-}
-
 impl Environment for EnvironmentPass {
     fn before_step(
         &mut self,
         ctx: &StepContext<'_>,
         string: &mut ModuleStore,
     ) -> Result<(), DeriveError> {
-        let sites = sites(ctx, string);
+        let Some(e) = ctx.program.symbols.get("?E") else {
+            return Ok(());
+        };
+        let sites: Vec<_> = super::queries::drawn_sites(ctx, string)
+            .unwrap_or_default()
+            .into_iter()
+            .filter(|s| s.sym == e)
+            .collect();
         if sites.is_empty() {
             return Ok(());
         }

@@ -114,50 +114,6 @@ pub fn interpret(
     interpret_with(program, store, opts, &mut |_| {})
 }
 
-/// The values cpfg's query modules take in `store`: for each `?P`, `?H`,
-/// `?L` or `?U` with parameters, the offset of its first parameter and the
-/// turtle's position, heading, left or up vector where the module stands
-/// (as many components as it has parameters, at most 3).
-pub fn query_values(
-    program: &Program,
-    store: &ModuleStore,
-    opts: &TurtleOptions,
-) -> Result<Vec<(usize, usize, [f64; 3])>, TurtleError> {
-    let which: Vec<Option<u8>> = program
-        .symbols
-        .list
-        .iter()
-        .map(|s| match (s.kind, s.name.as_str()) {
-            (SymbolKind::Query, "?P") => Some(0),
-            (SymbolKind::Query, "?H") => Some(1),
-            (SymbolKind::Query, "?L") => Some(2),
-            (SymbolKind::Query, "?U") => Some(3),
-            _ => None,
-        })
-        .collect();
-    let mut out = Vec::new();
-    interpret_with(program, store, opts, &mut |site| {
-        let (Some(k), arity) = (which[site.sym as usize], site.arity) else {
-            return;
-        };
-        let f = &site.frame;
-        let v = match k {
-            0 => f.pos,
-            1 => f.h,
-            2 => f.l,
-            _ => f.u,
-        };
-        out.push((site.offset, arity.min(3), [v.x, v.y, v.z]));
-    })
-    // A string between steps may end inside a polygon; the frames up to
-    // the end are what the queries need.
-    .or_else(|e| match e {
-        TurtleError::UnclosedPolygon { .. } => Ok(Drawing::default()),
-        e => Err(e),
-    })?;
-    Ok(out)
-}
-
 /// Where a query module stands in a string and the turtle's state there.
 #[derive(Clone, Copy, Debug)]
 pub struct QuerySite {

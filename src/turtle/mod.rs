@@ -7,4 +7,4 @@ pub mod frame;
 pub mod interp;
 pub use drawing::Drawing;
 pub use error::TurtleError;
-pub use interp::{interpret, query_sites, query_values, QuerySite, TurtleOptions};
+pub use interp::{interpret, query_sites, QuerySite, TurtleOptions};
