@@ -364,6 +364,10 @@ impl Program for Light {
             .collect();
         let lit: Vec<Sphere> = spheres.iter().flatten().copied().collect();
         let grid = Grid::new(s.grid, &lit, s.beam_radius);
+        let mut rays = Rays {
+            ray: 0,
+            seen: vec![0; lit.len()],
+        };
         let mut k = 0;
         spheres
             .iter()
@@ -378,7 +382,7 @@ impl Program for Light {
                 let mut sum = 0f32;
                 let mut best = [0f32; 3];
                 for smp in &self.samples {
-                    let a = self.received(lv, smp, &lit, &grid);
+                    let a = self.received(lv, smp, &lit, &grid, &mut rays);
                     sum += a;
                     for (b, d) in best.iter_mut().zip(smp.dir) {
                         *b += a * d;
@@ -397,12 +401,20 @@ impl Program for Light {
     }
 }
 
+/// Which spheres the current ray has met (chiba's ray signatures): one
+/// array for the whole pass instead of one per ray.
+struct Rays {
+    ray: u64,
+    seen: Vec<u64>,
+}
+
 /// The voxel grid of one pass, enclosing every sphere.
 struct Grid {
     size: [i32; 3],
     pos: [f32; 3],
     range: [f32; 3],
-    /// Per voxel (x fastest), the spheres near it, the last added first.
+    /// Per voxel (x fastest), the spheres near it in the order they were
+    /// added; chiba prepends to its lists, so rays read them backwards.
     cells: Vec<Vec<usize>>,
 }
 
@@ -474,7 +486,7 @@ impl Grid {
                         let d = [sp.pos[0] - px, sp.pos[1] - py, sp.pos[2] - pz];
                         if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] <= limit {
                             let i = grid.index([x, y, z]);
-                            grid.cells[i].insert(0, lv);
+                            grid.cells[i].push(lv);
                         }
                     }
                 }
@@ -494,7 +506,14 @@ impl Light {
     /// The light sphere `lv` receives from `smp`: the ray from its centre
     /// walks the grid, and every other sphere listed in a voxel it visits
     /// that the ray meets reduces it (each sphere once).
-    fn received(&self, lv: usize, smp: &Sample, spheres: &[Sphere], grid: &Grid) -> f32 {
+    fn received(
+        &self,
+        lv: usize,
+        smp: &Sample,
+        spheres: &[Sphere],
+        grid: &Grid,
+        rays: &mut Rays,
+    ) -> f32 {
         if smp.intensity == 0.0 {
             return 0.0;
         }
@@ -520,27 +539,29 @@ impl Light {
                 ((node[c] as f64 + 0.5) / size[c] as f32 as f64 * grid.range[c] as f64) as f32;
         }
         let mut cell = grid.index(node) as i64;
-        let mut counted = vec![false; spheres.len()];
-        counted[lv] = true;
+        // A new ray: every sphere unseen but this one.
+        rays.ray += 1;
+        let ray = rays.ray;
+        rays.seen[lv] = ray;
         let mut reduction = 1f32;
         let red = s.transmittance;
         loop {
             let list = usize::try_from(cell).ok().and_then(|i| grid.cells.get(i));
-            for &o in list.into_iter().flatten() {
-                if counted[o] {
+            for &o in list.into_iter().flatten().rev() {
+                if rays.seen[o] == ray {
                     continue;
                 }
                 let other = &spheres[o];
                 if s.estimate_area {
                     let a = covered_area(pt, smp.dir, other, me.radius);
                     if a > 0.0 {
-                        counted[o] = true;
+                        rays.seen[o] = ray;
                         reduction *= 1.0 - (1.0 - red) * a / me.area;
                     }
                 } else {
                     let a = chord(pt, smp.dir, other, s.beam_radius * me.radius);
                     if a > 0.0 {
-                        counted[o] = true;
+                        rays.seen[o] = ray;
                         let e =
                             a as f64 / (2.0 * (other.radius + s.beam_radius * me.radius) as f64);
                         reduction = (reduction as f64 * (red as f64).powf(e)) as f32;
