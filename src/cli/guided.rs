@@ -7,9 +7,9 @@ use std::time::Instant;
 
 use super::args::{ModelArgs, PictureArgs};
 use super::commands::report;
-use super::model::{ms, picture};
-use super::{EX_DATAERR, EX_IOERR, EX_OK};
-use crate::export::output::{write_scene, Format, WriteError};
+use super::model::{ms, picture, write_failed};
+use super::{EX_DATAERR, EX_OK};
+use crate::export::output::{write_scene, Format};
 use crate::guided;
 use crate::mesh::{ComponentSearch, MeshOptions};
 
@@ -84,13 +84,6 @@ pub fn build_scene(
             }
             EX_OK
         }
-        Err(WriteError::Export(e)) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        Err(WriteError::Io(e)) => {
-            eprintln!("lsys: cannot write {}: {e}", out.display());
-            EX_IOERR
-        }
+        Err(e) => write_failed(e, out, color),
     }
 }

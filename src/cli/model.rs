@@ -260,6 +260,21 @@ pub(super) fn grammar_dir(input: &Input) -> Option<std::path::PathBuf> {
     }
 }
 
+/// Reports an output that was not written; the exit code (65 when the
+/// exporter refused the model, 74 when the file could not be written).
+pub(super) fn write_failed(e: WriteError, out: &Path, color: bool) -> i32 {
+    match e {
+        WriteError::Export(e) => {
+            report(e.as_ref(), color);
+            EX_DATAERR
+        }
+        WriteError::Io(e) => {
+            eprintln!("lsys: cannot write {}: {e}", out.display());
+            EX_IOERR
+        }
+    }
+}
+
 /// The options of a build from the command line.
 fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
     let grammar_dir = grammar_dir(&m.input);
@@ -397,14 +412,7 @@ fn build_compiled(
             }
             EX_OK
         }
-        Err(WriteError::Export(e)) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        Err(WriteError::Io(e)) => {
-            eprintln!("lsys: cannot write {}: {e}", out.display());
-            EX_IOERR
-        }
+        Err(e) => write_failed(e, out, color),
     }
 }
 
