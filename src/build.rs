@@ -22,7 +22,7 @@ pub struct BuildOptions {
     /// (namespaced ones, `TM.NTL=5`, are for grammar components), include
     /// folders, parser limits, dialect override. Grammar components are
     /// compiled with these, their own namespace's defines applied.
-    pub source: crate::resolve::Options,
+    pub source: crate::load::Options,
     /// Derivation steps; `None` takes the file's `derivation length:`.
     pub steps: Option<u32>,
     pub derive: DeriveOptions,

@@ -7,8 +7,8 @@ use thiserror::Error;
 
 use crate::bytecode::{self, Compiled};
 use crate::diag::Diagnostics;
-use crate::load::{self, Input};
-use crate::resolve::{self, Options, Program, SymbolKind};
+use crate::load::{self, Input, Options};
+use crate::resolve::{self, Program, SymbolKind};
 
 /// A grammar ready to derive.
 pub struct Compilation {

@@ -145,8 +145,8 @@ pub enum DialectArg {
 
 impl SourceArgs {
     /// The compilation options these arguments ask for, with `defines`.
-    pub fn options(&self, defines: &[(String, String)]) -> crate::resolve::Options {
-        crate::resolve::Options {
+    pub fn options(&self, defines: &[(String, String)]) -> crate::load::Options {
+        crate::load::Options {
             defines: defines.to_vec(),
             include_dirs: self.include_dir.clone(),
             max_include_depth: self.max_include_depth,

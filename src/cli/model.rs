@@ -276,7 +276,7 @@ pub(super) fn write_failed(e: WriteError, out: &Path, color: bool) -> i32 {
 }
 
 /// The options of a build from the command line.
-fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
+fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
     let grammar_dir = grammar_dir(&m.input);
     BuildOptions {
         source,
@@ -303,10 +303,10 @@ fn options(m: &Job, source: crate::resolve::Options) -> BuildOptions {
 }
 
 /// The compilation options of a job from the command line.
-fn source_options(m: &Job) -> crate::resolve::Options {
+fn source_options(m: &Job) -> crate::load::Options {
     match m.source {
         Some(s) => s.options(m.defines),
-        None => crate::resolve::Options {
+        None => crate::load::Options {
             defines: m.defines.to_vec(),
             ..Default::default()
         },

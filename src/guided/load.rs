@@ -23,7 +23,7 @@ pub struct Loaded {
 }
 
 /// Reads and compiles a scene file.
-pub fn load_file(path: &Path, opts: &crate::resolve::Options) -> Result<Loaded, Box<SceneError>> {
+pub fn load_file(path: &Path, opts: &crate::load::Options) -> Result<Loaded, Box<SceneError>> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         Box::new(SceneError::Syntax {
             file: path.display().to_string(),
@@ -41,7 +41,7 @@ pub fn load_text(
     name: &str,
     text: &str,
     base: &Path,
-    opts: &crate::resolve::Options,
+    opts: &crate::load::Options,
 ) -> Result<Loaded, Box<SceneError>> {
     let spec = scene::read(name, text)?;
     let src = NamedSource::new(name, Arc::new(text.to_string()));

@@ -22,7 +22,7 @@ use std::collections::HashMap;
 use miette::Report;
 
 /// The options of one compilation; loading reads them first.
-pub use crate::load::Options;
+use crate::load::Options;
 pub use error::ResolveError;
 pub use ir::*;
 
