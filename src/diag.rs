@@ -109,10 +109,15 @@ impl Diagnostics {
         self.iter().map(|d| render(d, color)).collect()
     }
 
-    fn first(&self) -> Option<&(dyn Diagnostic + Send + Sync + 'static)> {
+    /// Which diagnostic stands for all: the first error, else the first.
+    fn first_index(&self) -> Option<usize> {
         self.iter()
-            .find(|d| is_error(*d))
-            .or_else(|| self.iter().next())
+            .position(|d| is_error(d))
+            .or((!self.reports.is_empty()).then_some(0))
+    }
+
+    fn first(&self) -> Option<&(dyn Diagnostic + Send + Sync + 'static)> {
+        self.first_index().map(|i| self.reports[i].as_ref())
     }
 }
 
@@ -155,11 +160,12 @@ impl Diagnostic for Diagnostics {
         self.first()?.labels()
     }
     fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn Diagnostic> + 'a>> {
-        let first = self.first().map(|d| d as *const _ as *const u8);
+        let first = self.first_index();
         Some(Box::new(
             self.iter()
-                .filter(move |d| Some(*d as *const _ as *const u8) != first)
-                .map(|d| d as &dyn Diagnostic),
+                .enumerate()
+                .filter(move |(i, _)| Some(*i) != first)
+                .map(|(_, d)| d as &dyn Diagnostic),
         ))
     }
 }
