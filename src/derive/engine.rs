@@ -117,7 +117,7 @@ impl<'p> Derivation<'p> {
     /// One whole step as far as derivation goes: [`rewrite_step`]
     /// (`StartEach:`, the main productions, the decomposition), then
     /// [`end_each`]. Nothing answers query modules and `End:` never runs
-    /// here: that is the simulation loop's (`crate::simulation`), which
+    /// here: that is the simulation loop's (`src/simulation/`), which
     /// knows the target step count and the environments.
     ///
     /// [`rewrite_step`]: Derivation::rewrite_step

@@ -9,7 +9,7 @@
 //! model chooses one with its `.e` communication file ([`communication`]).
 //!
 //! This stage does no I/O and knows nothing of the turtle or of derive:
-//! the simulation loop (`crate::simulation`) interprets the string,
+//! the simulation loop (`src/simulation/`) interprets the string,
 //! builds the [`Query`] list and writes the replies back.
 
 pub mod clover;

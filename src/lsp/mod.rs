@@ -5,7 +5,7 @@
 //! document symbols and links, inlay hints, quick fixes and code lenses
 //! with production firing counts. See docs/editors.md.
 //!
-//! The structure is ruff's and ty's: one synchronous loop ([`server`])
+//! The structure is ruff's and ty's: one synchronous loop (`server.rs`)
 //! owns the open documents (text and version), applies edits in the order
 //! they arrive, analyses a document again only once no message is waiting
 //! (a burst of keystrokes is compiled once), answers requests against the

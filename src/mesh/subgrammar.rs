@@ -16,7 +16,7 @@ use crate::load::Input;
 
 /// Compiles, derives and builds a grammar used as a component. Mesh only
 /// merges and places what it returns: the compiler lives above mesh
-/// (`crate::build` implements this with the outer build's options, so
+/// (the back half, `src/build.rs`, implements this with the outer build's options, so
 /// `-D TM.NAME=...`, `--seed` and the limits reach the component).
 pub trait GrammarComponents {
     /// The scene of grammar `name` read from `input`, built with `search`

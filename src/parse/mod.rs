@@ -34,7 +34,7 @@ pub const MAX_OPERATORS: usize = 2000;
 pub const MAX_NESTING_CEILING: usize = 4096;
 pub const MAX_OPERATORS_CEILING: usize = 100_000;
 
-/// How deep and how long input the parser accepts (see [`too_deep`]).
+/// How deep and how long input the parser accepts (see `too_deep`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Limits {
     /// Deepest nesting of `(` and `{` (`--max-nesting`).

@@ -1,5 +1,5 @@
 //! The 3D turtle: a derived module string -> a [`Drawing`]. Each symbol is
-//! mapped once to an [`Act`] through the command table and the file's
+//! mapped once to an `Act` through the command table and the file's
 //! dialect, then the string is walked left to right with a branch stack.
 
 use glam::{DVec3, Mat4, Vec3, Vec4};
