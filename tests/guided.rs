@@ -507,3 +507,52 @@ fn a_local_update_of_the_palm_equals_a_full_recompute() {
     assert_eq!(guided::run::downstream(&crown, 1).len(), 6);
     assert_eq!(guided::update(&crown, &before, 1).unwrap(), run(&crown));
 }
+
+#[test]
+fn an_element_tagged_by_x_answers_with_its_id() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // Seed 0 asks `?X` about a wall of length 2 with id_in 7, then draws
+    // it; seed 1 looks for anything with id 7, with id 8, and for anything.
+    w(
+        "tag.lsys",
+        "derivation length: 4\naxiom: S(0)\n\
+         S(r) : r == 1 --> ?X(0, 0, 2, 7, 0)\n\
+         S(r) : r == 2 --> ?DA(0, 0, 0, 0, 7) ?DA(0, 0, 0, 0, 8) ?DA(0, 0, 0, 0, 0)\n\
+         ?X(f, i, d, a, t) --> F(d)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 4\n[[guide]]\nname = \"g\"\ngrammar = \"tag.lsys\"\nid = 100\n\
+         points = [[0, 0], [10, 0], [10, 10], [0, 10]]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [1, 5]\nheading = 0\nparameters = [1]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\nparameters = [2]\n",
+    );
+    let l = match guided::load_file(&dir.path().join("scene.toml"), &Default::default()) {
+        Ok(l) => l,
+        Err(e) => panic!("{}", lsys::diag::render_plain(e.as_ref())),
+    };
+    let o = run(&l);
+    let probe = &o.seeds.iter().find(|s| s.index == 1).unwrap().string;
+    let queries: Vec<&str> = probe.split_whitespace().collect();
+    // The wall runs (1,5)-(3,5): its nearest point (3,5) is √20 away, to
+    // the left of the probe's heading; the guide's bottom edge is 1 away.
+    let d = 20f64.sqrt();
+    let beta = 2f64.atan2(4.0).to_degrees();
+    assert_eq!(queries.len(), 3, "{probe}");
+    let nums = |q: &str| -> Vec<f64> {
+        q.trim_start_matches("?DA(")
+            .trim_end_matches(')')
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let tagged = nums(queries[0]);
+    assert_eq!(tagged[0], 1.0, "{probe}");
+    assert!((tagged[1] - d).abs() < 1e-4, "{probe}");
+    assert!((tagged[2] - beta).abs() < 1e-3, "{probe}");
+    assert_eq!(tagged[3], 7.0, "{probe}");
+    assert_eq!(nums(queries[1])[0], 0.0, "no element has id 8: {probe}");
+    let any = nums(queries[2]);
+    assert_eq!((any[0], any[1], any[3]), (1.0, 1.0, 100.0), "{probe}");
+}
