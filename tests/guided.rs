@@ -556,3 +556,54 @@ fn an_element_tagged_by_x_answers_with_its_id() {
     let any = nums(queries[2]);
     assert_eq!((any[0], any[1], any[3]), (1.0, 1.0, 100.0), "{probe}");
 }
+
+#[test]
+fn each_seed_places_the_components_of_its_own_grammar() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // Two grammars in two guides, each placing built-in Pailou parts; the
+    // second grammar's symbol table differs (an extra module first).
+    w(
+        "a.lsys",
+        "axiom: ~MCa(0.4, 0.4, 0.4) F(1) ~MCa(0.4, 0.4, 0.4)\n",
+    );
+    w(
+        "b.lsys",
+        "axiom: X ~MP(0.3, 1, 0.3) F(1) ~MCa(0.4, 0.4, 0.4)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 1\n\
+         [[guide]]\nname = \"a\"\ngrammar = \"a.lsys\"\npoints = [[0, 0], [4, 0], [4, 4], [0, 4]]\n\
+         [[guide]]\nname = \"b\"\ngrammar = \"b.lsys\"\npoints = [[4, 0], [8, 0], [8, 4], [4, 4]]\n\
+         [[seeds]]\nguide = \"a\"\nposition = [2, 1]\nheading = 90\n\
+         [[seeds]]\nguide = \"b\"\nposition = [6, 1]\nheading = 90\n",
+    );
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let o = run(&l);
+    let search = lsys::mesh::ComponentSearch {
+        grammar_dir: Some(dir.path().to_path_buf()),
+        dirs: Vec::new(),
+        within: Vec::new(),
+        detail: Default::default(),
+    };
+    let scene =
+        guided::build::scene(&l, &o, false, &search, &lsys::mesh::MeshOptions::default()).unwrap();
+    let counts = scene.instance_counts();
+    assert_eq!(counts.get("MCa"), Some(&3), "{counts:?}");
+    assert_eq!(counts.get("MP"), Some(&1), "{counts:?}");
+    // One MCa component, its three instances numbered 0, 1, 2.
+    let mca = scene
+        .components
+        .iter()
+        .position(|c| c.name == "MCa")
+        .unwrap();
+    let mut numbers: Vec<u32> = scene
+        .instances
+        .iter()
+        .filter(|i| i.component == mca)
+        .map(|i| i.number)
+        .collect();
+    numbers.sort();
+    assert_eq!(numbers, [0, 1, 2]);
+}
