@@ -607,3 +607,25 @@ fn each_seed_places_the_components_of_its_own_grammar() {
     numbers.sort();
     assert_eq!(numbers, [0, 1, 2]);
 }
+
+#[test]
+fn queries_stand_where_the_homomorphism_draws_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // `A` is drawn as F(3): the `?DG` after it stands 3 units up, 4 from
+    // the guide's bottom edge (it would be 1 at the seed itself).
+    w(
+        "h.lsys",
+        "derivation length: 1\naxiom: A ?DG(0, 0, 0, 0, 0)\nhomomorphism\nA --> F(3)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 1\n[[guide]]\nname = \"g\"\ngrammar = \"h.lsys\"\n\
+         points = [[0, 0], [10, 0], [10, 10], [0, 10]]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\n",
+    );
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let o = run(&l);
+    // β 180: the closest point is straight behind the heading.
+    assert_eq!(o.seeds[0].string, "A ?DG(1,4,180,1,0)");
+}

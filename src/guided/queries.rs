@@ -23,7 +23,6 @@ use super::scene::{Continuity, SceneSpec};
 use super::tokens::LinkTokens;
 use crate::derive::{DeriveError, ModuleStore};
 use crate::simulation::{Environment, StepContext};
-use crate::turtle::{self, TurtleOptions};
 
 /// A rigid motion of the drawing plane: where a seed's turtle starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -382,8 +381,8 @@ impl Environment for GuidedQueries<'_> {
         if kinds.iter().all(Option::is_none) {
             return Ok(());
         }
-        let opts = TurtleOptions::new(program, None, None, None);
-        let Ok(sites) = turtle::query_sites(program, string, &opts) else {
+        // Where the turtle draws each query: through the homomorphism.
+        let Some(sites) = crate::simulation::drawn_sites(ctx, string) else {
             return Ok(());
         };
         let world = Rc::clone(&self.world);

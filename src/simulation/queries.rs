@@ -12,7 +12,7 @@ use crate::turtle::{self, QuerySite, TurtleOptions};
 /// output when that keeps the string's query modules (as many, in order),
 /// else in the string itself. `None` when the turtle refuses the string
 /// (a NaN parameter): its queries then keep their values.
-pub(super) fn drawn_sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Option<Vec<QuerySite>> {
+pub fn drawn_sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Option<Vec<QuerySite>> {
     let program = ctx.program;
     let opts = TurtleOptions::new(program, None, None, None);
     let own = turtle::query_sites(program, string, &opts).ok()?;
