@@ -2,9 +2,9 @@
 //! mapped once to an `Act` through the command table and the file's
 //! dialect, then the string is walked left to right with a branch stack.
 
-use glam::{DVec3, Mat4, Vec3, Vec4};
+use glam::{DVec3, Vec3};
 
-use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
+use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
@@ -101,7 +101,7 @@ pub(super) struct Turtle<'a> {
     /// For errors that point at the grammar.
     pub(super) program: &'a Program,
     symbols: &'a Symbols,
-    drawing: Drawing,
+    pub(super) drawing: Drawing,
     pub(super) state: State,
     stack: Vec<State>,
     /// Open polygons: global, not per branch, so that a polygon can collect
@@ -218,15 +218,7 @@ fn interpret_with(
             first: *first + 1,
         });
     }
-    let (polys, cuts) = super::solid::build(&t.solids, &t.holes);
-    t.drawing.polygons.extend(polys);
-    t.drawing.constraints.extend(cuts);
-    for s in &t.solids {
-        *t.drawing
-            .primitives
-            .entry(super::solid::kind_name(s.kind).into())
-            .or_default() += 1;
-    }
+    t.draw_solids();
     // Close generalized cylinders left open at the end of the string.
     for k in 0..t.cylinders.len() {
         if t.cylinders[k].len() > 1 {
@@ -591,44 +583,6 @@ impl Turtle<'_> {
                 points,
             });
         }
-    }
-
-    /// `~X`, `~X(s)`, `~X(sx,sy,sz)`: the unit box's width (x) along the
-    /// turtle's L, its height (y) along H and its front (−z) facing U, with
-    /// the middle of its bottom face at the turtle.
-    fn place(&mut self, sym: SymId, args: &[f64], index: usize) {
-        if let (Some(size), []) = (self.state.scope, args) {
-            // In a scope, `~X` fills it (docs/shapes.md).
-            return self.fit(sym, size, index);
-        }
-        let s = match *args {
-            [] => Vec3::ONE,
-            [k] => Vec3::splat(k as f32),
-            [x, y, z, ..] => Vec3::new(x as f32, y as f32, z as f32),
-            [x, y] => Vec3::new(x as f32, y as f32, 1.0),
-        };
-        if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
-            // The paper switches decorations off by scaling them to 0.
-            return;
-        }
-        let f = &self.state.frame;
-        let (fl, fh, fu, fp) = (f.l.as_vec3(), f.h.as_vec3(), f.u.as_vec3(), f.pos.as_vec3());
-        let transform = Mat4::from_cols(
-            (fl * s.x).extend(0.0),
-            (fh * s.y).extend(0.0),
-            (-fu * s.z).extend(0.0),
-            Vec4::from((fp + fh * (s.y * 0.5), 1.0)),
-        );
-        self.push_placement(sym, transform, index);
-    }
-
-    pub(super) fn push_placement(&mut self, sym: SymId, transform: Mat4, index: usize) {
-        self.drawing.placements.push(Placement {
-            symbol: sym,
-            transform,
-            colour: self.state.colour,
-            module: index,
-        });
     }
 }
 

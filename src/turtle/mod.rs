@@ -5,6 +5,7 @@ pub mod drawing;
 pub mod error;
 pub mod frame;
 pub mod interp;
+mod placement;
 pub mod scope;
 mod scope_walk;
 mod snap;

@@ -4,12 +4,12 @@
 //! the string after it; output: the turtle's state changed, branches
 //! walked, solids recorded (drawn at the end by turtle/solid.rs).
 
-use glam::{DVec3, Mat4, Vec4};
+use glam::DVec3;
 
 use super::error::{blame, TurtleError};
 use super::frame::Frame;
 use super::interp::{QueryFn, Turtle, Walk};
-use super::scope::{self, axes, num, Misfit, Role};
+use super::scope::{self, axes, num, Misfit, Role, Size};
 use super::solid::Solid;
 use crate::derive::store::{head_sym, rest_of_branch};
 use crate::lang::scope_commands::{Primitive, ScopeCmd};
@@ -150,6 +150,18 @@ impl Turtle<'_> {
         }
     }
 
+    /// At the end of the string: the primitives as polygons, after the
+    /// constraint rules (snap, holes), with their counts and reports.
+    pub(super) fn draw_solids(&mut self) {
+        let (polys, report) = super::solid::build(&self.solids, &self.holes);
+        self.drawing.polygons.extend(polys);
+        self.drawing.constraints.extend(report);
+        for s in &self.solids {
+            let kind = super::solid::kind_name(s.kind).to_string();
+            *self.drawing.primitives.entry(kind).or_default() += 1;
+        }
+    }
+
     /// Draws branch `b` as `[ ... ]` would, in the sub-scope `(frame, size)`.
     fn sub(
         &mut self,
@@ -247,34 +259,21 @@ impl Turtle<'_> {
         }
     }
 
-    /// `~X` in a scope: the unit box stretched to fill it, with the same
-    /// orientation as a sized `~X` (width along L, front facing U).
-    pub(super) fn fit(&mut self, sym: SymId, size: DVec3, index: usize) {
-        let f = &self.state.frame;
-        let [x, y, z] = axes(f);
-        // A face scope has no depth: give the component a thin one so
-        // that it shows (a tenth of its smaller side).
-        let depth = if size.z > 0.0 {
-            size.z
-        } else {
-            size.x.min(size.y) * 0.1
-        };
-        if size.x == 0.0 || size.y == 0.0 || depth == 0.0 {
-            return;
-        }
-        let centre = f.pos + x * (size.x / 2.0) + y * (size.y / 2.0) + z * (size.z / 2.0);
-        let transform = Mat4::from_cols(
-            (f.l * size.x).as_vec3().extend(0.0),
-            (f.h * size.y).as_vec3().extend(0.0),
-            (-f.u * depth).as_vec3().extend(0.0),
-            Vec4::from((centre.as_vec3(), 1.0)),
-        );
-        self.push_placement(sym, transform, index);
-    }
-
+    /// The module as the user wrote it: a split's `flo(w)` and `rel(f)`
+    /// shown as such, not as the numbers they are encoded in.
     fn text(&self, sym: SymId, args: &[f64]) -> String {
         let name = self.program.symbols.name(sym);
-        let a: Vec<String> = args.iter().map(|x| num(*x)).collect();
+        let split = name.starts_with("@S") && name.len() == 3;
+        let a: Vec<String> = args
+            .iter()
+            .map(|&x| {
+                if split {
+                    Size::decode(x).text()
+                } else {
+                    num(x)
+                }
+            })
+            .collect();
         if a.is_empty() {
             name.to_string()
         } else {

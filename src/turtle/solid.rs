@@ -55,7 +55,9 @@ pub fn build(solids: &[Solid], holes: &[Solid]) -> (Vec<Polygon>, Vec<String>) {
     let mut report = Vec::new();
     let solids = super::snap::snap(solids, &mut report);
     for s in &solids {
-        if s.size.x <= 0.0 || s.size.y <= 0.0 {
+        // A flat scope (a face) has no room for a cylinder or a prism.
+        let flat = s.size.z <= 0.0 && s.kind != Primitive::Block;
+        if s.size.x <= 0.0 || s.size.y <= 0.0 || flat {
             continue;
         }
         match s.kind {
