@@ -65,7 +65,16 @@ pub enum TurtleError {
     #[diagnostic(code(lsys::turtle::zero_scale), help("`@Dd(s)` needs s ≠ 0"))]
     ZeroScale { index: usize, text: String },
 
-    // ---- shape grammars (docs/shapes.md) ----
+    /// A split that cannot be laid out, and the other shape-command
+    /// errors (boxed: their spans would make every turtle error large).
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Shape(Box<ShapeError>),
+}
+
+/// Errors of the shape commands (docs/shapes.md).
+#[derive(Debug, Error, Diagnostic)]
+pub enum ShapeError {
     #[error("module {index} of the string, `{text}`, cannot split its scope: {problem}")]
     #[diagnostic(code(lsys::turtle::split_misfit))]
     SplitMisfit {
@@ -109,6 +118,12 @@ pub enum TurtleError {
         #[help]
         help: String,
     },
+}
+
+impl From<ShapeError> for TurtleError {
+    fn from(e: ShapeError) -> TurtleError {
+        TurtleError::Shape(Box::new(e))
+    }
 }
 
 /// The grammar text and the first successor module (axiom first) that

@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::error::{blame, TurtleError};
+use super::error::{blame, ShapeError, TurtleError};
 use super::frame::Frame;
 use super::interp::{QueryFn, Turtle, Walk};
 use super::scope::{self, axes, num, Misfit, Role, Size};
@@ -50,7 +50,7 @@ impl Turtle<'_> {
         }
         let Some(size) = self.state.scope else {
             let (src, span) = blame(self.program, sym);
-            return Err(TurtleError::NoScope {
+            return Err(ShapeError::NoScope {
                 index: index + 1,
                 text: self.text(sym, args),
                 src,
@@ -58,7 +58,8 @@ impl Turtle<'_> {
                 help:
                     "start a scope first with @Scope(sx,sy,sz) (in this branch or one enclosing it)"
                         .into(),
-            });
+            }
+            .into());
         };
         let frame = self.state.frame;
         match c {
@@ -215,7 +216,7 @@ impl Turtle<'_> {
                     format!("{n} branches `[...]`")
                 }
             };
-            return Err(TurtleError::SplitBranches {
+            return Err(ShapeError::SplitBranches {
                 index: index + 1,
                 text: self.text(sym, args),
                 wanted: what(min),
@@ -227,14 +228,15 @@ impl Turtle<'_> {
                 src,
                 written_by: span,
                 help: "write one branch per piece right after the split, e.g. @SX(1,flo(1),1) [A][B][C]".into(),
-            });
+            }
+            .into());
         }
         Ok(out)
     }
 
     fn misfit(&self, m: Misfit, sym: SymId, args: &[f64], index: usize) -> TurtleError {
         let (src, span) = blame(self.program, sym);
-        TurtleError::SplitMisfit {
+        ShapeError::SplitMisfit {
             index: index + 1,
             text: self.text(sym, args),
             problem: m.problem,
@@ -244,6 +246,7 @@ impl Turtle<'_> {
             scope: num(m.scope),
             help: m.help,
         }
+        .into()
     }
 
     fn solid(&self, kind: Primitive, args: &[f64], index: usize) -> Solid {
