@@ -54,8 +54,9 @@ pub enum Func {
 }
 
 /// Where `rel(f)` puts its fraction: sizes at or below `-REL_BASE` are
-/// relative, other negative sizes floating (docs/shapes.md).
-pub const REL_BASE: f64 = 1e9;
+/// relative, other negative sizes floating (docs/shapes.md). Small enough
+/// that `REL_BASE + f` keeps f to about 1e-10 in an f64 parameter.
+pub const REL_BASE: f64 = 1e6;
 
 impl Func {
     pub const ALL: [Func; 20] = [
