@@ -99,3 +99,37 @@ fn constraint_reports() {
     let off = build("examples/shapes/snap.lsys", &[("SNAP", "0")]);
     assert!(off.drawing.constraints.is_empty());
 }
+
+/// `--stats` says which attributes came from the file's configure rules
+/// and which from the user, and recomputes rules from the user's values.
+#[test]
+fn stats_report_default_and_user_attributes() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("v.glb");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "build",
+            "examples/shapes/veranda.lsys",
+            "-D",
+            "W=9",
+            "-D",
+            "H=4",
+        ])
+        .arg("-o")
+        .arg(&out)
+        .arg("--stats")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let mut lines = Vec::new();
+    for (name, a) in json["attributes"].as_object().unwrap() {
+        lines.push(format!(
+            "{name} = {} from {} {}",
+            a["value"], a["from"], a["rule"]
+        ));
+    }
+    lines.push(format!("primitives {}", json["primitives"]));
+    insta::assert_snapshot!(lines.join("\n"));
+}

@@ -415,7 +415,7 @@ pub fn help_text() -> String {
         ));
     }
     out.push_str(
-        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz)\n",
+        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz); in a scope ~X fills it\n",
     );
     out
 }

@@ -88,8 +88,6 @@ const fn row(
 use Axis::{X, Y, Z};
 use ScopeCmd::*;
 
-const SIZES: &str = "sizes: s absolute, flo(w) floating, rel(f) a fraction";
-
 /// The shape commands (docs/shapes.md).
 pub const SCOPE_COMMANDS: &[Command] = &[
     row(
@@ -120,9 +118,27 @@ pub const SCOPE_COMMANDS: &[Command] = &[
         Grow,
         "add dx,dy,dz to the scope's size (its origin stays)",
     ),
-    row("@SX", (1, 64), "", Split(X), SIZES),
-    row("@SY", (1, 64), "", Split(Y), SIZES),
-    row("@SZ", (1, 64), "", Split(Z), SIZES),
+    row(
+        "@SX",
+        (1, 64),
+        "",
+        Split(X),
+        "split the scope along x into the branches after it; sizes s, flo(w), rel(f)",
+    ),
+    row(
+        "@SY",
+        (1, 64),
+        "",
+        Split(Y),
+        "split the scope along y into the branches after it; sizes s, flo(w), rel(f)",
+    ),
+    row(
+        "@SZ",
+        (1, 64),
+        "",
+        Split(Z),
+        "split the scope along z into the branches after it; sizes s, flo(w), rel(f)",
+    ),
     row(
         "@RX",
         (1, 1),
