@@ -527,6 +527,7 @@ fn khronos_validator_accepts_the_exports() {
         ("toukung", built("std:toukung_side")),
         // Shape grammars (docs/shapes.md): primitives, fitted components.
         ("veranda", built("examples/shapes/veranda.lsys")),
+        ("verandas", built("examples/shapes/verandas.lsys")),
         ("hall", built("examples/shapes/hall.lsys")),
         ("wall", built("examples/shapes/wall.lsys")),
         ("pailou_board", built("examples/shapes/pailou_board.lsys")),

@@ -44,6 +44,19 @@ fn veranda_pillars_follow_the_width() {
     }
 }
 
+/// Three verandas in one scene (4, 6, 9 wide: 6, 10, 16 pillars) and a
+/// fourth, 9 wide, whose own spacing 0.8 overrides the rule: 8.2 / 0.8
+/// = 10.25, so 10 pillars.
+#[test]
+fn a_per_instance_value_beats_the_configure_rule() {
+    let b = build("examples/shapes/verandas.lsys", &[]);
+    assert_eq!(primitives(&b, "cylinder"), 2 * (6 + 10 + 16 + 10));
+    // The user's -D changes the rule, not the instance's own value:
+    // PILLAR = 1 gives 3 + 5 + 8 pillars, the fourth keeps its 10.
+    let b = build("examples/shapes/verandas.lsys", &[("PILLAR", "1")]);
+    assert_eq!(primitives(&b, "cylinder"), 2 * (3 + 5 + 8 + 10));
+}
+
 /// Seed 003's hall: between the two end bays (1.8) and the centre bay
 /// (4.2), each side holds n = floor((W - 3.6 - 4.2) / 6) bays of about 3,
 /// so the facade has 2n + 1 bays besides the ends, 2n + 3 in all, and the
