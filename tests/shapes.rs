@@ -60,15 +60,16 @@ fn a_per_instance_value_beats_the_configure_rule() {
 /// Seed 003's hall: between the two end bays (1.8) and the centre bay
 /// (4.2), each side holds n = floor((W - 3.6 - 4.2) / 6) bays of about 3,
 /// so the facade has 2n + 1 bays besides the ends, 2n + 3 in all, and the
-/// corridor one column more than that. Windows: one per side bay, 2n,
-/// each with a lattice of floor(width / 0.3) bars.
+/// corridor one column more than that. The roof, W + 1.8 wide, holds
+/// floor((W + 1.8) / 0.45) rows of tiles (cylinders too).
 #[test]
 fn hall_bays_stay_symmetric_at_every_width() {
-    for (w, n) in [("16", 1), ("24", 2), ("30", 3)] {
-        // (16 - 7.8) / 6 = 1.37; (24 - 7.8) / 6 = 2.7; (30 - 7.8) / 6 = 3.7
+    for (w, n, tiles) in [("16", 1, 39), ("24", 2, 57), ("30", 3, 70)] {
+        // bays: (16 - 7.8) / 6 = 1.37; (24 - 7.8) / 6 = 2.7; (30 - 7.8) / 6 = 3.7
+        // tiles: 17.8 / 0.45 = 39.6; 25.8 / 0.45 = 57.3; 31.8 / 0.45 = 70.7
         let b = build("examples/shapes/hall.lsys", &[("W", w)]);
         let bays = 2 * n + 3;
-        assert_eq!(primitives(&b, "cylinder"), bays + 1, "columns at W={w}");
+        assert_eq!(primitives(&b, "cylinder"), bays + 1 + tiles, "W={w}");
         assert_eq!(primitives(&b, "prism"), 1, "roof at W={w}");
     }
 }
