@@ -171,10 +171,13 @@ impl Turtle<'_> {
         b: Branch,
         (frame, size): (Frame, DVec3),
     ) -> Result<(), TurtleError> {
+        // Walk the branch with its own `[` and `]` (parameterless), so the
+        // branch starts its own tubes as any branch does; the `[` saves
+        // the sub-scope set here and the `]` brings it back.
         let saved = self.state;
         self.state.frame = frame;
         self.state.scope = Some(size);
-        let r = self.walk(w, q, b.start, b.end, b.offset);
+        let r = self.walk(w, q, b.start - 1, b.end + 1, b.offset);
         self.state = saved;
         r
     }
@@ -266,7 +269,10 @@ impl Turtle<'_> {
     /// shown as such, not as the numbers they are encoded in.
     fn text(&self, sym: SymId, args: &[f64]) -> String {
         let name = self.program.symbols.name(sym);
-        let split = name.starts_with("@S") && name.len() == 3;
+        let split = matches!(
+            crate::lang::lookup(name).map(|c| c.paper),
+            Some(crate::lang::commands::Action::Scope(ScopeCmd::Split(_)))
+        );
         let a: Vec<String> = args
             .iter()
             .map(|&x| {
