@@ -50,6 +50,11 @@ pub enum ScopeCmd {
     Extrude,
     /// `@Grow(dx,dy,dz)`: add to the scope's size (origin unmoved).
     Grow,
+    /// `@Sc(fx,fy,fz)`: multiply the scope's size (origin unmoved).
+    Scale,
+    /// `@Rot(ax,ay,az)`: rotate the scope about its centre, degrees about
+    /// its x, then its (new) y, then its z axis.
+    Rotate,
     /// `@SX(s1,...)`: subdivide along an axis into the branches that follow.
     Split(Axis),
     /// `@RX(s)`: repeat the next branch as many times as size s fits.
@@ -117,6 +122,20 @@ pub const SCOPE_COMMANDS: &[Command] = &[
         "",
         Grow,
         "add dx,dy,dz to the scope's size (its origin stays)",
+    ),
+    row(
+        "@Sc",
+        (3, 3),
+        "",
+        Scale,
+        "multiply the scope's size by fx,fy,fz (its origin stays)",
+    ),
+    row(
+        "@Rot",
+        (3, 3),
+        "",
+        Rotate,
+        "rotate the scope about its centre: ax, ay, az degrees about its x, y, z",
     ),
     row(
         "@SX",

@@ -264,6 +264,22 @@ pub fn faces(f: &Frame, size: DVec3) -> Vec<(Frame, DVec3)> {
     ]
 }
 
+/// `@Rot(ax,ay,az)`: the frame turned about the scope's centre by ax
+/// degrees about its x axis, then ay about its (new) y, then az about its
+/// z, each counter-clockwise seen from the axis's tip (right-handed).
+pub fn rotate(f: &Frame, size: DVec3, degrees: [f64; 3]) -> Frame {
+    let mut ax = axes(f);
+    let centre = f.pos + (ax[0] * size.x + ax[1] * size.y + ax[2] * size.z) / 2.0;
+    for (k, d) in degrees.into_iter().enumerate() {
+        if d != 0.0 {
+            let q = glam::DQuat::from_axis_angle(ax[k].normalize(), d.to_radians());
+            ax = ax.map(|v| q * v);
+        }
+    }
+    let origin = centre - (ax[0] * size.x + ax[1] * size.y + ax[2] * size.z) / 2.0;
+    frame_from(f, origin, ax[0], ax[1], ax[2])
+}
+
 /// The frame and size of piece `[start, start + len)` along `axis`.
 pub fn piece(f: &Frame, size: DVec3, axis: Axis, start: f64, len: f64) -> (Frame, DVec3) {
     let k = axis.index();
@@ -285,6 +301,21 @@ mod tests {
         assert!(
             s.iter().zip(want).all(|(a, b)| (a - b).abs() < 1e-9),
             "{s:?}"
+        );
+    }
+
+    #[test]
+    fn rotate_turns_about_the_centre() {
+        let size = DVec3::new(4.0, 2.0, 1.0);
+        let f = rotate(&Frame::default(), size, [0.0, 90.0, 0.0]);
+        let [x, y, z] = axes(&f);
+        // A quarter turn about y: x goes to -z, z to x; the centre stays.
+        assert!((x - DVec3::NEG_Z).length() < 1e-12, "{x}");
+        assert!((y - DVec3::Y).length() < 1e-12 && (z - DVec3::X).length() < 1e-12);
+        let centre = f.pos + (x * 4.0 + y * 2.0 + z * 1.0) / 2.0;
+        assert!(
+            (centre - DVec3::new(2.0, 1.0, 0.5)).length() < 1e-12,
+            "{centre}"
         );
     }
 

@@ -78,6 +78,15 @@ impl Turtle<'_> {
                 self.state.scope = Some(grown.max(DVec3::ZERO));
                 Ok(next)
             }
+            ScopeCmd::Scale => {
+                let scaled = size * DVec3::new(arg(0), arg(1), arg(2));
+                self.state.scope = Some(scaled.abs());
+                Ok(next)
+            }
+            ScopeCmd::Rotate => {
+                self.state.frame = scope::rotate(&frame, size, [arg(0), arg(1), arg(2)]);
+                Ok(next)
+            }
             ScopeCmd::Solid(kind) => {
                 self.solids.push(self.solid(kind, args, index));
                 Ok(next)
