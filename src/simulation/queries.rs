@@ -1,6 +1,7 @@
 //! The turtle as an environment: a string after a step in, the parameters
 //! of cpfg's query modules (`?P(x,y,z)`, `?H`, `?L`, `?U`) set to the
-//! turtle's position and orientation where they stand. Also where every
+//! turtle's position and orientation where they stand, and `?S` to the
+//! scope's size (docs/shapes.md). Also where every
 //! environment finds its query modules ([`drawn_sites`]).
 
 use super::environment::{Environment, StepContext};
@@ -66,6 +67,8 @@ impl Environment for TurtleQueries {
                 "?H" => f.h,
                 "?L" => f.l,
                 "?U" => f.u,
+                // The scope's size (docs/shapes.md).
+                "?S" => s.scope,
                 _ => continue,
             };
             let n = s.arity.min(3);
