@@ -6,6 +6,8 @@ mod args;
 mod commands;
 mod guided;
 mod model;
+#[cfg(feature = "studio")]
+mod studio;
 mod watch;
 
 use std::io::IsTerminal;
