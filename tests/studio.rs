@@ -342,3 +342,35 @@ fn grammar_mode_keeps_the_last_good_model() {
     assert!(s["triangles"].as_u64().unwrap() > 0);
     h.stop();
 }
+
+/// The studio saves what it opened: every example graph, parsed by the
+/// editor and written again, reads back to the same layout and defines.
+#[test]
+fn example_graphs_survive_the_editor() {
+    use lsys::pailou::graph::{read, RELATIONS};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pailou");
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let g = lsys::studio::EditGraph::parse(&text).unwrap();
+        let again = g.to_toml();
+        let (a, b) = (
+            read("a", &text, RELATIONS).unwrap(),
+            read("b", &again, RELATIONS).unwrap(),
+        );
+        assert_eq!(a.layout, b.layout, "{}", p.display());
+        assert_eq!(a.defines, b.defines, "{}", p.display());
+        assert_eq!(
+            lsys::studio::EditGraph::parse(&again).unwrap(),
+            g,
+            "{}",
+            p.display()
+        );
+        n += 1;
+    }
+    assert!(n >= 15, "{n} graphs");
+}

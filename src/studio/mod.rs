@@ -22,8 +22,9 @@ use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, SystemTime};
 
 pub use edit::EditGraph;
-pub use grammar::{defines_of, Define};
-pub use pailou::DEFAULT_ENTRANCE;
+pub use grammar::{defines_of, Define, GrammarSession};
+pub use model::Model;
+pub use pailou::{PailouSession, DEFAULT_ENTRANCE};
 pub use safety::{confine, ConfineError};
 
 /// What to open and where to listen.

@@ -202,6 +202,8 @@ function showRefused(e) {
 }
 
 async function edit(body) {
+  // The page stays live while the server builds (large models take a while).
+  if (body.op !== "move" && body.op !== "select") $("status").textContent = "building…";
   const r = await api("/api/edit", body);
   if (r.status === 422) showRefused(r.data.refused);
   else { studio.refused = null; $("refused").hidden = true; }
@@ -249,6 +251,7 @@ function showGrammar(s) {
   }
 }
 function sendGrammar() {
+  $("status").textContent = "building…";
   const defines = {};
   $("grammar-defines").querySelectorAll("input").forEach((i) => {
     const d = studio.state.defines.find((x) => x.name === i.dataset.name);
@@ -268,10 +271,11 @@ async function show(s, reload) {
   $("file").textContent = s.file || "(default entrance, not saved)";
   for (const id of ["pailou-left", "pailou-right", "save"]) $(id).hidden = !pailou;
   $("grammar-left").hidden = pailou;
+  document.querySelector("main").classList.toggle("grammar", !pailou);
   if (pailou) showPailou(s); else showGrammar(s);
   const problems = s.problems || [];
   $("problems").replaceChildren(...problems.map((p) => Object.assign(document.createElement("div"), { textContent: "⚠ " + p.message })));
-  $("status").textContent = `${s.parts} parts, ${s.triangles} triangles`;
+  $("status").textContent = `${s.parts} component instances, ${s.triangles} triangles`;
   if (reload) await loadModel(problems.flatMap((p) => p.parts));
 }
 

@@ -14,7 +14,7 @@ import { chromium } from "playwright-core";
 const here = dirname(fileURLToPath(import.meta.url));
 const repo = resolve(here, "../../..");
 const lsys = process.env.LSYS || join(repo, "target/debug/lsys");
-const images = join(repo, "docs/images");
+const images = process.env.STUDIO_SHOTS || join(repo, "docs/images");
 const dir = mkdtempSync(join(tmpdir(), "lsys-studio-"));
 let passed = 0, failed = 0;
 function check(name, ok, detail = "") {
@@ -86,7 +86,15 @@ try {
     JSON.stringify(refused.body.refused));
 
   // The rest of a 2-1-1 Pailou by clicks (the paper's Fig. 6).
-  const add = async (kind) => { const k = await loads(); await page.click(`#palette button[data-kind="${kind}"]`); await waitLoads(k + 1); };
+  // Each click to the new model drawn: the page's whole rebuild-to-picture.
+  const took = [];
+  const add = async (kind) => {
+    const k = await loads();
+    const t0 = Date.now();
+    await page.click(`#palette button[data-kind="${kind}"]`);
+    await waitLoads(k + 1);
+    took.push(Date.now() - t0);
+  };
   const select = async (id) => { await page.click(`#graph g.node[data-id="${id}"]`); await page.waitForFunction((id) => window.studio.state.active === id, id); };
   await select("L11");
   await add("middle_toukung");
@@ -104,6 +112,8 @@ try {
   check("a 2-1-1 Pailou built by clicks has its roof and no structural warning",
     s.chart.includes("^") && s.problems.length === 0 && s.components.length === 12,
     `${s.components.length} components, problems ${JSON.stringify(s.problems)}`);
+  took.sort((a, b) => a - b);
+  console.log(`click to new model drawn: median ${took[took.length >> 1]} ms over ${took.length} edits (${took.join(", ")})`);
   await page.click('#views button[data-view="iso"]');
   await page.waitForTimeout(500);
   await page.screenshot({ path: join(images, "studio-pailou.png") });
@@ -136,6 +146,7 @@ try {
   await waitLoads(n + 1);
   const t3 = await page.evaluate(() => window.studio.state.triangles);
   check("saving the file on disk updates the view", t3 > t2, `${t2} -> ${t3}`);
+  await page.click('#views button[data-view="front"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(images, "studio-grammar.png") });
   const v = await page.evaluate(() => window.studio.version);
