@@ -97,6 +97,8 @@ async function loadModel(problemParts) {
 
 // ---- Pailou mode ----------------------------------------------------------
 let dragging = null;
+// Edits in flight: their own answer redraws, so pushed updates wait.
+let pending = 0;
 function drawGraph(s) {
   const svg = $("graph");
   svg.replaceChildren();
@@ -151,20 +153,21 @@ $("graph").addEventListener("pointerup", async () => {
   else await edit({ op: "select", id: d.id });
 });
 
+// name, meaning, default, range and step of the Pailou grammar's sliders.
 const PARAMS = [
-  ["ω", "ground pillar height of the central entrance", 10, 2, 30],
-  ["αUp", "an entrance above / the one below", 0.5, 0.2, 1],
-  ["αSide", "an entrance beside / the inner one", 0.8, 0.3, 1],
-  ["αEW", "entrance width / pillar height", 0.8333, 0.4, 1.5],
-  ["αPW", "pillar width / pillar height", 0.1148, 0.05, 0.2],
-  ["αLW", "Toukung row / entrance width", 1, 0.5, 1.5],
-  ["NTL", "Toukung levels", 5, 3, 9],
+  ["ω", "ground pillar height of the central entrance", 10, 2, 30, 0.5],
+  ["αUp", "an entrance above / the one below", 0.5, 0.2, 1, 0.01],
+  ["αSide", "an entrance beside / the inner one", 0.8, 0.3, 1, 0.01],
+  ["αEW", "entrance width / pillar height", 0.8333, 0.4, 1.5, 0.01],
+  ["αPW", "pillar width / pillar height", 0.1148, 0.05, 0.2, 0.001],
+  ["αLW", "Toukung row / entrance width", 1, 0.5, 1.5, 0.01],
+  ["NTL", "Toukung levels", 5, 3, 9, 1],
 ];
 function drawParams(s) {
   const box = $("params");
   if (box.dataset.built !== "1") {
-    box.innerHTML = PARAMS.map(([n, title, v, lo, hi]) =>
-      `<label title="${title}">${n}<input type="range" data-name="${n}" min="${lo}" max="${hi}" step="${n === "NTL" ? 1 : (hi - lo) / 100}" value="${v}"><output></output></label>`).join("");
+    box.innerHTML = PARAMS.map(([n, title, v, lo, hi, step]) =>
+      `<label title="${title}">${n}<input type="range" data-name="${n}" min="${lo}" max="${hi}" step="${step}" value="${v}"><output></output></label>`).join("");
     box.querySelectorAll("input").forEach((i) => {
       i.addEventListener("input", () => (i.nextElementSibling.textContent = i.value));
       i.addEventListener("change", () => edit({ op: "define", name: i.dataset.name, value: Number(i.value) }));
@@ -204,7 +207,8 @@ function showRefused(e) {
 async function edit(body) {
   // The page stays live while the server builds (large models take a while).
   if (body.op !== "move" && body.op !== "select") $("status").textContent = "building…";
-  const r = await api("/api/edit", body);
+  pending++;
+  const r = await api("/api/edit", body).finally(() => pending--);
   if (r.status === 422) showRefused(r.data.refused);
   else { studio.refused = null; $("refused").hidden = true; }
   if (r.data && r.data.state) await show(r.data.state, body.op !== "move" && body.op !== "select");
@@ -305,7 +309,7 @@ $("open").addEventListener("change", async () => {
 // Updates pushed by the server (a saved grammar file, another tab's edit).
 const events = new EventSource("/api/events");
 events.addEventListener("update", async (e) => {
-  if (Number(e.data) === studio.version) return;
+  if (Number(e.data) === studio.version || pending > 0) return;
   const r = await api("/api/state");
   await show(r.data, true);
 });
