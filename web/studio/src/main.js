@@ -47,8 +47,17 @@ function resize() {
   camera.aspect = w / h;
   camera.updateProjectionMatrix();
 }
-window.addEventListener("resize", resize);
-renderer.setAnimationLoop(() => { controls.update(); renderer.render(scene3, camera); });
+window.addEventListener("resize", () => { resize(); render(); });
+// Drawn on demand (a camera move, a new model), not every frame: a big
+// Pailou is hundreds of thousands of triangles, and a browser without a
+// GPU would spend all its time redrawing an unchanged picture.
+let queued = false;
+function render() {
+  if (queued) return;
+  queued = true;
+  requestAnimationFrame(() => { queued = false; renderer.render(scene3, camera); });
+}
+controls.addEventListener("change", render);
 
 function view(name) {
   const c = bounds.getCenter(new THREE.Vector3());
@@ -61,6 +70,7 @@ function view(name) {
   camera.updateProjectionMatrix();
   controls.target.copy(c);
   controls.update();
+  render();
 }
 document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => view(b.dataset.view)));
 
@@ -93,6 +103,7 @@ async function loadModel(problemParts) {
   $("parts").dataset.parts = meshes;
   resize();
   if (!fitted) { view("iso"); fitted = true; }  // later loads keep the camera
+  render();
 }
 
 // ---- Pailou mode ----------------------------------------------------------
@@ -208,10 +219,14 @@ async function edit(body) {
   // The page stays live while the server builds (large models take a while).
   if (body.op !== "move" && body.op !== "select") $("status").textContent = "building…";
   pending++;
-  const r = await api("/api/edit", body).finally(() => pending--);
-  if (r.status === 422) showRefused(r.data.refused);
-  else { studio.refused = null; $("refused").hidden = true; }
-  if (r.data && r.data.state) await show(r.data.state, body.op !== "move" && body.op !== "select");
+  try {
+    const r = await api("/api/edit", body);
+    if (r.status === 422) showRefused(r.data.refused);
+    else { studio.refused = null; $("refused").hidden = true; }
+    if (r.data && r.data.state) await show(r.data.state, body.op !== "move" && body.op !== "select");
+  } finally {
+    pending--;
+  }
 }
 $("remove").addEventListener("click", () => edit({ op: "remove", id: studio.state.active }));
 $("duplicate").addEventListener("click", () => edit({ op: "duplicate", id: studio.state.active }));

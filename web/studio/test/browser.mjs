@@ -148,7 +148,7 @@ try {
   await waitLoads(n + 1);
   n = await loads();
   await page.$eval('#params input[data-name="αSide"]', (i) => { i.value = "0.4"; i.dispatchEvent(new Event("change")); });
-  await waitLoads(n + 1);
+  await page.waitForFunction((n) => window.studio.state.defines["αSide"] === 0.4 && window.studio.loads > n, n, { timeout: 60000 });
   const warned = await page.evaluate(() => window.studio.state.problems.length);
   check("a Pailou whose parts collide shows the structural warnings", warned > 0 && (await page.$$("#problems div")).length === warned, `${warned}`);
   await page.click('#views button[data-view="front"]');
