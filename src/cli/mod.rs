@@ -7,6 +7,8 @@ mod commands;
 mod guided;
 mod model;
 mod shape_stats;
+#[cfg(feature = "studio")]
+mod studio;
 mod watch;
 
 use std::io::IsTerminal;

@@ -148,7 +148,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     let input = pailou::input(&layout, kind, &title, &name);
     // The command line's -D win over the graph's [defines].
     defines.extend(p.define.iter().cloned());
-    toukung_levels(&mut defines);
+    pailou::toukung_levels(&mut defines);
     if p.emit_graph {
         print!("{}", graph::emit(&layout, kind, &title));
     }
@@ -187,24 +187,6 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         relations: relations_text.as_deref(),
     };
     build_once(&job, out, &p.picture, format, color, Report::Stats).code
-}
-
-/// The Pailou's Toukung levels `NTL` and those of its Toukungs (`TM.NTL`,
-/// `TS.NTL`) agree: the grammar sizes the Toukung rows from `NTL`, so
-/// `-D NTL=7` also reaches the components, and `-D TM.NTL=7` alone sets
-/// the Pailou's `NTL` too (the side Toukungs follow unless given).
-fn toukung_levels(defines: &mut Vec<(String, String)>) {
-    let last = |d: &[(String, String)], n: &str| {
-        d.iter().rev().find(|(k, _)| k == n).map(|(_, v)| v.clone())
-    };
-    let ntl = last(defines, "NTL").or_else(|| last(defines, "TM.NTL"));
-    if let Some(v) = ntl {
-        for name in ["NTL", "TM.NTL", "TS.NTL"] {
-            if last(defines, name).is_none() {
-                defines.push((name.to_string(), v.clone()));
-            }
-        }
-    }
 }
 
 /// One build: the grammar and the options that shape it.
