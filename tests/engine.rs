@@ -402,6 +402,7 @@ fn program(src: &str) -> Program {
         axiom: Vec::new(),
         derivation_length: 0,
         seed: None,
+        ring: false,
         context: ContextFilter::All,
         productions: Vec::new(),
         decomposition: Vec::new(),

@@ -513,6 +513,7 @@ pub(crate) fn rewrite(
         heads: &input.heads,
         params: &input.params,
         index,
+        ring: tab.program.ring,
     };
     let heads = inp.heads;
     let params = inp.params;

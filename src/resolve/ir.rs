@@ -287,6 +287,9 @@ pub struct Program {
     pub derivation_length: u32,
     /// `seed:`; the user's `--seed` wins.
     pub seed: Option<u64>,
+    /// cpfg's `ring lsystem`: context matching wraps around the string's
+    /// ends (the last module is the first one's left neighbour).
+    pub ring: bool,
     pub context: ContextFilter,
     pub productions: Vec<Production>,
     pub decomposition: Vec<Production>,

@@ -20,6 +20,8 @@ struct Sections {
     table: Option<Table>,
     ended: Option<Span>,
     lsystem: Option<Span>,
+    /// `ring lsystem` was given.
+    ring: bool,
     axiom: Option<(Vec<SuccModule>, Span)>,
     dlength: Option<(u32, Span)>,
     seed: Option<(u64, Span)>,
@@ -142,6 +144,7 @@ impl Resolver {
             axiom,
             derivation_length: s.dlength.map_or(0, |d| d.0),
             seed: s.seed.map(|d| d.0),
+            ring: s.ring,
             context: s.context.map(|c| c.0).unwrap_or_default(),
             productions: take(Table::Main),
             decomposition: take(Table::Decomposition),
@@ -286,6 +289,7 @@ impl Resolver {
                 }
             }
             HeaderKind::Endlsystem => s.ended = Some(h.span),
+            HeaderKind::Ring => s.ring = true,
             HeaderKind::Homomorphism => s.table = Some(Table::Homomorphism),
             HeaderKind::Decomposition => s.table = Some(Table::Decomposition),
             HeaderKind::Module(_) => {}
