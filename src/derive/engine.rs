@@ -7,7 +7,9 @@ use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
 use super::fast::Plan;
-use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
+use super::rewrite::{
+    check_limits, fault_error, rewrite, rewrite_recursive, At, Site, State, Tables,
+};
 use super::run::{run_hook, store_params};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
@@ -207,7 +209,7 @@ impl<'p> Derivation<'p> {
             Table::Main,
             &self.cur,
             idx,
-            0,
+            At::top(&self.tab),
             &mut self.next,
         )?;
         Ok(())

@@ -43,6 +43,8 @@ pub(crate) struct Shape {
     /// contexts must still match.
     pub direct: bool,
     pub has_prob: bool,
+    /// The L-system the production belongs to.
+    pub lsystem: u32,
 }
 
 impl Shape {
@@ -70,6 +72,7 @@ impl Shape {
                 .collect(),
             pred_params,
             has_prob: p.prob.is_some(),
+            lsystem: p.lsystem,
         }
     }
 }
@@ -142,6 +145,8 @@ pub(crate) struct Input<'a> {
     /// other end (once per context module, so a string of nothing but
     /// skipped modules still ends the search).
     pub ring: bool,
+    /// The L-system whose productions apply here (see `Switch` in rewrite).
+    pub lsystem: u32,
 }
 
 #[inline]

@@ -60,6 +60,11 @@ pub enum Action {
     ScaleSet,
     ScaleMul,
     ScaleDiv,
+    /// cpfg's `?(n, s)`: a sub-L-system starts; steps and widths are
+    /// scaled by s until its `$`.
+    SubStart,
+    /// cpfg's `$`: the sub-L-system ends and the scale before it returns.
+    SubEnd,
 }
 
 /// One turtle command.
@@ -217,8 +222,8 @@ pub const COMMANDS: &[Command] = &[
     clash(
         "$",
         PitchAround,
-        RollHorizontal,
-        "paper: pitch 180°; cpfg: roll until the left axis is horizontal",
+        SubEnd,
+        "paper: pitch 180°; cpfg: end a sub-L-system `?(n,s) ... $` (its scale s ends; `@v` rolls horizontal)",
     ),
     cmd(
         "[",
@@ -240,7 +245,7 @@ pub const COMMANDS: &[Command] = &[
         (0, 1),
         "a tenth of the initial width",
         IncWidth,
-        "increase the line width by w (cpfg)",
+        "increase the line width: #(w) adds w (cpfg: sets it to w, as `!(w)`)",
     ),
     cmd(
         ";",
