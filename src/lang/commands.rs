@@ -379,6 +379,13 @@ pub const COMMANDS: &[Command] = &[
     cmd("@Di", (0, 1), "1", ScaleMul, "multiply the step scale by s"),
     cmd("@Dd", (0, 1), "1", ScaleDiv, "divide the step scale by s"),
     cmd("@L", (0, 1), "", Nothing, "label (accepted, draws nothing)"),
+    cmd(
+        "@!",
+        (0, 1),
+        "",
+        Nothing,
+        "cpfg: the number of sides of cylinders and spheres (accepted; lsys chooses its own)",
+    ),
     cmd("@H", (0, 0), "", HeadingUp, "turn the heading straight up"),
     cmd(
         "@X",
