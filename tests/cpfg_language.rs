@@ -137,3 +137,23 @@ fn generalized_cylinders_are_carried_into_branches() {
     assert!(lo.x < -1.3 && hi.x > 1.3, "{lo} {hi}");
     assert!((hi.y - (2.0 + 2f32.sqrt())).abs() < 0.15, "{lo} {hi}");
 }
+
+/// `Consider:` lists brackets like any symbol: listed, a branch's `]`
+/// ends its modules' right context (Borchert-Slade's pipe model, whose
+/// trunk was cut once context ran out of the leaves' branches); not
+/// listed, cpfg reads context straight through it.
+#[test]
+fn brackets_in_a_consider_list_end_the_context() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let model = |consider: &str| {
+        format!(
+            "Lsystem: 1\nderivation length: 1\nConsider: {consider}\nAxiom: [BA]A\nA > A --> X\nendlsystem\n"
+        )
+    };
+    std::fs::write(dir.join("listed.l"), model("A[]")).unwrap();
+    std::fs::write(dir.join("through.l"), model("A")).unwrap();
+    let run = |f: &str| String::from_utf8_lossy(&lsys(dir, &["derive", f]).stdout).into_owned();
+    assert_eq!(run("listed.l").trim(), "[ B A ] A");
+    assert_eq!(run("through.l").trim(), "[ B X ] A");
+}

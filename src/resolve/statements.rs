@@ -281,10 +281,16 @@ impl Resolver {
                 }
                 let mut syms = Vec::new();
                 for t in toks {
-                    if let ast::PatTok::Module(m) = t {
-                        for p in self.split(m) {
-                            syms.push(self.intern(&p.name, Some(p.span)));
+                    match t {
+                        ast::PatTok::Module(m) => {
+                            for p in self.split(m) {
+                                syms.push(self.intern(&p.name, Some(p.span)));
+                            }
                         }
+                        // `Consider: ![]`: brackets listed are considered
+                        // (they end a context at a branch's end).
+                        ast::PatTok::Open(_) => syms.push(OPEN_BRACKET),
+                        ast::PatTok::Close(_) => syms.push(CLOSE_BRACKET),
                     }
                 }
                 let f = if is_ignore {
