@@ -157,3 +157,18 @@ fn brackets_in_a_consider_list_end_the_context() {
     assert_eq!(run("listed.l").trim(), "[ B A ] A");
     assert_eq!(run("through.l").trim(), "[ B X ] A");
 }
+
+/// cpfg's `{` starts a polygon without recording the turtle's position
+/// (only `.`, `F` and `f` do): `{[-f(1)].F(2)}` is the triangle of the
+/// three points, one unit wide and two high, not a four-point outline
+/// that visits the start twice.
+#[test]
+fn a_cpfg_polygon_starts_without_a_vertex() {
+    let g = lsys::Grammar::from_path(fixture("polygon").join("leaf.l")).expect("compiles");
+    let scene = g.build(0).expect("builds");
+    insta::assert_snapshot!(format!(
+        "triangles {}\nbounds {:?}",
+        scene.triangle_count(),
+        scene.mesh().bounds()
+    ));
+}

@@ -345,8 +345,11 @@ impl Turtle<'_> {
                 None => s.colour = s.colour.saturating_add(1),
             },
             PolyStart => {
+                // cpfg's `{` records no vertex (only `.`, `F`, `f` do):
+                // leaves written `{.` ... `}` across branches depend on it.
                 let start = s.frame.pos.as_vec3();
-                self.polygons.push((index, vec![start]));
+                let first = (!self.opts.profile.cpfg_turtle).then_some(start);
+                self.polygons.push((index, first.into_iter().collect()));
             }
             PolyVertex => {
                 let p = s.frame.pos.as_vec3();
