@@ -6,6 +6,7 @@ mod args;
 mod commands;
 mod guided;
 mod model;
+mod shape_stats;
 mod watch;
 
 use std::io::IsTerminal;

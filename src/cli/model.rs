@@ -406,7 +406,10 @@ fn build_compiled(
     match written {
         Ok(bytes) => {
             if m.look.stats {
-                println!("{}", stats(&built, parse, write_time, out, bytes));
+                println!(
+                    "{}",
+                    stats(&built, &comp.program, parse, write_time, out, bytes)
+                );
             } else if report_as == Report::Summary {
                 println!("{}", summary(&built, out, bytes, t0.elapsed()));
             }
@@ -463,7 +466,14 @@ pub(super) fn ms(d: Duration) -> f64 {
     (d.as_secs_f64() * 1e6).round() / 1e3
 }
 
-fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64) -> String {
+fn stats(
+    built: &Built,
+    program: &crate::resolve::Program,
+    parse: Duration,
+    write: Duration,
+    out: &Path,
+    bytes: u64,
+) -> String {
     let s = &built.scene;
     // f32 coordinates printed through f64 would show binary noise
     // (84.05000305175781); print the shortest decimal that reads back.
@@ -475,7 +485,7 @@ fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64
         .bounds()
         .map(|(lo, hi)| serde_json::json!([short(lo), short(hi)]));
     let t = &built.timings;
-    serde_json::json!({
+    let mut json = serde_json::json!({
         "modules": built.modules,
         "instances": s.instance_counts(),
         "vertices": s.vertex_count(),
@@ -489,6 +499,7 @@ fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64
             "mesh": ms(t.mesh),
             "write": ms(write),
         },
-    })
-    .to_string()
+    });
+    super::shape_stats::add(&mut json, built, program);
+    json.to_string()
 }
