@@ -142,7 +142,7 @@ pub struct SourceArgs {
 pub enum DialectArg {
     /// The Pailou paper's Table 1 (`%` rolls 180°, `$` pitches 180°).
     Paper,
-    /// cpfg's (`%` cuts the branch, `$` rolls to horizontal; f32 parameters).
+    /// cpfg's (`%` cuts the branch, `$` ends a sub-L-system; f32 parameters).
     Cpfg,
 }
 

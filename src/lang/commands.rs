@@ -60,6 +60,11 @@ pub enum Action {
     ScaleSet,
     ScaleMul,
     ScaleDiv,
+    /// cpfg's `?(n, s)`: a sub-L-system starts; steps and widths are
+    /// scaled by s until its `$`.
+    SubStart,
+    /// cpfg's `$`: the sub-L-system ends and the scale before it returns.
+    SubEnd,
     /// Scopes, splits and primitives (docs/shapes.md).
     Scope(super::scope_commands::ScopeCmd),
 }
@@ -219,8 +224,8 @@ pub const COMMANDS: &[Command] = &[
     clash(
         "$",
         PitchAround,
-        RollHorizontal,
-        "paper: pitch 180°; cpfg: roll until the left axis is horizontal",
+        SubEnd,
+        "paper: pitch 180°; cpfg: end a sub-L-system `?(n,s) ... $` (its scale s ends; `@v` rolls horizontal)",
     ),
     cmd(
         "[",
@@ -242,7 +247,7 @@ pub const COMMANDS: &[Command] = &[
         (0, 1),
         "a tenth of the initial width",
         IncWidth,
-        "increase the line width by w (cpfg)",
+        "increase the line width: #(w) adds w (cpfg: sets it to w, as `!(w)`)",
     ),
     cmd(
         ";",
@@ -376,6 +381,13 @@ pub const COMMANDS: &[Command] = &[
     cmd("@Di", (0, 1), "1", ScaleMul, "multiply the step scale by s"),
     cmd("@Dd", (0, 1), "1", ScaleDiv, "divide the step scale by s"),
     cmd("@L", (0, 1), "", Nothing, "label (accepted, draws nothing)"),
+    cmd(
+        "@!",
+        (0, 1),
+        "",
+        Nothing,
+        "cpfg: the number of sides of cylinders and spheres (accepted; lsys chooses its own)",
+    ),
     cmd("@H", (0, 0), "", HeadingUp, "turn the heading straight up"),
     cmd(
         "@X",

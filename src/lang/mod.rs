@@ -6,6 +6,7 @@
 
 pub mod builtins;
 pub mod commands;
+pub mod curve;
 pub mod profile;
 pub mod rng;
 pub mod scope_commands;

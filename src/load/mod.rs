@@ -10,6 +10,7 @@
 
 mod colours;
 mod cpfg;
+mod curves;
 mod environment;
 mod error;
 mod include;
@@ -25,7 +26,7 @@ pub use environment::{EnvironmentFiles, HeaderImage};
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
 pub use surface::{CpfgSurface, Patch as SurfacePatch};
-pub use view::{SideFiles, ViewFunctions};
+pub use view::{SideFiles, ViewFunctions, ViewLines};
 
 use crate::parse::ast::Item;
 use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};

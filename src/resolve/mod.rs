@@ -16,6 +16,7 @@ mod modules;
 mod statements;
 mod tables;
 mod turtle_headers;
+mod view_functions;
 
 use std::collections::HashMap;
 
@@ -72,6 +73,8 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_angle: loaded.side.angle,
         view_colours: loaded.side.colours,
         view_initial_colour: loaded.side.initial_colour,
+        view_lines: loaded.side.lines,
+        view_curves: loaded.side.curves,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
         environment_images: loaded.environment_images,
@@ -146,6 +149,10 @@ pub(crate) struct Resolver {
     pub view_colours: Vec<(usize, [f32; 3])>,
     /// The turtle's first colour index, from a cpfg view file.
     pub view_initial_colour: Option<u32>,
+    /// A cpfg model's line widths, from its view file.
+    pub view_lines: Option<crate::load::ViewLines>,
+    /// A cpfg model's contour curves (`curve:` lines of its view file).
+    pub view_curves: Vec<Result<crate::lang::curve::Curve, String>>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).

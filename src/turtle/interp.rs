@@ -23,14 +23,16 @@ pub struct TurtleOptions {
     pub step: f32,
     /// Initial line width (the tube diameter).
     pub width: f32,
+    /// What `#` and `!` without a parameter add and take away.
+    pub width_increment: f32,
+    /// Widths are cpfg screen pixels (see `turtle::cpfg`).
+    pub pixel_lines: bool,
 }
 
 /// The default angle when neither the file nor the command line gives one.
 pub const DEFAULT_ANGLE: f64 = 90.0;
 /// The default line width: a tenth of the default step.
 pub const DEFAULT_WIDTH: f64 = 0.1;
-/// Curve segments between two control points of a generalized cylinder.
-const DEFAULT_GC_SEGMENTS: usize = 8;
 
 impl TurtleOptions {
     /// The file's headers, each overridden by the command line when given.
@@ -41,11 +43,14 @@ impl TurtleOptions {
         width: Option<f64>,
     ) -> Self {
         let file = &program.turtle;
+        let width = width.or(file.width).unwrap_or(DEFAULT_WIDTH);
         TurtleOptions {
             profile: program.profile,
             angle: angle.or(file.angle).unwrap_or(DEFAULT_ANGLE) as f32,
             step: step.or(file.step).unwrap_or(1.0) as f32,
-            width: width.or(file.width).unwrap_or(DEFAULT_WIDTH) as f32,
+            width: width as f32,
+            width_increment: file.width_increment.unwrap_or(width * 0.1) as f32,
+            pixel_lines: file.pixel_lines,
         }
     }
 }
@@ -59,6 +64,9 @@ enum Act {
 }
 
 fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
+    if name == "?" && dialect == Dialect::Cpfg {
+        return Act::Command(Action::SubStart);
+    }
     match kind {
         SymbolKind::Component => Act::Place,
         _ => Act::Command(
@@ -69,14 +77,6 @@ fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
     }
 }
 
-/// One control point of a generalized cylinder.
-#[derive(Clone, Copy, Debug)]
-struct CylPoint {
-    frame: Frame,
-    radius: f32,
-    segments: usize,
-}
-
 #[derive(Clone, Copy, Debug)]
 pub(super) struct State {
     pub(super) frame: Frame,
@@ -85,13 +85,15 @@ pub(super) struct State {
     pub(super) scope: Option<DVec3>,
     /// `@Snap(d)`: blocks drawn now snap to earlier ones within d.
     pub(super) snap: f64,
-    width: f32,
+    pub(super) width: f32,
     pub(super) colour: u32,
-    scale: f32,
+    pub(super) scale: f32,
     /// The chain the next drawn segment may extend.
     chain: Option<usize>,
-    /// The open generalized cylinder, an index into `Turtle::cylinders`.
-    cylinder: Option<usize>,
+    /// The open generalized cylinder: its last control point, and the
+    /// chain its last segment extended. A branch copies it and goes on
+    /// from the branch point, as cpfg's spline stack does.
+    pub(super) cylinder: Option<super::cylinder::Open>,
     tropism: Vec3,
     elasticity: f32,
 }
@@ -107,7 +109,8 @@ pub(super) struct Turtle<'a> {
     /// Open polygons: global, not per branch, so that a polygon can collect
     /// vertices from several branches (ABOP's leaves).
     polygons: Vec<(usize, Vec<Vec3>)>,
-    cylinders: Vec<Vec<CylPoint>>,
+    /// The scales in force before each open sub-L-system (`?(n, s)`).
+    subs: Vec<f32>,
     /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
     pub(super) solids: Vec<super::solid::Solid>,
     pub(super) holes: Vec<super::solid::Solid>,
@@ -202,7 +205,7 @@ fn interpret_with(
         },
         stack: Vec::new(),
         polygons: Vec::new(),
-        cylinders: Vec::new(),
+        subs: Vec::new(),
         solids: Vec::new(),
         holes: Vec::new(),
     };
@@ -219,11 +222,8 @@ fn interpret_with(
         });
     }
     t.draw_solids();
-    // Close generalized cylinders left open at the end of the string.
-    for k in 0..t.cylinders.len() {
-        if t.cylinders[k].len() > 1 {
-            t.finish_cylinder(k);
-        }
+    if opts.pixel_lines {
+        super::cpfg::pixels_to_units(&mut t.drawing);
     }
     Ok(t.drawing)
 }
@@ -357,9 +357,9 @@ impl Turtle<'_> {
             Push => {
                 self.stack.push(self.state);
                 // A branch draws its own tubes; the parent's chain resumes
-                // after the matching `]`.
+                // after the matching `]`. An open generalized cylinder
+                // goes on in the branch.
                 self.state.chain = None;
-                self.state.cylinder = None;
             }
             Pop => {
                 self.state = self
@@ -367,13 +367,16 @@ impl Turtle<'_> {
                     .pop()
                     .ok_or_else(|| TurtleError::unbalanced(index + 1, self.program))?;
             }
+            SetWidth | IncWidth if self.opts.profile.cpfg_turtle => {
+                super::cpfg::set_width(s, act == IncWidth, args, self.opts.width_increment)
+            }
             SetWidth => match args.first() {
                 Some(&w) => s.width = (w as f32).max(0.0),
-                None => s.width = (s.width - self.opts.width * 0.1).max(0.0),
+                None => s.width = (s.width - self.opts.width_increment).max(0.0),
             },
             IncWidth => match args.first() {
                 Some(&w) => s.width = (s.width + w as f32).max(0.0),
-                None => s.width += self.opts.width * 0.1,
+                None => s.width += self.opts.width_increment,
             },
             SetColour => match args.first() {
                 Some(&c) => s.colour = colour_index(c),
@@ -388,8 +391,11 @@ impl Turtle<'_> {
                 None => s.colour = s.colour.saturating_add(1),
             },
             PolyStart => {
+                // cpfg's `{` records no vertex (only `.`, `F`, `f` do):
+                // leaves written `{.` ... `}` across branches depend on it.
                 let start = s.frame.pos.as_vec3();
-                self.polygons.push((index, vec![start]));
+                let first = (!self.opts.profile.cpfg_turtle).then_some(start);
+                self.polygons.push((index, first.into_iter().collect()));
             }
             PolyVertex => {
                 let p = s.frame.pos.as_vec3();
@@ -451,22 +457,12 @@ impl Turtle<'_> {
                     _ => {}
                 }
             }
-            CylStart => {
-                let point = self.cyl_point(args);
-                self.cylinders.push(vec![point]);
-                self.state.cylinder = Some(self.cylinders.len() - 1);
-                self.state.chain = None;
+            CylStart | CylPoint | CylEnd => {
+                let s = &mut self.state;
+                super::cylinder::control_point(&mut self.drawing, s, act, args);
             }
-            CylPoint | CylEnd => {
-                if let Some(k) = self.state.cylinder {
-                    let point = self.cyl_point(args);
-                    self.cylinders[k].push(point);
-                    if act == CylEnd {
-                        self.finish_cylinder(k);
-                        self.state.cylinder = None;
-                    }
-                }
-            }
+            SubStart => super::cpfg::enter_sub(&mut self.subs, s, args),
+            SubEnd => super::cpfg::leave_sub(&mut self.subs, s),
             ScaleSet => s.scale = args.first().map_or(1.0, |&a| a as f32),
             ScaleMul => s.scale *= args.first().map_or(1.0, |&a| a as f32),
             ScaleDiv => {
@@ -495,7 +491,12 @@ impl Turtle<'_> {
                     push_vertex(poly, to);
                 }
             }
-        } else if draw && s.cylinder.is_none() && s.width > 0.0 && d != 0.0 {
+        } else if draw
+            // cpfg's `F` draws inside a generalized cylinder too.
+            && (s.cylinder.is_none() || self.opts.profile.cpfg_turtle)
+            && s.width > 0.0
+            && d != 0.0
+        {
             let radius = s.width * 0.5;
             let point = TubePoint {
                 pos: to,
@@ -529,59 +530,6 @@ impl Turtle<'_> {
         }
         if s.elasticity != 0.0 {
             s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));
-        }
-    }
-
-    fn cyl_point(&self, args: &[f64]) -> CylPoint {
-        CylPoint {
-            frame: self.state.frame,
-            radius: self.state.width * 0.5,
-            segments: args
-                .first()
-                .map_or(DEFAULT_GC_SEGMENTS, |&n| (n.max(1.0) as usize).min(1024)),
-        }
-    }
-
-    /// Samples the cubic Hermite curve through the cylinder's control points
-    /// (tangents along each point's heading, scaled by the distance to the
-    /// next point) into one tube chain.
-    fn finish_cylinder(&mut self, k: usize) {
-        let cps = std::mem::take(&mut self.cylinders[k]);
-        if cps.len() < 2 {
-            return;
-        }
-        let mut points = vec![TubePoint {
-            pos: cps[0].frame.pos.as_vec3(),
-            radius: cps[0].radius,
-            up: cps[0].frame.u.as_vec3(),
-        }];
-        for w in cps.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let (ap, bp) = (a.frame.pos.as_vec3(), b.frame.pos.as_vec3());
-            let (ah, bh) = (a.frame.h.as_vec3(), b.frame.h.as_vec3());
-            let (au, bu) = (a.frame.u.as_vec3(), b.frame.u.as_vec3());
-            let dist = ap.distance(bp);
-            let (m0, m1) = (ah * dist, bh * dist);
-            for step in 1..=b.segments {
-                let t = step as f32 / b.segments as f32;
-                let (t2, t3) = (t * t, t * t * t);
-                let pos = ap * (2.0 * t3 - 3.0 * t2 + 1.0)
-                    + m0 * (t3 - 2.0 * t2 + t)
-                    + bp * (-2.0 * t3 + 3.0 * t2)
-                    + m1 * (t3 - t2);
-                points.push(TubePoint {
-                    pos,
-                    radius: a.radius + (b.radius - a.radius) * t,
-                    up: au.lerp(bu, t).normalize_or(au),
-                });
-            }
-        }
-        points.dedup_by(|b, a| a.pos.distance(b.pos) < 1e-7);
-        if points.len() >= 2 && points.iter().any(|p| p.radius > 0.0) {
-            self.drawing.chains.push(Chain {
-                colour: self.state.colour,
-                points,
-            });
         }
     }
 }

@@ -1,6 +1,8 @@
 //! Turtle: the command table that the checker, help text and the 3D turtle
 //! all read, and the turtle itself. Input: a derived module string; output:
 //! strokes, polygons and component placements handed to the mesh builder.
+mod cpfg;
+mod cylinder;
 pub mod drawing;
 pub mod error;
 pub mod frame;
