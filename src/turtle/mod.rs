@@ -6,5 +6,5 @@ pub mod error;
 pub mod frame;
 pub mod interp;
 pub use drawing::Drawing;
-pub use error::TurtleError;
+pub use error::{BracketOrigin, TurtleError};
 pub use interp::{interpret, query_sites, QuerySite, TurtleOptions};
