@@ -39,9 +39,9 @@ pub enum TurtleError {
     #[diagnostic(code(lsys::turtle::unbalanced_bracket))]
     UnbalancedBracket {
         index: usize,
-        /// Which step first wrote a stray `]` (", written by derivation
-        /// step 3"), when the caller could find out; empty otherwise.
-        written: String,
+        /// Which step first wrote a stray `]`, when the caller could find
+        /// out (printed as ", first written by derivation step 3").
+        written: WrittenAt,
         /// The grammar, when a production is found to blame.
         #[source_code]
         src: NamedSource<Arc<String>>,
@@ -83,14 +83,21 @@ pub enum BracketOrigin {
     Homomorphism(u32),
 }
 
-impl BracketOrigin {
-    fn describe(self) -> String {
-        match self {
-            BracketOrigin::Axiom => ", and the axiom already has it".to_string(),
-            BracketOrigin::Step(n) => format!(", first written by derivation step {n}"),
-            BracketOrigin::Homomorphism(n) => {
-                format!(", written by the homomorphism applied to the string of step {n}")
-            }
+/// The end of the stray-`]` message: where it came from, if known (a
+/// small value rather than a string, so the error stays small).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WrittenAt(Option<BracketOrigin>);
+
+impl std::fmt::Display for WrittenAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            None => Ok(()),
+            Some(BracketOrigin::Axiom) => write!(f, ", and the axiom already has it"),
+            Some(BracketOrigin::Step(n)) => write!(f, ", first written by derivation step {n}"),
+            Some(BracketOrigin::Homomorphism(n)) => write!(
+                f,
+                ", written by the homomorphism applied to the string of step {n}"
+            ),
         }
     }
 }
@@ -119,7 +126,7 @@ impl TurtleError {
             .iter()
             .chain(&program.decomposition)
             .chain(&program.homomorphism);
-        TurtleError::blame(index, program, all, String::new())
+        TurtleError::blame(index, program, all, WrittenAt::default())
     }
 
     /// This error with the step that first wrote a stray `]`, the
@@ -130,7 +137,7 @@ impl TurtleError {
         let TurtleError::UnbalancedBracket { index, .. } = self else {
             return self;
         };
-        let written = origin.describe();
+        let written = WrittenAt(Some(origin));
         match origin {
             BracketOrigin::Axiom => {
                 let mut depth = 0i32;
@@ -168,7 +175,7 @@ impl TurtleError {
         index: usize,
         program: &Program,
         mut candidates: impl Iterator<Item = &'a Production>,
-        written: String,
+        written: WrittenAt,
     ) -> TurtleError {
         let general = "every `]` must close a `[`; the productions that write brackets must write them in pairs";
         match candidates.find(|p| closes_unopened(p)) {
