@@ -525,6 +525,13 @@ fn khronos_validator_accepts_the_exports() {
         ("bush", built("examples/abop/fig1_24d.lsys")),
         ("leaves", built("examples/plants/bush_3d.lsys")),
         ("toukung", built("std:toukung_side")),
+        // Shape grammars (docs/shapes.md): primitives, fitted components.
+        ("veranda", built("examples/shapes/veranda.lsys")),
+        ("verandas", built("examples/shapes/verandas.lsys")),
+        ("hall", built("examples/shapes/hall.lsys")),
+        ("wall", built("examples/shapes/wall.lsys")),
+        ("pailou_board", built("examples/shapes/pailou_board.lsys")),
+        ("snap", built("examples/shapes/snap.lsys")),
     ] {
         for (ext, bytes) in [("glb", to_glb(&scene)), ("gltf", to_gltf(&scene))] {
             let path = tmp.path().join(format!("{name}.{ext}"));

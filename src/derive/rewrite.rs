@@ -112,7 +112,7 @@ impl<'p> Tables<'p> {
             cut,
             has_queries: program.symbols.list.iter().any(|s| {
                 s.kind == crate::resolve::SymbolKind::Query
-                    && matches!(s.name.as_str(), "?P" | "?H" | "?L" | "?U")
+                    && matches!(s.name.as_str(), "?P" | "?H" | "?L" | "?U" | "?S")
             }),
         })
     }

@@ -60,6 +60,8 @@ pub enum Action {
     ScaleSet,
     ScaleMul,
     ScaleDiv,
+    /// Scopes, splits and primitives (docs/shapes.md).
+    Scope(super::scope_commands::ScopeCmd),
 }
 
 /// One turtle command.
@@ -386,13 +388,19 @@ pub const COMMANDS: &[Command] = &[
 
 /// The command named `symbol`, if any.
 pub fn lookup(symbol: &str) -> Option<&'static Command> {
-    COMMANDS.iter().find(|c| c.symbol == symbol)
+    all().find(|c| c.symbol == symbol)
+}
+
+/// Every command: the classic table, then the shape commands
+/// (lang/scope_commands.rs).
+pub fn all() -> impl Iterator<Item = &'static Command> {
+    COMMANDS.iter().chain(super::scope_commands::SCOPE_COMMANDS)
 }
 
 /// The table as text, for `lsys commands`.
 pub fn help_text() -> String {
     let mut out = String::from("symbol  parameters  default                             meaning\n");
-    for c in COMMANDS {
+    for c in all() {
         let args = if c.min_args == c.max_args {
             format!("{}", c.min_args)
         } else {
@@ -407,7 +415,7 @@ pub fn help_text() -> String {
         ));
     }
     out.push_str(
-        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz)\n",
+        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz); in a scope ~X fills it\n",
     );
     out
 }

@@ -74,6 +74,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_initial_colour: loaded.side.initial_colour,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
+        environment_images: loaded.environment_images,
         environment_option: opts.environment.clone(),
         view_functions: loaded.side.functions,
         broken: loaded.broken,
@@ -149,6 +150,8 @@ pub(crate) struct Resolver {
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).
     pub environment_files: Option<crate::load::EnvironmentFiles>,
+    /// The images an `environment:` header names (clover's light image).
+    pub environment_images: Vec<(String, crate::load::HeaderImage)>,
     /// `--environment SPEC`, used when the grammar names none.
     pub environment_option: Option<String>,
     /// The view file's functions (or why they could not be read), read

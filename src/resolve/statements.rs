@@ -92,6 +92,7 @@ impl Resolver {
         if let Some((text, span)) = s.environment.take() {
             match crate::environment::environment_header(
                 &text,
+                &self.environment_images,
                 self.sources.named_source(span),
                 span.into(),
             ) {

@@ -2,9 +2,9 @@
 //! mapped once to an `Act` through the command table and the file's
 //! dialect, then the string is walked left to right with a branch stack.
 
-use glam::{DVec3, Mat4, Vec3, Vec4};
+use glam::{DVec3, Vec3};
 
-use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
+use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
@@ -78,10 +78,15 @@ struct CylPoint {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct State {
-    frame: Frame,
+pub(super) struct State {
+    pub(super) frame: Frame,
+    /// The scope's size (docs/shapes.md); its origin and axes are the
+    /// frame's. `None` until `@Scope`.
+    pub(super) scope: Option<DVec3>,
+    /// `@Snap(d)`: blocks drawn now snap to earlier ones within d.
+    pub(super) snap: f64,
     width: f32,
-    colour: u32,
+    pub(super) colour: u32,
     scale: f32,
     /// The chain the next drawn segment may extend.
     chain: Option<usize>,
@@ -91,18 +96,28 @@ struct State {
     elasticity: f32,
 }
 
-struct Turtle<'a> {
+pub(super) struct Turtle<'a> {
     opts: &'a TurtleOptions,
     /// For errors that point at the grammar.
-    program: &'a Program,
+    pub(super) program: &'a Program,
     symbols: &'a Symbols,
-    drawing: Drawing,
-    state: State,
+    pub(super) drawing: Drawing,
+    pub(super) state: State,
     stack: Vec<State>,
     /// Open polygons: global, not per branch, so that a polygon can collect
     /// vertices from several branches (ABOP's leaves).
     polygons: Vec<(usize, Vec<Vec3>)>,
     cylinders: Vec<Vec<CylPoint>>,
+    /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
+    pub(super) solids: Vec<super::solid::Solid>,
+    pub(super) holes: Vec<super::solid::Solid>,
+}
+
+/// The string being walked and each symbol's act.
+pub(super) struct Walk<'s> {
+    pub(super) heads: &'s [u32],
+    pub(super) params: &'s [f64],
+    acts: &'s [Act],
 }
 
 /// Interprets `store` (normally the string after the homomorphism).
@@ -127,6 +142,8 @@ pub struct QuerySite {
     /// The line width and the scale (`@Dd`) in force.
     pub width: f32,
     pub scale: f32,
+    /// The scope's size (zero outside any scope): `?S(sx,sy,sz)`.
+    pub scope: DVec3,
 }
 
 /// Every query module with parameters in `store` (`?P`, `?E`, ...), in
@@ -146,7 +163,7 @@ pub fn query_sites(
 }
 
 /// Called with each query module's site.
-type QueryFn<'a> = dyn FnMut(QuerySite) + 'a;
+pub(super) type QueryFn<'a> = dyn FnMut(QuerySite) + 'a;
 
 /// [`interpret`], telling `on_query` the turtle's state at every query
 /// module.
@@ -168,6 +185,8 @@ fn interpret_with(
         symbols: &program.symbols,
         drawing: Drawing::default(),
         state: State {
+            scope: None,
+            snap: 0.0,
             frame: if opts.profile.cpfg_turtle {
                 Frame::cpfg()
             } else {
@@ -184,73 +203,22 @@ fn interpret_with(
         stack: Vec::new(),
         polygons: Vec::new(),
         cylinders: Vec::new(),
+        solids: Vec::new(),
+        holes: Vec::new(),
     };
-    let heads = store.heads();
-    let params = store.params();
-    let mut offset = 0;
-    let mut i = 0;
-    while i < heads.len() {
-        let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
-        let args = &params[offset..offset + arity];
-        if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
-            on_query(QuerySite {
-                sym,
-                arity,
-                index: i,
-                offset,
-                frame: t.state.frame,
-                width: t.state.width,
-                scale: t.state.scale,
-            });
-        }
-        offset += arity;
-        let act = acts[sym as usize];
-        if act != Act::Command(Action::Nothing) {
-            if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
-                return Err(TurtleError::NonFinite {
-                    index: i + 1,
-                    text: module_text(&program.symbols, sym, args),
-                    symbol: program.symbols.name(sym).to_string(),
-                    value: bad,
-                });
-            }
-            if act == Act::Command(Action::Cut) {
-                // Skip to the `]` that ends this branch (or the end), and
-                // let that `]` pop the branch as usual.
-                let (end, skipped) = rest_of_branch(heads, i + 1);
-                i = end;
-                offset += skipped;
-                continue;
-            }
-            match act {
-                Act::Command(a) => t.apply(a, sym, args, i)?,
-                Act::Place => t.place(sym, args, i),
-            }
-            // The model is in 32-bit floats: steps that add up past their
-            // range would reach the exporter as infinities.
-            let f = &t.state.frame;
-            // The frame computes in f64; the model is stored in f32.
-            let finite = f.pos.as_vec3().is_finite()
-                && f.h.is_finite()
-                && f.u.is_finite()
-                && f.l.is_finite()
-                && t.state.width.is_finite();
-            if !finite {
-                return Err(TurtleError::Overflow {
-                    index: i + 1,
-                    text: module_text(&program.symbols, sym, args),
-                    symbol: program.symbols.name(sym).to_string(),
-                });
-            }
-        }
-        i += 1;
-    }
+    let walk = Walk {
+        heads: store.heads(),
+        params: store.params(),
+        acts: &acts,
+    };
+    t.walk(&walk, on_query, 0, walk.heads.len(), 0)?;
     if let Some((first, _)) = t.polygons.first() {
         return Err(TurtleError::UnclosedPolygon {
             count: t.polygons.len(),
             first: *first + 1,
         });
     }
+    t.draw_solids();
     // Close generalized cylinders left open at the end of the string.
     for k in 0..t.cylinders.len() {
         if t.cylinders[k].len() > 1 {
@@ -271,6 +239,83 @@ fn module_text(symbols: &Symbols, sym: SymId, args: &[f64]) -> String {
 }
 
 impl Turtle<'_> {
+    /// Interprets modules `i..end`, whose parameters start at `offset`.
+    pub(super) fn walk(
+        &mut self,
+        w: &Walk,
+        on_query: &mut QueryFn,
+        mut i: usize,
+        end: usize,
+        mut offset: usize,
+    ) -> Result<(), TurtleError> {
+        let (heads, params, program) = (w.heads, w.params, self.program);
+        let t = self;
+        while i < end {
+            let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
+            let args = &params[offset..offset + arity];
+            if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
+                on_query(QuerySite {
+                    sym,
+                    arity,
+                    index: i,
+                    offset,
+                    frame: t.state.frame,
+                    width: t.state.width,
+                    scale: t.state.scale,
+                    scope: t.state.scope.unwrap_or_default(),
+                });
+            }
+            offset += arity;
+            let act = w.acts[sym as usize];
+            if act != Act::Command(Action::Nothing) {
+                if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
+                    return Err(TurtleError::NonFinite {
+                        index: i + 1,
+                        text: module_text(&program.symbols, sym, args),
+                        symbol: program.symbols.name(sym).to_string(),
+                        value: bad,
+                    });
+                }
+                if act == Act::Command(Action::Cut) {
+                    // Skip to the `]` that ends this branch (or the end), and
+                    // let that `]` pop the branch as usual.
+                    let (end, skipped) = rest_of_branch(heads, i + 1);
+                    i = end;
+                    offset += skipped;
+                    continue;
+                }
+                if let Act::Command(Action::Scope(c)) = act {
+                    // Shape commands (turtle/scope_walk.rs); splits consume
+                    // the branches that follow them.
+                    (i, offset) = t.scope_cmd(w, on_query, c, sym, args, i, offset)?;
+                    continue;
+                }
+                match act {
+                    Act::Command(a) => t.apply(a, sym, args, i)?,
+                    Act::Place => t.place(sym, args, i),
+                }
+                // The model is in 32-bit floats: steps that add up past their
+                // range would reach the exporter as infinities.
+                let f = &t.state.frame;
+                // The frame computes in f64; the model is stored in f32.
+                let finite = f.pos.as_vec3().is_finite()
+                    && f.h.is_finite()
+                    && f.u.is_finite()
+                    && f.l.is_finite()
+                    && t.state.width.is_finite();
+                if !finite {
+                    return Err(TurtleError::Overflow {
+                        index: i + 1,
+                        text: module_text(&program.symbols, sym, args),
+                        symbol: program.symbols.name(sym).to_string(),
+                    });
+                }
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
     fn angle(&self, args: &[f64]) -> f32 {
         args.first().map_or(self.opts.angle, |&a| a as f32)
     }
@@ -285,7 +330,8 @@ impl Turtle<'_> {
         use Action::*;
         let s = &mut self.state;
         match act {
-            Nothing | Cut => {}
+            // Shape commands are run by `scope_cmd` before `apply`.
+            Nothing | Cut | Scope(_) => {}
             Move { draw, vertex } => {
                 let d = args.first().map_or(self.opts.step, |&a| a as f32) * s.scale;
                 self.forward(d, draw, vertex);
@@ -537,36 +583,6 @@ impl Turtle<'_> {
                 points,
             });
         }
-    }
-
-    /// `~X`, `~X(s)`, `~X(sx,sy,sz)`: the unit box's width (x) along the
-    /// turtle's L, its height (y) along H and its front (−z) facing U, with
-    /// the middle of its bottom face at the turtle.
-    fn place(&mut self, sym: SymId, args: &[f64], index: usize) {
-        let s = match *args {
-            [] => Vec3::ONE,
-            [k] => Vec3::splat(k as f32),
-            [x, y, z, ..] => Vec3::new(x as f32, y as f32, z as f32),
-            [x, y] => Vec3::new(x as f32, y as f32, 1.0),
-        };
-        if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
-            // The paper switches decorations off by scaling them to 0.
-            return;
-        }
-        let f = &self.state.frame;
-        let (fl, fh, fu, fp) = (f.l.as_vec3(), f.h.as_vec3(), f.u.as_vec3(), f.pos.as_vec3());
-        let transform = Mat4::from_cols(
-            (fl * s.x).extend(0.0),
-            (fh * s.y).extend(0.0),
-            (-fu * s.z).extend(0.0),
-            Vec4::from((fp + fh * (s.y * 0.5), 1.0)),
-        );
-        self.drawing.placements.push(Placement {
-            symbol: sym,
-            transform,
-            colour: self.state.colour,
-            module: index,
-        });
     }
 }
 
