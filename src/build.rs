@@ -11,7 +11,7 @@ use crate::derive::{self, DepthWarning, DeriveError, DeriveOptions, ModuleStore}
 use crate::mesh::{self, ComponentSearch, MeshError, MeshOptions, Palette, Scene};
 use crate::pipeline::Compilation;
 use crate::simulation::Simulation;
-use crate::turtle::{self, Drawing, TurtleError, TurtleOptions};
+use crate::turtle::{self, BracketOrigin, Drawing, TurtleError, TurtleOptions};
 
 /// Everything a build can be told besides the grammar: one value that
 /// travels from the front end into the grammar and every grammar
@@ -154,10 +154,56 @@ pub fn build_observed(
     let step = d.step_number();
     let string = d.into_current();
     let derived = t0.elapsed();
-    let mut built = model(comp, &string, step, opts, observe)?;
+    let mut built = match model(comp, &string, step, opts, observe) {
+        Err(BuildError::Turtle(e @ TurtleError::UnbalancedBracket { .. })) => {
+            let origin = bracket_origin(comp, opts, steps);
+            return Err(e.with_bracket_origin(origin, program).into());
+        }
+        other => other?,
+    };
     built.timings.derive += derived;
     built.warnings.splice(0..0, warnings);
     Ok(built)
+}
+
+/// Which step first wrote a stray `]`: the turtle only sees the final
+/// string, so on that error the derivation is run again (it is seeded and
+/// deterministic) and each step's string is checked. Only a failed build
+/// pays for this.
+fn bracket_origin(comp: &Compilation, opts: &BuildOptions, steps: u32) -> BracketOrigin {
+    let (program, compiled) = (&comp.program, &comp.compiled);
+    let Ok(mut sim) = Simulation::new(program, compiled, opts.derive.clone(), steps) else {
+        return BracketOrigin::Homomorphism(steps);
+    };
+    if has_stray_close(sim.current()) {
+        return BracketOrigin::Axiom;
+    }
+    while sim.step_number() < steps {
+        if sim.step().is_err() {
+            break;
+        }
+        if has_stray_close(sim.current()) {
+            return BracketOrigin::Step(sim.step_number());
+        }
+    }
+    BracketOrigin::Homomorphism(sim.step_number())
+}
+
+/// Whether a `]` in `string` closes no `[`.
+fn has_stray_close(string: &ModuleStore) -> bool {
+    use crate::resolve::{CLOSE_BRACKET, OPEN_BRACKET};
+    let mut depth = 0usize;
+    string
+        .heads()
+        .iter()
+        .any(|&h| match derive::store::head_sym(h) {
+            OPEN_BRACKET => {
+                depth += 1;
+                false
+            }
+            CLOSE_BRACKET => depth.checked_sub(1).map(|d| depth = d).is_none(),
+            _ => false,
+        })
 }
 
 /// The back half alone: `string`, step `step` of `comp`'s derivation ->

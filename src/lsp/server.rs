@@ -35,6 +35,17 @@ struct Server<'c> {
     conn: &'c Connection,
     opts: load::Options,
     docs: BTreeMap<Url, Document>,
+    /// Analyses made stale by an edit, dropped only after the new
+    /// diagnostics are published: freeing a large model's syntax tree and
+    /// program takes a few milliseconds the editor need not wait for.
+    stale: Vec<Analysis>,
+}
+
+impl Document {
+    /// Forgets the analysis (the text changed), keeping it in `stale`.
+    fn invalidate(&mut self, stale: &mut Vec<Analysis>) {
+        stale.extend(self.analysis.take());
+    }
 }
 
 /// What the server offers.
@@ -95,6 +106,7 @@ pub fn serve(conn: Connection, opts: load::Options) -> Result<()> {
         conn: &conn,
         opts,
         docs: BTreeMap::new(),
+        stale: Vec::new(),
     };
     server.run()
 }
@@ -199,6 +211,7 @@ impl Server<'_> {
                 .sender
                 .send(Notification::new(notif::PublishDiagnostics::METHOD.into(), params).into())?;
         }
+        self.stale.clear();
         Ok(())
     }
 
@@ -223,7 +236,7 @@ impl Server<'_> {
                         apply(&mut doc.text, change);
                     }
                     doc.version = p.text_document.version;
-                    doc.analysis = None;
+                    doc.invalidate(&mut self.stale);
                     doc.crashed = false;
                 }
                 self.invalidate_readers(&p.text_document.uri);
@@ -231,7 +244,7 @@ impl Server<'_> {
             notif::DidSaveTextDocument::METHOD => {
                 // An included file may have changed on disk: analyse all again.
                 for doc in self.docs.values_mut() {
-                    doc.analysis = None;
+                    doc.invalidate(&mut self.stale);
                     doc.crashed = false;
                 }
             }
@@ -258,7 +271,7 @@ impl Server<'_> {
     fn invalidate_readers(&mut self, uri: &Url) {
         for doc in self.docs.values_mut() {
             if doc.analysis.as_ref().is_some_and(|a| a.reads(uri)) {
-                doc.analysis = None;
+                doc.invalidate(&mut self.stale);
             }
         }
     }

@@ -571,6 +571,6 @@ fn describe(rule: Rule) -> Option<&'static str> {
         c_assign | c_lvalue => "an assignment",
         c_assign_op => "`=`",
         WHITESPACE | COMMENT | block_comment | line_comment | cont | blank_line | indent
-        | line_has_arrow | nl_indent | keyword | word_char => return None,
+        | line_has_arrow | lctx_marker | nl_indent | keyword | word_char => return None,
     })
 }

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
+use crate::resolve::ir::Production;
 use crate::resolve::{Program, CLOSE_BRACKET, OPEN_BRACKET};
 
 #[derive(Debug, Error, Diagnostic)]
@@ -34,14 +35,17 @@ pub enum TurtleError {
         symbol: String,
     },
 
-    #[error("module {index} of the string is a `]` with no `[` before it")]
+    #[error("module {index} of the string is a `]` with no `[` before it{written}")]
     #[diagnostic(code(lsys::turtle::unbalanced_bracket))]
     UnbalancedBracket {
         index: usize,
+        /// Which step first wrote a stray `]`, when the caller could find
+        /// out (printed as ", first written by derivation step 3").
+        written: WrittenAt,
         /// The grammar, when a production is found to blame.
         #[source_code]
         src: NamedSource<Arc<String>>,
-        #[label("this successor writes a `]` it does not open")]
+        #[label("this writes a `]` it does not open")]
         written_by: Option<SourceSpan>,
         #[help]
         help: String,
@@ -148,32 +152,118 @@ pub(crate) fn blame(
     }
 }
 
+/// Where a stray `]` first appeared: the turtle reads only the final
+/// string, so the caller that ran the derivation says which step wrote it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BracketOrigin {
+    /// The axiom has it (step 0).
+    Axiom,
+    /// The string after this derivation step is the first that has it.
+    Step(u32),
+    /// Every derived string is balanced: the homomorphism, applied to the
+    /// string of this step, wrote it.
+    Homomorphism(u32),
+}
+
+/// The end of the stray-`]` message: where it came from, if known (a
+/// small value rather than a string, so the error stays small).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WrittenAt(Option<BracketOrigin>);
+
+impl std::fmt::Display for WrittenAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            None => Ok(()),
+            Some(BracketOrigin::Axiom) => write!(f, ", and the axiom already has it"),
+            Some(BracketOrigin::Step(n)) => write!(f, ", first written by derivation step {n}"),
+            Some(BracketOrigin::Homomorphism(n)) => write!(
+                f,
+                ", written by the homomorphism applied to the string of step {n}"
+            ),
+        }
+    }
+}
+
+/// Whether `succ` closes more branches than it opens at some point.
+fn closes_unopened(p: &Production) -> bool {
+    let mut depth = 0i32;
+    p.succ.iter().any(|m| {
+        match m.sym {
+            OPEN_BRACKET => depth += 1,
+            CLOSE_BRACKET => depth -= 1,
+            _ => {}
+        }
+        depth < 0
+    })
+}
+
 impl TurtleError {
     /// A `]` with no `[` at module `index`. The derivation does not record
     /// which production wrote which module, so the production blamed is
     /// the first whose successor (main, decomposition or homomorphism)
     /// closes more branches than it opens: `check` warned about it.
     pub(crate) fn unbalanced(index: usize, program: &Program) -> TurtleError {
-        let culprit = program
+        let all = program
             .productions
             .iter()
             .chain(&program.decomposition)
-            .chain(&program.homomorphism)
-            .find(|p| {
+            .chain(&program.homomorphism);
+        TurtleError::blame(index, program, all, WrittenAt::default())
+    }
+
+    /// This error with the step that first wrote a stray `]`, the
+    /// production blamed taken from that step's tables only (main and
+    /// decomposition for a derivation step, the homomorphism for the
+    /// homomorphism). Other errors are returned unchanged.
+    pub fn with_bracket_origin(self, origin: BracketOrigin, program: &Program) -> TurtleError {
+        let TurtleError::UnbalancedBracket { index, .. } = self else {
+            return self;
+        };
+        let written = WrittenAt(Some(origin));
+        match origin {
+            BracketOrigin::Axiom => {
                 let mut depth = 0i32;
-                p.succ.iter().any(|m| {
+                let stray = program.axiom.iter().find(|m| {
                     match m.sym {
                         OPEN_BRACKET => depth += 1,
                         CLOSE_BRACKET => depth -= 1,
                         _ => {}
                     }
                     depth < 0
-                })
-            });
+                });
+                match stray {
+                    Some(m) => TurtleError::UnbalancedBracket {
+                        index,
+                        written,
+                        src: program.sources.named_source(m.span),
+                        written_by: Some(m.span.into()),
+                        help: "every `]` must close a `[`: add the `[` that the axiom's `]` should close, or remove the `]`".to_string(),
+                    },
+                    // The axiom is balanced: its decomposition wrote it.
+                    None => TurtleError::blame(index, program, program.decomposition.iter(), written),
+                }
+            }
+            BracketOrigin::Step(_) => {
+                let prods = program.productions.iter().chain(&program.decomposition);
+                TurtleError::blame(index, program, prods, written)
+            }
+            BracketOrigin::Homomorphism(_) => {
+                TurtleError::blame(index, program, program.homomorphism.iter(), written)
+            }
+        }
+    }
+
+    fn blame<'a>(
+        index: usize,
+        program: &Program,
+        mut candidates: impl Iterator<Item = &'a Production>,
+        written: WrittenAt,
+    ) -> TurtleError {
         let general = "every `]` must close a `[`; the productions that write brackets must write them in pairs";
-        match culprit {
+        match candidates.find(|p| closes_unopened(p)) {
             Some(p) => TurtleError::UnbalancedBracket {
                 index,
+                written,
                 src: program.sources.named_source(p.span),
                 written_by: Some(p.span.into()),
                 help: format!(
@@ -182,6 +272,7 @@ impl TurtleError {
             },
             None => TurtleError::UnbalancedBracket {
                 index,
+                written,
                 src: NamedSource::new("", Arc::new(String::new())),
                 written_by: None,
                 help: general.to_string(),

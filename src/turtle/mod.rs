@@ -13,5 +13,5 @@ mod scope_walk;
 mod snap;
 pub mod solid;
 pub use drawing::Drawing;
-pub use error::TurtleError;
+pub use error::{BracketOrigin, TurtleError};
 pub use interp::{interpret, query_sites, QuerySite, TurtleOptions};

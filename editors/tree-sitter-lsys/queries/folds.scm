@@ -1,0 +1,3 @@
+(block) @fold
+(table_values) @fold
+(comment) @fold

@@ -1,0 +1,3 @@
+; Comments can carry TODO/FIXME notes.
+((comment) @injection.content
+  (#set! injection.language "comment"))
