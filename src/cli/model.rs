@@ -296,7 +296,9 @@ fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
             detail: m.look.detail,
         },
         mesh: MeshOptions {
-            sides: m.look.facets,
+            sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
+            adaptive: m.look.facets.is_none(),
+            detail: m.look.detail,
             max_triangles: m.look.max_triangles,
         },
     }

@@ -11,6 +11,7 @@ pub mod structure;
 pub mod subgrammar;
 pub mod surface;
 pub mod tube;
+pub mod tubes;
 pub use assemble::{assemble_scene, MeshOptions};
 pub use components::ComponentSearch;
 pub use error::MeshError;
