@@ -240,6 +240,9 @@ pub struct LookArgs {
     /// Facets around tubes, spheres and discs (3 to 64). Without it spheres and discs get 8, and each tube up to 8: fewer when it is thin against the whole model (see --detail).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(3..=64))]
     pub facets: Option<u32>,
+    /// Draw tubes as one cylinder per straight segment, all placements of one mesh: a .glb/.gltf then uses EXT_mesh_gpu_instancing (about 40 bytes a segment; viewers without the extension refuse the file). Joints show where branches bend: for line-like models.
+    #[arg(long)]
+    pub instanced: bool,
     /// Stop with an error when the model would have more triangles than this.
     #[arg(long, value_name = "N", default_value_t = 100_000_000)]
     pub max_triangles: usize,

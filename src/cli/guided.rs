@@ -56,6 +56,7 @@ pub fn build_scene(
         sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
         adaptive: m.look.facets.is_none(),
         detail: m.look.detail,
+        instanced: m.look.instanced,
         max_triangles: m.look.max_triangles,
     };
     let scene = match guided::build::scene(&loaded, &outcome, m.look.guides, &search, &mopts) {

@@ -299,6 +299,7 @@ fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
             sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
             adaptive: m.look.facets.is_none(),
             detail: m.look.detail,
+            instanced: m.look.instanced,
             max_triangles: m.look.max_triangles,
         },
     }

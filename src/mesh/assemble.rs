@@ -6,10 +6,11 @@ use std::collections::HashMap;
 
 use super::components::ComponentSearch;
 use super::error::MeshError;
+use super::internodes;
 use super::palette::Palette;
 use super::scene::{Instance, Material, Scene, Stroke, TriMesh};
 use super::shapes;
-use super::tubes::Tubes;
+use super::tubes::{Facets, Tubes};
 use crate::resolve::ir::{Program, SymId};
 use crate::turtle::Drawing;
 
@@ -25,6 +26,10 @@ pub struct MeshOptions {
     pub adaptive: bool,
     /// `--detail`: 0 a light preview, 1 the default, 2 finer.
     pub detail: u8,
+    /// Tubes as placements of one unit cylinder, a placement per straight
+    /// segment, exported with `EXT_mesh_gpu_instancing` by glTF (see
+    /// [`super::internodes`]); off: baked tubes with shared rings.
+    pub instanced: bool,
     /// Refuse to build more triangles than this (as drawn, instances
     /// counted in full).
     pub max_triangles: usize,
@@ -36,6 +41,7 @@ impl Default for MeshOptions {
             sides: 8,
             adaptive: true,
             detail: 1,
+            instanced: false,
             max_triangles: 100_000_000,
         }
     }
@@ -110,13 +116,17 @@ pub fn assemble_scene(
             Ok(())
         }
     };
-    let mut tubes = Tubes::new(&drawing.chains, opts);
-    for (i, c) in drawing.chains.iter().enumerate() {
-        let mesh = b.stroke_mesh(c.colour);
-        let before = mesh.triangle_count();
-        tubes.add(i, c, mesh);
-        let added = mesh.triangle_count() - before;
-        check(added)?;
+    if opts.instanced {
+        internodes(&mut b, drawing, opts, &mut check)?;
+    } else {
+        let mut tubes = Tubes::new(&drawing.chains, opts);
+        for (i, c) in drawing.chains.iter().enumerate() {
+            let mesh = b.stroke_mesh(c.colour);
+            let before = mesh.triangle_count();
+            tubes.add(i, c, mesh);
+            let added = mesh.triangle_count() - before;
+            check(added)?;
+        }
     }
     for s in &drawing.shapes {
         let mesh = b.stroke_mesh(s.colour);
@@ -180,6 +190,39 @@ pub fn assemble_scene(
         numbers[component] += 1;
     }
     Ok(b.scene)
+}
+
+/// The drawing's chains as placements of one unit cylinder.
+fn internodes(
+    b: &mut Builder,
+    drawing: &Drawing,
+    opts: &MeshOptions,
+    check: &mut dyn FnMut(usize) -> Result<(), MeshError>,
+) -> Result<(), MeshError> {
+    let facets = Facets::new(opts, &drawing.chains);
+    let sides = internodes::sides(&drawing.chains, &facets);
+    let cylinder = internodes::unit_cylinder(sides);
+    let triangles = cylinder.triangle_count();
+    let component = b.scene.components.len();
+    b.scene.components.push(cylinder);
+    b.scene.gpu_instancing = true;
+    let mut number = 0;
+    for c in &drawing.chains {
+        let material = b.material(c.colour);
+        let mut placed = Vec::new();
+        internodes::segments(c, facets.widen(sides), |transform| placed.push(transform));
+        for transform in placed {
+            check(triangles)?;
+            b.scene.instances.push(Instance {
+                component,
+                transform,
+                material,
+                number,
+            });
+            number += 1;
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn missing(

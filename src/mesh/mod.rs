@@ -3,6 +3,7 @@
 pub mod assemble;
 pub mod components;
 pub mod error;
+pub mod internodes;
 pub mod palette;
 pub mod roof;
 pub mod scene;

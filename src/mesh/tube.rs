@@ -101,7 +101,7 @@ pub(super) fn for_each_piece(
 
 /// True when `b` lies on the straight line from `a` on to `c` with the
 /// same width at all three: its ring would add nothing.
-fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
+pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
     if a.radius != b.radius || b.radius != c.radius {
         return false;
     }
