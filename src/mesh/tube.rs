@@ -152,6 +152,10 @@ pub(super) fn piece(
         }
     };
     let sides = p.sides.max(3);
+    // The same angles for every ring: sines and cosines once per piece.
+    let around: Vec<(f32, f32)> = (0..sides)
+        .map(|k| (TAU * k as f32 / sides as f32).sin_cos())
+        .collect();
     let mut rings = [None::<Ring>; 2];
     let mut prev: Option<Ring> = None;
     for j in 0..m {
@@ -169,8 +173,7 @@ pub(super) fn piece(
                 }
                 let b = t.cross(a);
                 let first = mesh.positions.len() as u32;
-                for k in 0..sides {
-                    let (s, c) = (TAU * k as f32 / sides as f32).sin_cos();
+                for &(s, c) in &around {
                     let normal = a * c + b * s;
                     mesh.vertex(q.pos + normal * (q.radius * p.widen), normal);
                 }
