@@ -76,15 +76,20 @@ impl Builder<'_> {
     }
 
     fn stroke_mesh(&mut self, colour: u32) -> &mut TriMesh {
+        let k = self.stroke(colour);
+        &mut self.scene.strokes[k].mesh
+    }
+
+    /// Index in `scene.strokes` of the mesh for `colour`.
+    fn stroke(&mut self, colour: u32) -> usize {
         let material = self.material(colour);
-        let k = *self.stroke_of.entry(material).or_insert_with(|| {
+        *self.stroke_of.entry(material).or_insert_with(|| {
             self.scene.strokes.push(Stroke {
                 material,
                 mesh: TriMesh::default(),
             });
             self.scene.strokes.len() - 1
-        });
-        &mut self.scene.strokes[k].mesh
+        })
     }
 }
 
@@ -120,8 +125,16 @@ pub fn assemble_scene(
         internodes(&mut b, drawing, opts, &mut check)?;
     } else {
         let mut tubes = Tubes::new(&drawing.chains, opts);
+        // Chains come in long runs of one colour: two hash lookups per
+        // chain were a sixth of the meshing time.
+        let mut last: Option<(u32, usize)> = None;
         for (i, c) in drawing.chains.iter().enumerate() {
-            let mesh = b.stroke_mesh(c.colour);
+            let k = match last {
+                Some((colour, k)) if colour == c.colour => k,
+                _ => b.stroke(c.colour),
+            };
+            last = Some((c.colour, k));
+            let mesh = &mut b.scene.strokes[k].mesh;
             let before = mesh.triangle_count();
             tubes.add(i, c, mesh);
             let added = mesh.triangle_count() - before;

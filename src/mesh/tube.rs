@@ -61,7 +61,7 @@ pub struct Piece<'a> {
 /// Appends the tube for `chain` with `sides` facets around to `mesh`, with
 /// flat caps and no sharing: the tube of one chain on its own.
 pub fn tube(chain: &Chain, sides: u32, mesh: &mut TriMesh) {
-    let mut scratch = Vec::new();
+    let mut scratch = Scratch::default();
     for_each_piece(&chain.points, |range, _, _| {
         piece(
             &Piece {
@@ -110,16 +110,26 @@ pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
     d0.dot(d1) >= STRAIGHT_COS
 }
 
+/// Space [`piece`] reuses from one call to the next.
+#[derive(Default)]
+pub struct Scratch {
+    /// Indices of the points that get a ring.
+    kept: Vec<usize>,
+    /// (sin, cos) of each facet's angle.
+    around: Vec<(f32, f32)>,
+}
+
 /// Appends one piece to `mesh`. Points in a straight run are skipped
 /// unless `keep(chain index)` says another tube starts there; `visit(chain
-/// index, ring)` sees every ring of the piece. `kept` is scratch space.
+/// index, ring)` sees every ring of the piece.
 pub(super) fn piece(
     p: &Piece,
     keep: &dyn Fn(usize) -> bool,
     visit: &mut dyn FnMut(usize, Ring),
-    kept: &mut Vec<usize>,
+    scratch: &mut Scratch,
     mesh: &mut TriMesh,
 ) {
+    let Scratch { kept, around } = scratch;
     let pts = p.points;
     if pts.len() < 2 {
         return;
@@ -152,10 +162,11 @@ pub(super) fn piece(
         }
     };
     let sides = p.sides.max(3);
-    // The same angles for every ring: sines and cosines once per piece.
-    let around: Vec<(f32, f32)> = (0..sides)
-        .map(|k| (TAU * k as f32 / sides as f32).sin_cos())
-        .collect();
+    // The same angles for every ring: sines and cosines once per facet count.
+    if around.len() != sides as usize {
+        around.clear();
+        around.extend((0..sides).map(|k| (TAU * k as f32 / sides as f32).sin_cos()));
+    }
     let mut rings = [None::<Ring>; 2];
     let mut prev: Option<Ring> = None;
     for j in 0..m {
@@ -173,7 +184,7 @@ pub(super) fn piece(
                 }
                 let b = t.cross(a);
                 let first = mesh.positions.len() as u32;
-                for &(s, c) in &around {
+                for &(s, c) in around.iter() {
                     let normal = a * c + b * s;
                     mesh.vertex(q.pos + normal * (q.radius * p.widen), normal);
                 }
@@ -336,7 +347,7 @@ pub(super) mod tests {
     fn fan_caps_close_the_tube_without_new_vertices() {
         let mut m = TriMesh::default();
         let c = chain(&[Vec3::ZERO, Vec3::Y, Vec3::new(1.0, 2.0, 0.0)], 0.1);
-        let mut kept = Vec::new();
+        let mut scratch = Scratch::default();
         piece(
             &Piece {
                 points: &c.points,
@@ -348,7 +359,7 @@ pub(super) mod tests {
             },
             &|_| false,
             &mut |_, _| {},
-            &mut kept,
+            &mut scratch,
             &mut m,
         );
         assert_eq!(m.vertex_count(), 3 * 5);

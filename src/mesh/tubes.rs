@@ -15,7 +15,7 @@ use glam::Vec3;
 
 use super::assemble::MeshOptions;
 use super::scene::{bounds_of, TriMesh};
-use super::tube::{for_each_piece, piece, Cap, Piece, Ring};
+use super::tube::{for_each_piece, piece, Cap, Piece, Ring, Scratch};
 use crate::turtle::drawing::{Chain, TubePoint};
 
 /// A tube starts from an earlier tube's ring only when its first segment
@@ -155,7 +155,7 @@ pub struct Tubes {
     starts: KeyMap<Start>,
     /// The ring at each point where some chain starts, once meshed.
     rings: KeyMap<Ring>,
-    kept: Vec<usize>,
+    scratch: Scratch,
 }
 
 impl Tubes {
@@ -175,7 +175,7 @@ impl Tubes {
             facets,
             starts,
             rings: KeyMap::default(),
-            kept: Vec::new(),
+            scratch: Scratch::default(),
         }
     }
 
@@ -210,7 +210,7 @@ impl Tubes {
         let Tubes {
             starts,
             rings,
-            kept,
+            scratch,
             ..
         } = self;
         for_each_piece(pts, |range, first, last| {
@@ -238,7 +238,7 @@ impl Tubes {
                         rings.insert(k, ring);
                     }
                 },
-                kept,
+                scratch,
                 mesh,
             );
         });
