@@ -63,7 +63,8 @@ pub fn segments(chain: &Chain, widen: f32, mut place: impl FnMut(Mat4)) {
         let d = b.pos - a.pos;
         let length = d.length();
         let radius = a.radius.max(b.radius) * widen;
-        if !(length > 0.0) || !(radius > 0.0) {
+        let drawn = length > 0.0 && radius > 0.0;
+        if !drawn {
             continue;
         }
         let rotation = Quat::from_rotation_arc(Vec3::Y, d / length);

@@ -169,11 +169,11 @@ pub(super) fn piece(
     }
     let mut rings = [None::<Ring>; 2];
     let mut prev: Option<Ring> = None;
-    for j in 0..m {
+    for (j, &point) in kept.iter().enumerate() {
         let ring = match (j, p.start) {
             (0, Some(start)) => start,
             _ => {
-                let q = at(j);
+                let q = &pts[point];
                 let t = tangent(j);
                 // Start from the turtle's up vector, then transport the
                 // previous ring's axis: project it into this ring's plane.
@@ -207,7 +207,7 @@ pub(super) fn piece(
                 mesh.triangle(a1, b1, b0);
             }
         }
-        visit(p.offset + kept[j], ring);
+        visit(p.offset + point, ring);
         if j == 0 {
             rings[0] = Some(ring);
         }

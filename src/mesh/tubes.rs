@@ -81,7 +81,7 @@ impl Facets {
             return self.max;
         }
         let r = radius * self.px_per_unit;
-        if !(r > TOLERANCE_PX) {
+        if r.is_nan() || r <= TOLERANCE_PX {
             return self.min;
         }
         // A chord of a circle of radius r over angle 2π/n lies

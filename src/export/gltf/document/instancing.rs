@@ -85,10 +85,7 @@ impl Builder<'_> {
             nodes.push(self.root.push(json::Node {
                 mesh: Some(Index::new(mesh)),
                 name: Some(format!("{name} x{count}")),
-                extensions: Some(json::extensions::scene::Node {
-                    others,
-                    ..Default::default()
-                }),
+                extensions: Some(json::extensions::scene::Node { others }),
                 ..Default::default()
             }));
         }
