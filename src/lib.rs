@@ -81,4 +81,6 @@ pub mod resolve;
 pub mod simulation;
 pub mod source;
 pub mod stdlib;
+#[cfg(feature = "studio")]
+pub mod studio;
 pub mod turtle;

@@ -38,6 +38,7 @@ const ABOVE: &[&str] = &[
     "progress",
     "repl",
     "lsp",
+    "studio",
     "cli",
 ];
 

@@ -375,6 +375,7 @@ fn production(text: &str, line: &str, table: Table, syms: &mut Syms) -> Producti
     let head_start = off(text, pred_text);
     Production {
         table,
+        lsystem: 0,
         span: sp(start, start + line.len()),
         head_span: sp(head_start, head_start + pred_text.len()),
         lctx,
@@ -402,6 +403,9 @@ fn program(src: &str) -> Program {
         axiom: Vec::new(),
         derivation_length: 0,
         seed: None,
+        ring: false,
+        main_lsystem: 0,
+        sub_lsystems: Vec::new(),
         context: ContextFilter::All,
         productions: Vec::new(),
         decomposition: Vec::new(),

@@ -158,6 +158,17 @@ fn sgi_2x2(red: [u8; 4], green: [u8; 4]) -> Vec<u8> {
     b
 }
 
+/// The `?E` modules a successful `lsys derive` printed.
+fn e_answers(o: &std::process::Output) -> Vec<String> {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    String::from_utf8_lossy(&o.stdout)
+        .split_whitespace()
+        .filter(|m| m.starts_with("?E"))
+        .map(str::to_string)
+        .collect()
+}
+
 #[test]
 fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
     let dir = tempfile::tempdir().unwrap();
@@ -186,13 +197,7 @@ fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
         .current_dir(dir.path())
         .output()
         .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(o.status.success(), "{err}");
-    let out = String::from_utf8_lossy(&o.stdout);
-    let answers: Vec<&str> = out
-        .split_whitespace()
-        .filter(|m| m.starts_with("?E"))
-        .collect();
+    let answers = e_answers(&o);
     assert_eq!(
         answers,
         [
@@ -204,6 +209,39 @@ fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
             "?E(0)",         // outside the grid
         ]
     );
+}
+
+#[test]
+fn clover_from_a_header_reads_its_image_next_to_the_grammar() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &[u8]| std::fs::write(dir.path().join(name), text).unwrap();
+    w("light.rgb", &sgi_2x2([64; 4], [255, 128, 64, 0]));
+    // The same field as above, from a `.lsys` header: no leaf this time.
+    w(
+        "patch.lsys",
+        b"environment: clover(grid size: 2x2, grid position: 0 0, grid range: 2x2, \
+          transmittance: 0.5, input image: light.rgb)\n\
+          axiom: @M(0.5,0.5,0) ?E(0,0) @M(1.5,0.5,0) ?E(0) @M(0.5,1.5,0) ?E(0) @M(1.5,1.5,0) ?E(0)\n",
+    );
+    let derive = |file: &str| {
+        Command::new(env!("CARGO_BIN_EXE_lsys"))
+            .args(["derive", file, "-n", "1", "--precision", "4"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let o = derive("patch.lsys");
+    let answers = e_answers(&o);
+    assert_eq!(answers, ["?E(1,0.5)", "?E(0.502)", "?E(0.251)", "?E(0)"]);
+    // A missing image is an error that names it, not a dark field.
+    w(
+        "dark.lsys",
+        b"environment: clover(input image: none.rgb)\naxiom: ?E(0)\n",
+    );
+    let o = derive("dark.lsys");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("none.rgb"), "{err}");
 }
 
 /// The tentacle model without an environment of its own.

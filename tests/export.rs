@@ -576,6 +576,13 @@ fn khronos_validator_accepts_the_exports() {
             "instanced",
             built_with("examples/plants/bush_3d.lsys", &instanced()),
         ),
+        // Shape grammars (docs/shapes.md): primitives, fitted components.
+        ("veranda", built("examples/shapes/veranda.lsys")),
+        ("verandas", built("examples/shapes/verandas.lsys")),
+        ("hall", built("examples/shapes/hall.lsys")),
+        ("wall", built("examples/shapes/wall.lsys")),
+        ("pailou_board", built("examples/shapes/pailou_board.lsys")),
+        ("snap", built("examples/shapes/snap.lsys")),
     ] {
         for (ext, bytes) in [("glb", to_glb(&scene)), ("gltf", to_gltf(&scene))] {
             let path = tmp.path().join(format!("{name}.{ext}"));

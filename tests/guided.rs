@@ -507,3 +507,125 @@ fn a_local_update_of_the_palm_equals_a_full_recompute() {
     assert_eq!(guided::run::downstream(&crown, 1).len(), 6);
     assert_eq!(guided::update(&crown, &before, 1).unwrap(), run(&crown));
 }
+
+#[test]
+fn an_element_tagged_by_x_answers_with_its_id() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // Seed 0 asks `?X` about a wall of length 2 with id_in 7, then draws
+    // it; seed 1 looks for anything with id 7, with id 8, and for anything.
+    w(
+        "tag.lsys",
+        "derivation length: 4\naxiom: S(0)\n\
+         S(r) : r == 1 --> ?X(0, 0, 2, 7, 0)\n\
+         S(r) : r == 2 --> ?DA(0, 0, 0, 0, 7) ?DA(0, 0, 0, 0, 8) ?DA(0, 0, 0, 0, 0)\n\
+         ?X(f, i, d, a, t) --> F(d)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 4\n[[guide]]\nname = \"g\"\ngrammar = \"tag.lsys\"\nid = 100\n\
+         points = [[0, 0], [10, 0], [10, 10], [0, 10]]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [1, 5]\nheading = 0\nparameters = [1]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\nparameters = [2]\n",
+    );
+    let l = match guided::load_file(&dir.path().join("scene.toml"), &Default::default()) {
+        Ok(l) => l,
+        Err(e) => panic!("{}", lsys::diag::render_plain(e.as_ref())),
+    };
+    let o = run(&l);
+    let probe = &o.seeds.iter().find(|s| s.index == 1).unwrap().string;
+    let queries: Vec<&str> = probe.split_whitespace().collect();
+    // The wall runs (1,5)-(3,5): its nearest point (3,5) is √20 away, to
+    // the left of the probe's heading; the guide's bottom edge is 1 away.
+    let d = 20f64.sqrt();
+    let beta = 2f64.atan2(4.0).to_degrees();
+    assert_eq!(queries.len(), 3, "{probe}");
+    let nums = |q: &str| -> Vec<f64> {
+        q.trim_start_matches("?DA(")
+            .trim_end_matches(')')
+            .split(',')
+            .map(|x| x.parse().unwrap())
+            .collect()
+    };
+    let tagged = nums(queries[0]);
+    assert_eq!(tagged[0], 1.0, "{probe}");
+    assert!((tagged[1] - d).abs() < 1e-4, "{probe}");
+    assert!((tagged[2] - beta).abs() < 1e-3, "{probe}");
+    assert_eq!(tagged[3], 7.0, "{probe}");
+    assert_eq!(nums(queries[1])[0], 0.0, "no element has id 8: {probe}");
+    let any = nums(queries[2]);
+    assert_eq!((any[0], any[1], any[3]), (1.0, 1.0, 100.0), "{probe}");
+}
+
+#[test]
+fn each_seed_places_the_components_of_its_own_grammar() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // Two grammars in two guides, each placing built-in Pailou parts; the
+    // second grammar's symbol table differs (an extra module first).
+    w(
+        "a.lsys",
+        "axiom: ~MCa(0.4, 0.4, 0.4) F(1) ~MCa(0.4, 0.4, 0.4)\n",
+    );
+    w(
+        "b.lsys",
+        "axiom: X ~MP(0.3, 1, 0.3) F(1) ~MCa(0.4, 0.4, 0.4)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 1\n\
+         [[guide]]\nname = \"a\"\ngrammar = \"a.lsys\"\npoints = [[0, 0], [4, 0], [4, 4], [0, 4]]\n\
+         [[guide]]\nname = \"b\"\ngrammar = \"b.lsys\"\npoints = [[4, 0], [8, 0], [8, 4], [4, 4]]\n\
+         [[seeds]]\nguide = \"a\"\nposition = [2, 1]\nheading = 90\n\
+         [[seeds]]\nguide = \"b\"\nposition = [6, 1]\nheading = 90\n",
+    );
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let o = run(&l);
+    let search = lsys::mesh::ComponentSearch {
+        grammar_dir: Some(dir.path().to_path_buf()),
+        dirs: Vec::new(),
+        within: Vec::new(),
+        detail: Default::default(),
+    };
+    let scene =
+        guided::build::scene(&l, &o, false, &search, &lsys::mesh::MeshOptions::default()).unwrap();
+    let counts = scene.instance_counts();
+    assert_eq!(counts.get("MCa"), Some(&3), "{counts:?}");
+    assert_eq!(counts.get("MP"), Some(&1), "{counts:?}");
+    // One MCa component, its three instances numbered 0, 1, 2.
+    let mca = scene
+        .components
+        .iter()
+        .position(|c| c.name == "MCa")
+        .unwrap();
+    let mut numbers: Vec<u32> = scene
+        .instances
+        .iter()
+        .filter(|i| i.component == mca)
+        .map(|i| i.number)
+        .collect();
+    numbers.sort();
+    assert_eq!(numbers, [0, 1, 2]);
+}
+
+#[test]
+fn queries_stand_where_the_homomorphism_draws_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    // `A` is drawn as F(3): the `?DG` after it stands 3 units up, 4 from
+    // the guide's bottom edge (it would be 1 at the seed itself).
+    w(
+        "h.lsys",
+        "derivation length: 1\naxiom: A ?DG(0, 0, 0, 0, 0)\nhomomorphism\nA --> F(3)\n",
+    );
+    w(
+        "scene.toml",
+        "steps = 1\n[[guide]]\nname = \"g\"\ngrammar = \"h.lsys\"\n\
+         points = [[0, 0], [10, 0], [10, 10], [0, 10]]\n\
+         [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\n",
+    );
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let o = run(&l);
+    // β 180: the closest point is straight behind the heading.
+    assert_eq!(o.seeds[0].string, "A ?DG(1,4,180,1,0)");
+}

@@ -50,6 +50,9 @@ pub enum Command {
     Watch(BuildArgs),
     /// Run the language server on standard input and output (for editors; see docs/editors.md).
     Lsp(LspArgs),
+    /// The Pailou editor and live grammar preview in the browser, on 127.0.0.1 (see docs/studio.md).
+    #[cfg(feature = "studio")]
+    Studio(super::studio::StudioArgs),
 }
 
 #[derive(Args, Debug)]
@@ -139,7 +142,7 @@ pub struct SourceArgs {
 pub enum DialectArg {
     /// The Pailou paper's Table 1 (`%` rolls 180°, `$` pitches 180°).
     Paper,
-    /// cpfg's (`%` cuts the branch, `$` rolls to horizontal; f32 parameters).
+    /// cpfg's (`%` cuts the branch, `$` ends a sub-L-system; f32 parameters).
     Cpfg,
 }
 

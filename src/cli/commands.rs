@@ -34,6 +34,8 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         }
         Command::Watch(b) => super::watch::watch_cmd(b, color),
         Command::Lsp(l) => crate::lsp::run_stdio(l.source.options(&l.define)),
+        #[cfg(feature = "studio")]
+        Command::Studio(s) => super::studio::studio_cmd(s),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {
             file: r.file.clone(),
             defines: r.define.clone(),

@@ -6,6 +6,9 @@ mod args;
 mod commands;
 mod guided;
 mod model;
+mod shape_stats;
+#[cfg(feature = "studio")]
+mod studio;
 mod watch;
 
 use std::io::IsTerminal;

@@ -148,7 +148,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     let input = pailou::input(&layout, kind, &title, &name);
     // The command line's -D win over the graph's [defines].
     defines.extend(p.define.iter().cloned());
-    toukung_levels(&mut defines);
+    pailou::toukung_levels(&mut defines);
     if p.emit_graph {
         print!("{}", graph::emit(&layout, kind, &title));
     }
@@ -187,24 +187,6 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
         relations: relations_text.as_deref(),
     };
     build_once(&job, out, &p.picture, format, color, Report::Stats).code
-}
-
-/// The Pailou's Toukung levels `NTL` and those of its Toukungs (`TM.NTL`,
-/// `TS.NTL`) agree: the grammar sizes the Toukung rows from `NTL`, so
-/// `-D NTL=7` also reaches the components, and `-D TM.NTL=7` alone sets
-/// the Pailou's `NTL` too (the side Toukungs follow unless given).
-fn toukung_levels(defines: &mut Vec<(String, String)>) {
-    let last = |d: &[(String, String)], n: &str| {
-        d.iter().rev().find(|(k, _)| k == n).map(|(_, v)| v.clone())
-    };
-    let ntl = last(defines, "NTL").or_else(|| last(defines, "TM.NTL"));
-    if let Some(v) = ntl {
-        for name in ["NTL", "TM.NTL", "TS.NTL"] {
-            if last(defines, name).is_none() {
-                defines.push((name.to_string(), v.clone()));
-            }
-        }
-    }
 }
 
 /// One build: the grammar and the options that shape it.
@@ -409,7 +391,10 @@ fn build_compiled(
     match written {
         Ok(bytes) => {
             if m.look.stats {
-                println!("{}", stats(&built, parse, write_time, out, bytes));
+                println!(
+                    "{}",
+                    stats(&built, &comp.program, parse, write_time, out, bytes)
+                );
             } else if report_as == Report::Summary {
                 println!("{}", summary(&built, out, bytes, t0.elapsed()));
             }
@@ -466,7 +451,14 @@ pub(super) fn ms(d: Duration) -> f64 {
     (d.as_secs_f64() * 1e6).round() / 1e3
 }
 
-fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64) -> String {
+fn stats(
+    built: &Built,
+    program: &crate::resolve::Program,
+    parse: Duration,
+    write: Duration,
+    out: &Path,
+    bytes: u64,
+) -> String {
     let s = &built.scene;
     // f32 coordinates printed through f64 would show binary noise
     // (84.05000305175781); print the shortest decimal that reads back.
@@ -478,7 +470,7 @@ fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64
         .bounds()
         .map(|(lo, hi)| serde_json::json!([short(lo), short(hi)]));
     let t = &built.timings;
-    serde_json::json!({
+    let mut json = serde_json::json!({
         "modules": built.modules,
         "instances": s.instance_counts(),
         "vertices": s.vertex_count(),
@@ -492,6 +484,7 @@ fn stats(built: &Built, parse: Duration, write: Duration, out: &Path, bytes: u64
             "mesh": ms(t.mesh),
             "write": ms(write),
         },
-    })
-    .to_string()
+    });
+    super::shape_stats::add(&mut json, built, program);
+    json.to_string()
 }

@@ -7,7 +7,9 @@ use std::mem;
 
 use super::error::{DepthWarning, DeriveError};
 use super::fast::Plan;
-use super::rewrite::{check_limits, fault_error, rewrite, rewrite_recursive, Site, State, Tables};
+use super::rewrite::{
+    check_limits, fault_error, rewrite, rewrite_recursive, At, Site, State, Tables,
+};
 use super::run::{run_hook, store_params};
 use super::store::{ContextIndex, ModuleStore};
 use crate::bytecode::{vm, Compiled};
@@ -207,7 +209,7 @@ impl<'p> Derivation<'p> {
             Table::Main,
             &self.cur,
             idx,
-            0,
+            At::top(&self.tab),
             &mut self.next,
         )?;
         Ok(())
@@ -338,12 +340,13 @@ impl<'p> Derivation<'p> {
             max_modules: self.tab.max_modules,
             max_params: self.tab.max_params,
         };
-        homomorphism(
+        homomorphism_in(
             self.tab.program,
             self.tab.compiled,
             &self.cur,
             &opts,
             self.steps,
+            Some(&self.st.vars),
         )
     }
 }
@@ -379,12 +382,26 @@ pub struct Interpreted {
 /// `opts.effective_seed(program)` on every call, so interpreting never
 /// changes the derivation and the result depends only on the string.
 /// Without homomorphism productions the result is a copy of `store`.
+/// The statement blocks' variables are those the `Start:` block sets (cpfg
+/// models set the homomorphism's constants there, as Ring's angle); a
+/// [`Derivation::homomorphism`] sees the derivation's own.
 pub fn homomorphism(
     program: &Program,
     compiled: &Compiled,
     store: &ModuleStore,
     opts: &DeriveOptions,
     step: u32,
+) -> Result<Interpreted, DeriveError> {
+    homomorphism_in(program, compiled, store, opts, step, None)
+}
+
+fn homomorphism_in(
+    program: &Program,
+    compiled: &Compiled,
+    store: &ModuleStore,
+    opts: &DeriveOptions,
+    step: u32,
+    vars: Option<&[f64]>,
 ) -> Result<Interpreted, DeriveError> {
     if program.homomorphism.is_empty() {
         return Ok(Interpreted {
@@ -394,6 +411,16 @@ pub fn homomorphism(
     }
     let tab = Tables::new(program, compiled, opts)?;
     let mut st = State::new(&tab, opts.effective_seed(program));
+    match vars {
+        Some(v) => st.vars.copy_from_slice(v),
+        None => {
+            // On a copy of the generator: the homomorphism's own sequence
+            // stays what it was without the block.
+            let rng = st.rng.clone();
+            run_hook(&tab, &mut st, "Start", compiled.hooks.start.as_ref())?;
+            st.rng = rng;
+        }
+    }
     st.step = step;
     let mut out = ModuleStore::new();
     let mut index = ContextIndex::default();

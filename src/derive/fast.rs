@@ -109,7 +109,7 @@ impl Plan {
         // production, run its code": other dialects may add rules of their
         // own to the general engine (cpfg's `%` cuts, parameters stored
         // as f32) that no instruction shows.
-        if !tab.program.profile.fast_path {
+        if !tab.program.profile.fast_path || !tab.program.sub_lsystems.is_empty() {
             return None;
         }
         let consts = &tab.compiled.consts;

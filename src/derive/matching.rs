@@ -43,6 +43,8 @@ pub(crate) struct Shape {
     /// contexts must still match.
     pub direct: bool,
     pub has_prob: bool,
+    /// The L-system the production belongs to.
+    pub lsystem: u32,
 }
 
 impl Shape {
@@ -70,6 +72,7 @@ impl Shape {
                 .collect(),
             pred_params,
             has_prob: p.prob.is_some(),
+            lsystem: p.lsystem,
         }
     }
 }
@@ -138,6 +141,12 @@ pub(crate) struct Input<'a> {
     pub params: &'a [f64],
     /// Present when the table has context productions.
     pub index: Option<&'a ContextIndex>,
+    /// A ring L-system: context passes over the string's ends to the
+    /// other end (once per context module, so a string of nothing but
+    /// skipped modules still ends the search).
+    pub ring: bool,
+    /// The L-system whose productions apply here (see `Switch` in rewrite).
+    pub lsystem: u32,
 }
 
 #[inline]
@@ -193,9 +202,14 @@ pub(crate) fn match_at(
     // Left context, right to left.
     let mut j = i;
     for p in shape.lctx.iter().rev() {
+        let mut wrapped = false;
         loop {
             if j == 0 {
-                return None;
+                if !inp.ring || wrapped {
+                    return None;
+                }
+                wrapped = true;
+                j = n;
             }
             j -= 1;
             let s = head_sym(heads[j]);
@@ -220,9 +234,14 @@ pub(crate) fn match_at(
     for item in &shape.rctx {
         match *item {
             RItem::Module(p) => {
+                let mut wrapped = false;
                 loop {
                     if j >= n {
-                        return None;
+                        if !inp.ring || wrapped {
+                            return None;
+                        }
+                        wrapped = true;
+                        j = 0;
                     }
                     let s = head_sym(heads[j]);
                     if skip[s as usize] {

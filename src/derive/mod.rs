@@ -66,6 +66,7 @@ mod parallel;
 mod rewrite;
 mod run;
 pub mod store;
+mod sublsystem;
 mod template;
 
 pub use crate::lang::rng::{Rand48, DEFAULT_SEED};

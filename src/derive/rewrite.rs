@@ -12,6 +12,7 @@ use super::error::{DepthWarning, DeriveError, Src};
 use super::matching::{match_at, Bound, Input, Rules};
 use super::run::run_successor;
 use super::store::{head_arity, head_sym, rest_of_branch, ContextIndex, ModuleStore, MAX_SYMBOLS};
+use super::sublsystem::switch_lsystem;
 use crate::bytecode::vm::{self, Machine, NoSink};
 use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
 use crate::lang::rng::Rand48;
@@ -62,6 +63,10 @@ pub(crate) struct Tables<'p> {
     pub(crate) cut: Option<u32>,
     /// The alphabet has cpfg query modules to fill after each step.
     pub(crate) has_queries: bool,
+    /// A file with sub-L-systems: the symbols `?` (with the L-system's
+    /// number) and `$` that start and end one in the string.
+    pub(crate) sub_open: Option<u32>,
+    pub(crate) sub_close: Option<u32>,
 }
 
 impl<'p> Tables<'p> {
@@ -94,6 +99,15 @@ impl<'p> Tables<'p> {
             // Route `%` to the dispatch loop, where it is cut.
             rules[0].has_rules[c as usize] = true;
         }
+        let subs = !program.sub_lsystems.is_empty();
+        let sub_open = program.symbols.get("?").filter(|_| subs);
+        let sub_close = program.symbols.get("$").filter(|_| subs);
+        for s in [sub_open, sub_close].into_iter().flatten() {
+            // The dispatch loop switches L-systems at these.
+            for r in &mut rules {
+                r.has_rules[s as usize] = true;
+            }
+        }
         Ok(Tables {
             program,
             compiled,
@@ -112,8 +126,10 @@ impl<'p> Tables<'p> {
             cut,
             has_queries: program.symbols.list.iter().any(|s| {
                 s.kind == crate::resolve::SymbolKind::Query
-                    && matches!(s.name.as_str(), "?P" | "?H" | "?L" | "?U")
+                    && matches!(s.name.as_str(), "?P" | "?H" | "?L" | "?U" | "?S")
             }),
+            sub_open,
+            sub_close,
         })
     }
 
@@ -381,6 +397,9 @@ fn choose(
     let cands = rules.candidates(head_sym(inp.heads[i]));
     for (ci, &p) in cands.iter().enumerate() {
         let p = p as usize;
+        if rules.shapes[p].lsystem != inp.lsystem {
+            continue;
+        }
         let Some(bound) = applies(tab, st, t, p, inp, i, off)? else {
             continue;
         };
@@ -392,7 +411,7 @@ fn choose(
         st.weights.push((p as u32, w));
         for &q in &cands[ci + 1..] {
             let q = q as usize;
-            if !rules.shapes[q].has_prob {
+            if !rules.shapes[q].has_prob || rules.shapes[q].lsystem != inp.lsystem {
                 continue;
             }
             if let Some(b) = applies(tab, st, t, q, inp, i, off)? {
@@ -493,15 +512,19 @@ fn warn_depth(tab: &Tables, st: &mut State, t: Table, p: usize, depth: u32) {
 /// Rewrite `input` with table `t` into `out` (appending). The main table
 /// rewrites once; decomposition and homomorphism rewrite the successors
 /// again, recursively, until nothing applies or `depth` reaches the limit.
+/// `at`: the recursion depth, and the L-system whose productions apply
+/// from the start of `input` (the file's first, or the sub-L-system of
+/// the module whose successor this is).
 pub(crate) fn rewrite(
     tab: &Tables,
     st: &mut State,
     t: Table,
     input: &ModuleStore,
     index: Option<&ContextIndex>,
-    depth: u32,
+    at: At,
     out: &mut ModuleStore,
 ) -> Result<(), Fail> {
+    let At { depth, lsystem } = at;
     let rules = &tab.rules[table_index(t)];
     let codes = tab.compiled.table(t);
     let max_depth = match t {
@@ -509,11 +532,15 @@ pub(crate) fn rewrite(
         Table::Decomposition => Some(tab.program.decomposition_depth),
         Table::Homomorphism => Some(tab.program.homomorphism_depth),
     };
-    let inp = Input {
+    let mut inp = Input {
         heads: &input.heads,
         params: &input.params,
         index,
+        ring: tab.program.ring,
+        lsystem,
     };
+    // The L-systems that `?(n, s)` entered and `$` has not yet left.
+    let mut entered: Vec<u32> = Vec::new();
     let heads = inp.heads;
     let params = inp.params;
     let n = heads.len();
@@ -539,11 +566,15 @@ pub(crate) fn rewrite(
             off += skipped;
             continue;
         }
+        // A module is rewritten by its own L-system; `?(n, s)` and `$`
+        // themselves by the one they leave.
+        let switch = switch_lsystem(tab, h, &params[off..]);
         let Some((p, bound)) = choose(tab, st, t, &inp, i, off)? else {
             let a = head_arity(h);
             out.extend_raw(&heads[i..i + 1], &params[off..off + a]);
             i += 1;
             off += a;
+            inp.lsystem = switch.apply(&mut entered, inp.lsystem, lsystem);
             continue;
         };
         if t == Table::Main && !st.fired.is_empty() {
@@ -585,7 +616,11 @@ pub(crate) fn rewrite(
                     };
                     // Up to 100 000 levels deep: never overflow the stack.
                     stacker::maybe_grow(64 * 1024, 1024 * 1024, || {
-                        rewrite(tab, st, t, &level.store, idx, depth + 1, out)
+                        let at = At {
+                            depth: depth + 1,
+                            lsystem: inp.lsystem,
+                        };
+                        rewrite(tab, st, t, &level.store, idx, at, out)
                     })
                 });
                 st.levels[d] = level;
@@ -594,6 +629,7 @@ pub(crate) fn rewrite(
         }
         i += shape.pred.len();
         off += shape.pred_params;
+        inp.lsystem = switch.apply(&mut entered, inp.lsystem, lsystem);
         check_limits(tab, out, Some(site), st.step)?;
     }
     Ok(())
@@ -616,5 +652,22 @@ pub(crate) fn rewrite_recursive(
     } else {
         None
     };
-    rewrite(tab, st, t, input, idx, 0, out)
+    rewrite(tab, st, t, input, idx, At::top(tab), out)
+}
+
+/// Where a rewrite starts: see [`rewrite`].
+#[derive(Clone, Copy)]
+pub(crate) struct At {
+    depth: u32,
+    lsystem: u32,
+}
+
+impl At {
+    /// A whole string, in the file's first L-system.
+    pub(crate) fn top(tab: &Tables) -> At {
+        At {
+            depth: 0,
+            lsystem: tab.program.main_lsystem,
+        }
+    }
 }

@@ -12,21 +12,23 @@ use miette::{NamedSource, SourceSpan};
 
 use super::communication::{Environment, Field, FieldKind, Settings};
 use super::error::EnvironmentError;
-use super::{collision, density, light};
+use super::{clover, collision, density, light};
 
 /// The names the header accepts, and the vlab program each is.
-pub const NAMES: [(&str, &str); 5] = [
+pub const NAMES: [(&str, &str); 6] = [
     ("collision", "honda81"),
     ("honda81", "honda81"),
     ("light", "chiba"),
     ("chiba", "chiba"),
     ("density", "density"),
+    ("clover", "clover"),
 ];
 
 /// Reads the header's text (what follows `environment:`), which starts at
 /// `span` in `src`.
 pub fn environment_header(
     text: &str,
+    images: &[(String, crate::load::HeaderImage)],
     src: NamedSource<Arc<String>>,
     span: SourceSpan,
 ) -> Result<Environment, Box<EnvironmentError>> {
@@ -81,6 +83,31 @@ pub fn environment_header(
     let settings = match program {
         "honda81" => Settings::Collision(collision::Settings::read(&spec, bad)?),
         "density" => Settings::Density(density::Settings::read(&spec, bad)?),
+        "clover" => {
+            // An image that could not be read is reported here, at the
+            // header that names it, rather than as "not loaded".
+            let mut loaded = Vec::new();
+            for (name, read) in images {
+                match read {
+                    Ok(bytes) => loaded.push((name.clone(), bytes.clone())),
+                    Err(why) if args.contains(name.as_str()) => {
+                        return Err(Box::new(EnvironmentError::BadValue {
+                            key: "input image".into(),
+                            why: why.clone(),
+                            src,
+                            span,
+                            help: Some(
+                                "the image is read relative to the grammar's folder; \
+                                 lsys reads SGI `.rgb` images"
+                                    .into(),
+                            ),
+                        }))
+                    }
+                    Err(_) => {}
+                }
+            }
+            Settings::Clover(clover::Settings::read(&spec, &loaded, bad)?)
+        }
         _ => Settings::Light(light::Settings::read(&spec, bad)?),
     };
     let fields = [

@@ -23,7 +23,6 @@ use super::scene::{Continuity, SceneSpec};
 use super::tokens::LinkTokens;
 use crate::derive::{DeriveError, ModuleStore};
 use crate::simulation::{Environment, StepContext};
-use crate::turtle::{self, TurtleOptions};
 
 /// A rigid motion of the drawing plane: where a seed's turtle starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -79,6 +78,25 @@ pub struct World<'s> {
     pub pass: u32,
     /// Messages of the pass, in the order sent.
     pub sent: Vec<Message>,
+    /// Per guide: the segments `?X` asked about with a non-zero `id_in`,
+    /// and that id. A drawn element that starts where one starts and ends
+    /// on it answers with its id (see [`World::element_id`]).
+    pub tags: Vec<Vec<(DVec2, DVec2, i64)>>,
+}
+
+impl World<'_> {
+    /// The id an element of `guide` answers with: the latest tag whose
+    /// segment it starts at and ends on, else 0.
+    fn element_id(&self, guide: usize, e: &Element) -> i64 {
+        self.tags[guide]
+            .iter()
+            .rev()
+            .find(|(a, b, _)| {
+                e.a.distance(*a) <= EPS
+                    && geometry::closest_on_segment(e.b, *a, *b).0.distance(e.b) <= EPS
+            })
+            .map_or(0, |t| t.2)
+    }
 }
 
 /// Which family a query module belongs to.
@@ -116,6 +134,8 @@ struct Candidate {
     id: i64,
     /// The outgoing link whose edge this is.
     link: Option<usize>,
+    /// A generated element (not a guide or link edge).
+    element: bool,
 }
 
 /// Answers one seed's guided queries (the seed's environment).
@@ -165,6 +185,7 @@ impl GuidedQueries<'_> {
                             b,
                             id,
                             link: Some(li),
+                            element: false,
                         });
                     } else if target != Target::Links && (id_test == 0 || id_test == guide.id) {
                         out.push(Candidate {
@@ -172,6 +193,7 @@ impl GuidedQueries<'_> {
                             b,
                             id: guide.id,
                             link: None,
+                            element: false,
                         });
                     }
                 }
@@ -181,19 +203,24 @@ impl GuidedQueries<'_> {
                         b,
                         id: guide.id,
                         link: None,
+                        element: false,
                     });
                 }
                 None => {}
             }
         }
-        if target == Target::Any && id_test == 0 {
+        if target == Target::Any {
             for e in &w.elements[self.guide] {
-                out.push(Candidate {
-                    a: e.a,
-                    b: e.b,
-                    id: 0,
-                    link: None,
-                });
+                let id = w.element_id(self.guide, e);
+                if id_test == 0 || id_test == id {
+                    out.push(Candidate {
+                        a: e.a,
+                        b: e.b,
+                        id,
+                        link: None,
+                        element: true,
+                    });
+                }
             }
         }
         out
@@ -208,7 +235,7 @@ impl GuidedQueries<'_> {
         };
         // Elements that start or end where the turtle stands are its own
         // last segment (or its sibling's start): never found.
-        let own = |c: &Candidate| c.id == 0 && (c.a.distance(p) <= EPS || c.b.distance(p) <= EPS);
+        let own = |c: &Candidate| c.element && (c.a.distance(p) <= EPS || c.b.distance(p) <= EPS);
         match kind {
             Kind::Distance(_) => {
                 let id_test = get(args, 4) as i64;
@@ -260,8 +287,19 @@ impl GuidedQueries<'_> {
             }
             Kind::Cross => {
                 let delta = get(args, 2);
+                let id_in = get(args, 3) as i64;
                 let id_test = get(args, 4) as i64;
                 let q = p + h * delta;
+                // The element this `?X` asks about carries id_in once drawn.
+                if id_in != 0 && delta.abs() > EPS {
+                    let tags = &mut w.tags[self.guide];
+                    if !tags
+                        .iter()
+                        .any(|t| t.0.distance(p) <= EPS && t.1.distance(q) <= EPS && t.2 == id_in)
+                    {
+                        tags.push((p, q, id_in));
+                    }
+                }
                 let best = self
                     .candidates(w, kind, id_test)
                     .into_iter()
@@ -343,8 +381,8 @@ impl Environment for GuidedQueries<'_> {
         if kinds.iter().all(Option::is_none) {
             return Ok(());
         }
-        let opts = TurtleOptions::new(program, None, None, None);
-        let Ok(sites) = turtle::query_sites(program, string, &opts) else {
+        // Where the turtle draws each query: through the homomorphism.
+        let Some(sites) = crate::simulation::drawn_sites(ctx, string) else {
             return Ok(());
         };
         let world = Rc::clone(&self.world);

@@ -156,6 +156,7 @@ fn execute<'p>(
             .map(|k| LinkTokens::new(k.tokens))
             .collect(),
         elements: vec![Vec::new(); spec.guides.len()],
+        tags: vec![Vec::new(); spec.guides.len()],
         pass: 0,
         sent: Vec::new(),
     }));

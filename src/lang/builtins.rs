@@ -47,10 +47,19 @@ pub enum Func {
     Max,
     /// `ran(x)`: uniform in [0, x) from the derivation's seeded generator.
     Ran,
+    /// `flo(w)`: a floating size of weight w in a split (docs/shapes.md).
+    Flo,
+    /// `rel(f)`: a size that is the fraction f of the scope in a split.
+    Rel,
 }
 
+/// Where `rel(f)` puts its fraction: sizes at or below `-REL_BASE` are
+/// relative, other negative sizes floating (docs/shapes.md). Small enough
+/// that `REL_BASE + f` keeps f to about 1e-10 in an f64 parameter.
+pub const REL_BASE: f64 = 1e6;
+
 impl Func {
-    pub const ALL: [Func; 18] = [
+    pub const ALL: [Func; 20] = [
         Func::Sin,
         Func::Cos,
         Func::Tan,
@@ -69,6 +78,8 @@ impl Func {
         Func::Min,
         Func::Max,
         Func::Ran,
+        Func::Flo,
+        Func::Rel,
     ];
 
     pub fn name(self) -> &'static str {
@@ -91,6 +102,8 @@ impl Func {
             Func::Min => "min",
             Func::Max => "max",
             Func::Ran => "ran",
+            Func::Flo => "flo",
+            Func::Rel => "rel",
         }
     }
 
@@ -146,6 +159,10 @@ pub fn call(f: Func, a: f64, b: f64) -> f64 {
         Func::Min => a.min(b),
         Func::Max => a.max(b),
         Func::Ran => unreachable!("ran has its own instruction"),
+        // Encoded as negative numbers the splits decode: a module's
+        // parameters are plain numbers.
+        Func::Flo => -a.abs(),
+        Func::Rel => -REL_BASE - a.abs(),
     }
 }
 

@@ -60,6 +60,13 @@ pub enum Action {
     ScaleSet,
     ScaleMul,
     ScaleDiv,
+    /// cpfg's `?(n, s)`: a sub-L-system starts; steps and widths are
+    /// scaled by s until its `$`.
+    SubStart,
+    /// cpfg's `$`: the sub-L-system ends and the scale before it returns.
+    SubEnd,
+    /// Scopes, splits and primitives (docs/shapes.md).
+    Scope(super::scope_commands::ScopeCmd),
 }
 
 /// One turtle command.
@@ -217,8 +224,8 @@ pub const COMMANDS: &[Command] = &[
     clash(
         "$",
         PitchAround,
-        RollHorizontal,
-        "paper: pitch 180°; cpfg: roll until the left axis is horizontal",
+        SubEnd,
+        "paper: pitch 180°; cpfg: end a sub-L-system `?(n,s) ... $` (its scale s ends; `@v` rolls horizontal)",
     ),
     cmd(
         "[",
@@ -240,7 +247,7 @@ pub const COMMANDS: &[Command] = &[
         (0, 1),
         "a tenth of the initial width",
         IncWidth,
-        "increase the line width by w (cpfg)",
+        "increase the line width: #(w) adds w (cpfg: sets it to w, as `!(w)`)",
     ),
     cmd(
         ";",
@@ -374,6 +381,13 @@ pub const COMMANDS: &[Command] = &[
     cmd("@Di", (0, 1), "1", ScaleMul, "multiply the step scale by s"),
     cmd("@Dd", (0, 1), "1", ScaleDiv, "divide the step scale by s"),
     cmd("@L", (0, 1), "", Nothing, "label (accepted, draws nothing)"),
+    cmd(
+        "@!",
+        (0, 1),
+        "",
+        Nothing,
+        "cpfg: the number of sides of cylinders and spheres (accepted; lsys chooses its own)",
+    ),
     cmd("@H", (0, 0), "", HeadingUp, "turn the heading straight up"),
     cmd(
         "@X",
@@ -386,13 +400,19 @@ pub const COMMANDS: &[Command] = &[
 
 /// The command named `symbol`, if any.
 pub fn lookup(symbol: &str) -> Option<&'static Command> {
-    COMMANDS.iter().find(|c| c.symbol == symbol)
+    all().find(|c| c.symbol == symbol)
+}
+
+/// Every command: the classic table, then the shape commands
+/// (lang/scope_commands.rs).
+pub fn all() -> impl Iterator<Item = &'static Command> {
+    COMMANDS.iter().chain(super::scope_commands::SCOPE_COMMANDS)
 }
 
 /// The table as text, for `lsys commands`.
 pub fn help_text() -> String {
     let mut out = String::from("symbol  parameters  default                             meaning\n");
-    for c in COMMANDS {
+    for c in all() {
         let args = if c.min_args == c.max_args {
             format!("{}", c.min_args)
         } else {
@@ -407,7 +427,7 @@ pub fn help_text() -> String {
         ));
     }
     out.push_str(
-        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz)\n",
+        "~X      0, 1 or 3   scale 1                             place component X: ~X(s), ~X(sx,sy,sz); in a scope ~X fills it\n",
     );
     out
 }

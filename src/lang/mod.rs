@@ -6,9 +6,11 @@
 
 pub mod builtins;
 pub mod commands;
+pub mod curve;
 pub mod profile;
 pub mod rng;
+pub mod scope_commands;
 pub mod spline;
 
-pub use commands::{lookup, Command, COMMANDS};
+pub use commands::{all, lookup, Command, COMMANDS};
 pub use profile::{Dialect, Profile};

@@ -18,6 +18,10 @@ pub struct SplineFn {
     /// The precomputed samples (empty when `samples:` is 2 or less: the
     /// value is then searched on the curve at every call).
     pub table: Vec<f64>,
+    /// Instead of the above: one coordinate (0 x, 1 y, 2 z) of a contour
+    /// curve at arc length `x` (cpfg's `curveX/Y/Z(id, x)`), so that the
+    /// VM calls both kinds the same way.
+    pub contour: Option<(Box<super::curve::Curve>, usize)>,
 }
 
 /// Why a function file could not be read: the message and the 1-based line.
@@ -83,6 +87,7 @@ pub fn parse_func(text: &str, samples: usize) -> Result<SplineFn, FuncError> {
     if lines.peek_starts("range:") {
         lines.next("`range:`")?;
         let mut f = SplineFn {
+            contour: None,
             name: String::new(),
             points: read_points(&mut lines)?,
             table: Vec::new(),
@@ -147,6 +152,7 @@ fn read_one(lines: &mut Lines) -> Result<SplineFn, FuncError> {
     }
     lines.next("`flip:`")?;
     let mut f = SplineFn {
+        contour: None,
         name,
         points: read_points(lines)?,
         table: Vec::new(),
@@ -203,6 +209,9 @@ impl SplineFn {
 
     /// cpfg's `func(id, x)`: `x` is clamped to [0, 1].
     pub fn value(&self, x: f64) -> f64 {
+        if let Some((curve, axis)) = &self.contour {
+            return curve.at(*axis, x);
+        }
         let v = if x < 0.0 {
             0.0
         } else if x > 1.0 {

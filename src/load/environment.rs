@@ -11,6 +11,7 @@ use miette::Report;
 
 use super::error::LoadError;
 use super::include::IncludeFinder;
+use crate::parse::ast::{HeaderKind, Item};
 use crate::source::{FileId, Origin, SourceFile, SourceMap};
 
 /// A model's environment files, as loaded.
@@ -137,3 +138,52 @@ pub(super) fn read_environment_files(
         errors,
     )
 }
+
+/// The `input image:` files named by the `environment:` headers of
+/// `items` and by the `--environment` option (clover's light image), read
+/// relative to the folder of the file that names them (the option's,
+/// relative to the root file's folder): the name as written and the bytes,
+/// or why they could not be read (the header reports it at its own span).
+pub(super) fn read_header_images(
+    items: &[(FileId, Item)],
+    option: Option<&str>,
+    root_dir: &Path,
+    finder: &IncludeFinder,
+    sources: &SourceMap,
+) -> Vec<(String, HeaderImage)> {
+    let headers = items.iter().filter_map(|(file, item)| match item {
+        Item::Header(h) => match &h.kind {
+            HeaderKind::Environment(text, _) => {
+                let dir = match &sources.get(*file).origin {
+                    Origin::Disk(p) => p.parent().map(Path::to_path_buf),
+                    _ => None,
+                };
+                Some((text.as_str(), dir.unwrap_or_else(|| root_dir.to_path_buf())))
+            }
+            _ => None,
+        },
+        _ => None,
+    });
+    let mut data: Vec<(String, HeaderImage)> = Vec::new();
+    for (text, dir) in headers.chain(option.map(|o| (o, root_dir.to_path_buf()))) {
+        // `clover(input image: light.rgb, transmittance: 0.4)`: the name
+        // runs to the next `,` or `)`.
+        let Some((_, rest)) = text.split_once("input image:") else {
+            continue;
+        };
+        let name = rest.split([',', ')']).next().unwrap_or("").trim();
+        if name.is_empty() || data.iter().any(|(n, _)| n == name) {
+            continue;
+        }
+        let path = dir.join(name);
+        let read = finder
+            .read_bytes(&path)
+            .map(std::sync::Arc::new)
+            .map_err(|r| r.message());
+        data.push((name.to_string(), read));
+    }
+    data
+}
+
+/// An image an `environment:` header names: its bytes, or why not.
+pub type HeaderImage = Result<std::sync::Arc<Vec<u8>>, String>;

@@ -45,6 +45,7 @@ impl Loader {
                 profile,
                 side: SideFiles::default(),
                 environment: None,
+                environment_images: Vec::new(),
             },
             stack: Vec::new(),
             finder,

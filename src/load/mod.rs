@@ -10,6 +10,7 @@
 
 mod colours;
 mod cpfg;
+mod curves;
 mod environment;
 mod error;
 mod include;
@@ -21,11 +22,11 @@ use std::path::{Path, PathBuf};
 
 use miette::Report;
 
-pub use environment::EnvironmentFiles;
+pub use environment::{EnvironmentFiles, HeaderImage};
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
 pub use surface::{CpfgSurface, Patch as SurfacePatch};
-pub use view::{SideFiles, ViewFunctions};
+pub use view::{SideFiles, ViewFunctions, ViewLines};
 
 use crate::parse::ast::Item;
 use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
@@ -126,6 +127,10 @@ pub struct Loaded {
     /// The cpfg environment files (`-e FILE.e` and its program's
     /// specification), when the model runs with an environmental program.
     pub environment: Option<EnvironmentFiles>,
+    /// The images an `environment:` header or `--environment` names
+    /// (`clover(input image: light.rgb)`), as the name written and the bytes
+    /// or why they could not be read.
+    pub environment_images: Vec<(String, HeaderImage)>,
 }
 
 /// Loads `input`, what it includes and its side files. A cpfg file (`.l`)
@@ -142,7 +147,8 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
     }
     .filter(|d| !d.as_os_str().is_empty())
     .unwrap_or_else(|| PathBuf::from("."));
-    let finder = include::IncludeFinder::new(root_dir, &opts.include_dirs, opts.unsaved.clone());
+    let finder =
+        include::IncludeFinder::new(root_dir.clone(), &opts.include_dirs, opts.unsaved.clone());
     let model = match &root.origin {
         Origin::Disk(p) => Some(p.clone()),
         _ => None,
@@ -155,6 +161,13 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
     };
     loader.root(root);
     let mut loaded = loader.finish();
+    loaded.environment_images = environment::read_header_images(
+        &loaded.items,
+        opts.environment.as_deref(),
+        &root_dir,
+        &finder,
+        &loaded.sources,
+    );
     if let Some(model) = model {
         loaded.side = view::read_side_files(&model, &profile, &finder, &mut loaded.sources);
         if profile.cpfg_model_file {

@@ -38,6 +38,34 @@ pub struct SideFiles {
     pub colours: Vec<(usize, [f32; 3])>,
     /// The view file's `initial color:` (the turtle's first colour index).
     pub initial_colour: Option<u32>,
+    /// How a cpfg model's lines are drawn (its view file's line width
+    /// lines, else cpfg's defaults); `None` for other models.
+    pub lines: Option<ViewLines>,
+    /// The contour curves of its `curve:` lines, in `curveX` order.
+    pub curves: Vec<Result<crate::lang::curve::Curve, String>>,
+}
+
+/// A cpfg view file's `initial line width: w [p]`, `line width
+/// increment: d` and `line style:`, as cpfg reads them (interpret.c,
+/// `ReadViewData`): without them lines are 1 pixel wide and `#`/`!`
+/// without a parameter change nothing; `initial line width:` switches to
+/// polygons (widths in the model's units) unless a `p` follows the number.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewLines {
+    pub width: f64,
+    pub increment: f64,
+    /// Widths are pixels on cpfg's screen, not model units.
+    pub pixels: bool,
+}
+
+impl Default for ViewLines {
+    fn default() -> ViewLines {
+        ViewLines {
+            width: 1.0,
+            increment: 0.0,
+            pixels: true,
+        }
+    }
 }
 
 /// The functions `func(id, x)` reads. Errors in the files are reported by
@@ -81,6 +109,8 @@ pub(super) fn read_side_files(
                 surfaces: Vec::new(),
                 colours: Vec::new(),
                 initial_colour: None,
+                lines: profile.cpfg_model_file.then(ViewLines::default),
+                curves: Vec::new(),
             };
         }
     };
@@ -95,13 +125,18 @@ pub(super) fn read_side_files(
         None
     };
     let surfaces = surfaces(id, &view, finder, sources);
+    let curves = super::curves::curves(id, &view, finder, sources);
     SideFiles {
+        curves,
         view: Some(id),
         angle,
         functions: functions(id, &view, finder, sources),
         surfaces,
         colours: Vec::new(),
         initial_colour: initial_colour(&sources.get(id).text),
+        lines: profile
+            .cpfg_model_file
+            .then(|| view_lines(&sources.get(id).text)),
     }
 }
 
@@ -117,13 +152,7 @@ fn surfaces(
     let dir = view.parent().unwrap_or(Path::new("."));
     let text = sources.get(view_id).text.clone();
     let mut out = Vec::new();
-    for line in text.lines() {
-        let Some((key, rest)) = line.split_once(':') else {
-            continue;
-        };
-        if !key.trim().eq_ignore_ascii_case("surface") {
-            continue;
-        }
+    for rest in keyed_lines(&text, "surface") {
         let words: Vec<&str> = rest.split_whitespace().collect();
         let Some((name, file, size, s, t)) = surface::surface_line(&words) else {
             continue;
@@ -277,6 +306,46 @@ fn initial_colour(text: &str) -> Option<u32> {
             .flatten()
             .map(|c| c.max(0.0) as u32)
     })
+}
+
+/// What follows `key:` on each of a view file's lines that start with it
+/// (in either case), in order.
+pub(super) fn keyed_lines<'a>(text: &'a str, key: &'a str) -> impl Iterator<Item = &'a str> {
+    text.lines().filter_map(move |line| {
+        let (k, rest) = line.split_once(':')?;
+        k.trim().eq_ignore_ascii_case(key).then_some(rest)
+    })
+}
+
+/// The line settings of a view file's text; later lines win, as cpfg
+/// reads them in order.
+fn view_lines(text: &str) -> ViewLines {
+    let mut lines = ViewLines::default();
+    for line in text.lines() {
+        let Some((key, rest)) = line.split_once(':') else {
+            continue;
+        };
+        let mut words = rest.split_whitespace();
+        let first = words.next().unwrap_or("");
+        match key.trim().to_ascii_lowercase().as_str() {
+            "initial line width" => {
+                if let Ok(w) = first.parse::<f32>() {
+                    lines.width = f64::from(w);
+                    lines.pixels = words.next().is_some_and(|u| u.starts_with('p'));
+                }
+            }
+            "line width increment" => {
+                if let Ok(d) = first.parse::<f32>() {
+                    lines.increment = f64::from(d);
+                }
+            }
+            "line style" => {
+                lines.pixels = first == "pixel" || first == "1";
+            }
+            _ => {}
+        }
+    }
+    lines
 }
 
 /// The turning angle a view file's text gives, computed in `f32` as cpfg

@@ -13,7 +13,6 @@ use lsp_types::{
 use super::analysis::{Analysis, ROOT};
 use super::index::{arities, Kind};
 use super::position::LineIndex;
-use crate::lang::COMMANDS;
 use crate::stdlib;
 
 /// Header keywords and directives offered at the start of a line.
@@ -125,7 +124,7 @@ pub fn completions(a: &Analysis, offset: usize, trigger: Option<&str>) -> Vec<Co
             "1",
         ));
     }
-    for c in COMMANDS {
+    for c in crate::lang::commands::all() {
         let mut it = item(
             c.symbol.to_string(),
             CompletionItemKind::FUNCTION,

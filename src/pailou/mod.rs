@@ -44,6 +44,24 @@ pub fn style_layout(style: &str, kind: PailouType) -> Result<Layout, StyleError>
     layout(np, ne, nr, kind)
 }
 
+/// The Pailou's Toukung levels `NTL` and those of its Toukungs (`TM.NTL`,
+/// `TS.NTL`) agree: the grammar sizes the Toukung rows from `NTL`, so
+/// `-D NTL=7` also reaches the components, and `-D TM.NTL=7` alone sets
+/// the Pailou's `NTL` too (the side Toukungs follow unless given).
+pub fn toukung_levels(defines: &mut Vec<(String, String)>) {
+    let last = |d: &[(String, String)], n: &str| {
+        d.iter().rev().find(|(k, _)| k == n).map(|(_, v)| v.clone())
+    };
+    let ntl = last(defines, "NTL").or_else(|| last(defines, "TM.NTL"));
+    if let Some(v) = ntl {
+        for name in ["NTL", "TM.NTL", "TS.NTL"] {
+            if last(defines, name).is_none() {
+                defines.push((name.to_string(), v.clone()));
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

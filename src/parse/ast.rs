@@ -79,6 +79,8 @@ pub enum HeaderKind {
     Seed(Expr),
     MaximumDepth(Expr),
     Endlsystem,
+    /// cpfg's `ring lsystem`: the string's ends are neighbours for context.
+    Ring,
     Homomorphism,
     Decomposition,
     /// `module A(x), B`.
@@ -560,6 +562,7 @@ fn dump_item(out: &mut String, item: &Item) {
                     let _ = write!(out, "maximum depth {e}");
                 }
                 HeaderKind::Endlsystem => out.push_str("endlsystem"),
+                HeaderKind::Ring => out.push_str("ring lsystem"),
                 HeaderKind::Homomorphism => out.push_str("homomorphism"),
                 HeaderKind::Decomposition => out.push_str("decomposition"),
                 HeaderKind::Module(ds) => {

@@ -518,10 +518,10 @@ fn describe(rule: Rule) -> Option<&'static str> {
         path_text | std_name | rest_of_line => "text",
         lsystem_h | lsystem_kw | dlength_h | dlength_kw | axiom_h | axiom_kw | ignore_h
         | ignore_kw | consider_h | consider_kw | seed_h | seed_kw | maxdepth_h | maxdepth_kw
-        | endlsystem_h | homomorphism_h | homomorphism_kw | decomposition_h | decomposition_kw
-        | module_h | module_kw | block_h | block_kw | angle_h | angle_kw | step_h | step_kw
-        | width_h | width_kw | dialect_h | dialect_kw | colour_h | colour_kw | environment_h
-        | environment_kw => "a header statement",
+        | endlsystem_h | ring_h | homomorphism_h | homomorphism_kw | decomposition_h
+        | decomposition_kw | module_h | module_kw | block_h | block_kw | angle_h | angle_kw
+        | step_h | step_kw | width_h | width_kw | dialect_h | dialect_kw | colour_h | colour_kw
+        | environment_h | environment_kw => "a header statement",
         dialect_name => "a dialect name (`paper` or `cpfg`)",
         hex_colour => "a colour `#rrggbb`",
         module_decl => "a module declaration",

@@ -154,6 +154,7 @@ impl Lower<'_> {
             Rule::seed_h => HeaderKind::Seed(self.expr(next(&mut inner))?),
             Rule::maxdepth_h => HeaderKind::MaximumDepth(self.expr(next(&mut inner))?),
             Rule::endlsystem_h => HeaderKind::Endlsystem,
+            Rule::ring_h => HeaderKind::Ring,
             Rule::homomorphism_h => HeaderKind::Homomorphism,
             Rule::decomposition_h => HeaderKind::Decomposition,
             Rule::module_h => {

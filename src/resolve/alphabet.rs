@@ -37,7 +37,7 @@ pub struct Alphabet {
 impl Alphabet {
     pub fn new() -> Alphabet {
         let mut a = Alphabet::default();
-        for c in turtle::COMMANDS {
+        for c in turtle::all() {
             if let Some(rest) = c.symbol.strip_prefix('@') {
                 a.at.insert(rest.to_string());
             } else if c.symbol.chars().all(is_word_char) {

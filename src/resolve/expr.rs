@@ -36,7 +36,7 @@ impl Scope<'_> {
 /// Expansion state: defines being expanded (for cycles) and the arguments
 /// of the function-like define being expanded.
 #[derive(Default, Clone)]
-struct Expansion {
+pub(super) struct Expansion {
     stack: Vec<String>,
     args: HashMap<String, Expr>,
 }
@@ -54,7 +54,12 @@ impl Resolver {
         }
     }
 
-    fn expr_in(&mut self, e: &ast::Expr, scope: &Scope, exp: &Expansion) -> Option<Expr> {
+    pub(super) fn expr_in(
+        &mut self,
+        e: &ast::Expr,
+        scope: &Scope,
+        exp: &Expansion,
+    ) -> Option<Expr> {
         let span = e.span;
         let kind = match &e.kind {
             ast::ExprKind::Num(v) => ExprKind::Num(*v),
@@ -352,6 +357,9 @@ impl Resolver {
                 span,
             });
         }
+        if let Some(e) = self.curve_call(name, args, span, scope, exp) {
+            return e;
+        }
         if name.name == "func" && !self.defines.contains_key("func") {
             return self.spline_call(args, span, scope, exp);
         }
@@ -456,15 +464,7 @@ impl Resolver {
             "srand" => (1, RandFn::Nran),
             _ => return None,
         };
-        if args.len() != want {
-            self.error(ResolveError::CallArity {
-                name: name.name.clone(),
-                expected: want,
-                found: args.len(),
-                src: self.sources.named_source(span),
-                span: span.into(),
-                help: None,
-            });
+        if !self.call_arity(name, args.len(), want, span, None) {
             return Some(None);
         }
         let mut a = args.iter().cloned().map(Box::new);
@@ -478,104 +478,26 @@ impl Resolver {
 }
 
 impl Resolver {
-    /// cpfg's `func(id, x)`: `id` is a function's number in the view file
-    /// (from 1) or its name; the functions are read from the view file the
-    /// first time.
-    fn spline_call(
+    /// Whether a call of `name` has the `want` arguments it needs; reports
+    /// it when not.
+    pub(super) fn call_arity(
         &mut self,
-        args: &[ast::Expr],
+        name: &ast::Ident,
+        found: usize,
+        want: usize,
         span: crate::source::Span,
-        scope: &Scope,
-        exp: &Expansion,
-    ) -> Option<Expr> {
-        if args.len() != 2 {
+        help: Option<String>,
+    ) -> bool {
+        if found != want {
             self.error(ResolveError::CallArity {
-                name: "func".to_string(),
-                expected: 2,
-                found: args.len(),
+                name: name.name.clone(),
+                expected: want,
+                found,
                 src: self.sources.named_source(span),
                 span: span.into(),
-                help: Some(
-                    "`func(id, x)`: function `id` of the view file at `x` in [0, 1]".to_string(),
-                ),
+                help,
             });
-            return None;
         }
-        let functions = self.view_functions(span)?;
-        let by_name = match &args[0].kind {
-            ast::ExprKind::Name(n) => functions.iter().position(|f| f.name == *n),
-            _ => None,
-        };
-        let index = match by_name {
-            Some(i) => i,
-            None => {
-                let id = self.expr_in(&args[0], scope, exp)?;
-                let id = super::fold::fold(id, &self.sources, &self.tables).ok()?;
-                match id.kind {
-                    ExprKind::Num(v)
-                        if v >= 1.0 && v.fract() == 0.0 && (v as usize) <= functions.len() =>
-                    {
-                        v as usize - 1
-                    }
-                    _ => {
-                        let names: Vec<String> = functions
-                            .iter()
-                            .enumerate()
-                            .map(|(i, f)| format!("{} = {}", i + 1, f.name))
-                            .collect();
-                        self.error(ResolveError::BadValue {
-                            what: "the function of `func`".to_string(),
-                            why: "it is not the number or name of a function of the view file"
-                                .to_string(),
-                            src: self.sources.named_source(args[0].span),
-                            span: args[0].span.into(),
-                            help: Some(if names.is_empty() {
-                                "the view file has no `function:` lines".to_string()
-                            } else {
-                                format!("the view file's functions are {}", names.join(", "))
-                            }),
-                        });
-                        return None;
-                    }
-                }
-            }
-        };
-        let x = self.expr_in(&args[1], scope, exp)?;
-        Some(Expr {
-            kind: ExprKind::Spline(index as u32, Box::new(x)),
-            span,
-        })
-    }
-
-    /// The view file's functions (read while loading); `None` after
-    /// reporting why there are none.
-    fn view_functions(
-        &mut self,
-        span: crate::source::Span,
-    ) -> Option<Vec<crate::lang::spline::SplineFn>> {
-        use crate::load::ViewFunctions;
-        match &mut self.view_functions {
-            ViewFunctions::Read(fs) => {
-                let fs = fs.clone();
-                self.vars.functions = Some(fs.clone());
-                Some(fs)
-            }
-            ViewFunctions::NoViewFile => {
-                self.error(ResolveError::Unsupported {
-                    what: "`func` without a view file".to_string(),
-                    src: self.sources.named_source(span),
-                    span: span.into(),
-                    help: "cpfg's `func(id, x)` reads the functions named on the `function:` lines of the model's view file; put the `.v` file beside the model (named in `specifications`, or the model's name with `.v`)".to_string(),
-                });
-                None
-            }
-            // Reported once, at the first `func` call; they point into the
-            // view file and the function files.
-            ViewFunctions::Failed(errors) => {
-                let errors = std::mem::take(errors);
-                self.errors.extend(errors);
-                None
-            }
-        }
+        found == want
     }
 }

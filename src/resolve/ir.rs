@@ -224,6 +224,9 @@ pub enum Table {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Production {
     pub table: Table,
+    /// The label of the L-system it belongs to ([`Program::main_lsystem`]
+    /// unless the file has sub-L-systems).
+    pub lsystem: u32,
     /// The whole production, for runtime error labels.
     pub span: Span,
     /// The strict predecessor's source text span, e.g. `A(x)`.
@@ -287,6 +290,14 @@ pub struct Program {
     pub derivation_length: u32,
     /// `seed:`; the user's `--seed` wins.
     pub seed: Option<u64>,
+    /// cpfg's `ring lsystem`: context matching wraps around the string's
+    /// ends (the last module is the first one's left neighbour).
+    pub ring: bool,
+    /// The label of the file's first L-system (`Lsystem: 1`, else 0) and
+    /// of the sub-L-systems after it, which `?(n, scale) ... $` calls: a
+    /// module between them is rewritten by L-system n's productions.
+    pub main_lsystem: u32,
+    pub sub_lsystems: Vec<u32>,
     pub context: ContextFilter,
     pub productions: Vec<Production>,
     pub decomposition: Vec<Production>,
@@ -370,6 +381,12 @@ pub struct TurtleSettings {
     /// The turtle's first colour index (a cpfg view file's `initial
     /// color:`); 0 without it.
     pub colour: Option<u32>,
+    /// What `#` and `!` without a parameter add and take away (a cpfg
+    /// view file's `line width increment:`); a tenth of the width without.
+    pub width_increment: Option<f64>,
+    /// Line widths are cpfg screen pixels, not model units (a cpfg view
+    /// file without `initial line width:`, or with `p` after it).
+    pub pixel_lines: bool,
 }
 
 impl Program {

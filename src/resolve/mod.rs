@@ -16,6 +16,7 @@ mod modules;
 mod statements;
 mod tables;
 mod turtle_headers;
+mod view_functions;
 
 use std::collections::HashMap;
 
@@ -72,8 +73,11 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_angle: loaded.side.angle,
         view_colours: loaded.side.colours,
         view_initial_colour: loaded.side.initial_colour,
+        view_lines: loaded.side.lines,
+        view_curves: loaded.side.curves,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
+        environment_images: loaded.environment_images,
         environment_option: opts.environment.clone(),
         view_functions: loaded.side.functions,
         broken: loaded.broken,
@@ -145,10 +149,16 @@ pub(crate) struct Resolver {
     pub view_colours: Vec<(usize, [f32; 3])>,
     /// The turtle's first colour index, from a cpfg view file.
     pub view_initial_colour: Option<u32>,
+    /// A cpfg model's line widths, from its view file.
+    pub view_lines: Option<crate::load::ViewLines>,
+    /// A cpfg model's contour curves (`curve:` lines of its view file).
+    pub view_curves: Vec<Result<crate::lang::curve::Curve, String>>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).
     pub environment_files: Option<crate::load::EnvironmentFiles>,
+    /// The images an `environment:` header names (clover's light image).
+    pub environment_images: Vec<(String, crate::load::HeaderImage)>,
     /// `--environment SPEC`, used when the grammar names none.
     pub environment_option: Option<String>,
     /// The view file's functions (or why they could not be read), read

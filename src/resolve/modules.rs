@@ -123,8 +123,7 @@ impl Resolver {
     }
 
     fn unknown_turtle(&mut self, tok: &ModuleTok) {
-        let ats: Vec<&str> = turtle::COMMANDS
-            .iter()
+        let ats: Vec<&str> = turtle::all()
             .map(|c| c.symbol)
             .filter(|s| s.starts_with('@'))
             .collect();

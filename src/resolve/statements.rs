@@ -20,6 +20,15 @@ struct Sections {
     table: Option<Table>,
     ended: Option<Span>,
     lsystem: Option<Span>,
+    /// `ring lsystem` was given.
+    ring: bool,
+    /// The label of the L-system being read (`Lsystem: 2`), and whether it
+    /// is a sub-L-system (not the file's first): a sub-L-system's axiom,
+    /// derivation length and other headers are for running it alone.
+    label: u32,
+    in_sub: bool,
+    main_label: u32,
+    sub_labels: Vec<u32>,
     axiom: Option<(Vec<SuccModule>, Span)>,
     dlength: Option<(u32, Span)>,
     seed: Option<(u64, Span)>,
@@ -92,6 +101,7 @@ impl Resolver {
         if let Some((text, span)) = s.environment.take() {
             match crate::environment::environment_header(
                 &text,
+                &self.environment_images,
                 self.sources.named_source(span),
                 span.into(),
             ) {
@@ -127,6 +137,12 @@ impl Resolver {
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
             turtle.colour = self.view_initial_colour;
         }
+        // Its line widths are in its view file (a `width:` header wins).
+        if let Some(lines) = self.view_lines.take() {
+            turtle.width = turtle.width.or(Some(lines.width));
+            turtle.width_increment = Some(lines.increment);
+            turtle.pixel_lines = lines.pixels;
+        }
         // Its colours are in its colour map and material files; the
         // file's own `colour i:` headers come after, and win.
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
@@ -142,6 +158,9 @@ impl Resolver {
             axiom,
             derivation_length: s.dlength.map_or(0, |d| d.0),
             seed: s.seed.map(|d| d.0),
+            ring: s.ring,
+            main_lsystem: s.main_label,
+            sub_lsystems: std::mem::take(&mut s.sub_labels),
             context: s.context.map(|c| c.0).unwrap_or_default(),
             productions: take(Table::Main),
             decomposition: take(Table::Decomposition),
@@ -174,7 +193,7 @@ impl Resolver {
             src: self.sources.named_source(span),
             span: span.into(),
             help: format!(
-                "`endlsystem` ({}) ends the grammar; move this above it (several L-systems in one file are not supported yet)",
+                "`endlsystem` ({}) ends the L-system; move this above it, or start a sub-L-system first with `Lsystem: N`",
                 self.sources.location(end)
             ),
         });
@@ -186,7 +205,7 @@ impl Resolver {
             ..Scope::EMPTY
         };
         if let Some(end) = s.ended {
-            if !matches!(h.kind, HeaderKind::Endlsystem) {
+            if !matches!(h.kind, HeaderKind::Endlsystem | HeaderKind::Lsystem(_)) {
                 self.after_end(h.span, end);
                 return;
             }
@@ -195,12 +214,37 @@ impl Resolver {
             return;
         }
         match &h.kind {
-            HeaderKind::Lsystem(_) => {
-                if let Some(first) = s.lsystem {
-                    self.duplicate(h, "Lsystem:", first, "several L-systems in one file (cpfg sub-L-systems) are not supported yet; keep one per file");
+            HeaderKind::Lsystem(label) => {
+                // cpfg's label is a number (`?(2, s)` calls L-system 2);
+                // anything else counts as 0.
+                let label = label.trim().parse::<u32>().unwrap_or(0);
+                if s.lsystem.is_some() {
+                    if label == s.main_label || s.sub_labels.contains(&label) {
+                        self.error(ResolveError::Misplaced {
+                            what: format!("a second L-system labelled {label}"),
+                            src: self.sources.named_source(h.span),
+                            span: h.span.into(),
+                            help: "give each `Lsystem:` its own number; `?(n, scale)` calls L-system n".to_string(),
+                        });
+                    }
+                    s.sub_labels.push(label);
+                    s.in_sub = true;
+                    s.ended = None;
+                    s.table = None;
+                    s.seen.clear();
+                } else {
+                    s.main_label = label;
+                    s.lsystem = Some(h.keyword);
                 }
-                s.lsystem = Some(h.keyword);
+                s.label = label;
             }
+            HeaderKind::DerivationLength(_)
+            | HeaderKind::Axiom(_)
+            | HeaderKind::Seed(_)
+            | HeaderKind::Ignore(_)
+            | HeaderKind::Consider(_)
+            | HeaderKind::MaximumDepth(_)
+                if s.in_sub => {}
             HeaderKind::DerivationLength(e) => {
                 if let Some((_, first)) = s.dlength {
                     self.duplicate(
@@ -238,10 +282,16 @@ impl Resolver {
                 }
                 let mut syms = Vec::new();
                 for t in toks {
-                    if let ast::PatTok::Module(m) = t {
-                        for p in self.split(m) {
-                            syms.push(self.intern(&p.name, Some(p.span)));
+                    match t {
+                        ast::PatTok::Module(m) => {
+                            for p in self.split(m) {
+                                syms.push(self.intern(&p.name, Some(p.span)));
+                            }
                         }
+                        // `Consider: ![]`: brackets listed are considered
+                        // (they end a context at a branch's end).
+                        ast::PatTok::Open(_) => syms.push(OPEN_BRACKET),
+                        ast::PatTok::Close(_) => syms.push(CLOSE_BRACKET),
                     }
                 }
                 let f = if is_ignore {
@@ -286,6 +336,7 @@ impl Resolver {
                 }
             }
             HeaderKind::Endlsystem => s.ended = Some(h.span),
+            HeaderKind::Ring => s.ring = true,
             HeaderKind::Homomorphism => s.table = Some(Table::Homomorphism),
             HeaderKind::Decomposition => s.table = Some(Table::Decomposition),
             HeaderKind::Module(_) => {}
@@ -459,6 +510,7 @@ impl Resolver {
         }
         Some(Production {
             table,
+            lsystem: s.label,
             span: p.span,
             head_span: p.head_span,
             lctx,

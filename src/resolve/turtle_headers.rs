@@ -65,7 +65,7 @@ impl Resolver {
                             why: format!("`{name}` is not a dialect"),
                             src: self.sources.named_source(*span),
                             span: (*span).into(),
-                            help: Some("write `dialect: paper` (the Pailou paper's Table 1: `%` rolls 180°, `$` pitches 180°) or `dialect: cpfg` (`%` cuts the branch, `$` rolls to horizontal)".to_string()),
+                            help: Some("write `dialect: paper` (the Pailou paper's Table 1: `%` rolls 180°, `$` pitches 180°) or `dialect: cpfg` (`%` cuts the branch, `$` ends a sub-L-system)".to_string()),
                         }),
                     }
                 }

@@ -20,7 +20,7 @@ mod queries;
 
 pub use environment::{Environment, StepContext};
 pub use pass::EnvironmentPass;
-pub use queries::TurtleQueries;
+pub use queries::{drawn_sites, TurtleQueries};
 
 use crate::bytecode::Compiled;
 use crate::derive::{Checkpoint, Derivation, DeriveError, DeriveOptions, ModuleStore};

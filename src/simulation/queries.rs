@@ -1,6 +1,7 @@
 //! The turtle as an environment: a string after a step in, the parameters
 //! of cpfg's query modules (`?P(x,y,z)`, `?H`, `?L`, `?U`) set to the
-//! turtle's position and orientation where they stand. Also where every
+//! turtle's position and orientation where they stand, and `?S` to the
+//! scope's size (docs/shapes.md). Also where every
 //! environment finds its query modules ([`drawn_sites`]).
 
 use super::environment::{Environment, StepContext};
@@ -12,7 +13,7 @@ use crate::turtle::{self, QuerySite, TurtleOptions};
 /// output when that keeps the string's query modules (as many, in order),
 /// else in the string itself. `None` when the turtle refuses the string
 /// (a NaN parameter): its queries then keep their values.
-pub(super) fn drawn_sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Option<Vec<QuerySite>> {
+pub fn drawn_sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Option<Vec<QuerySite>> {
     let program = ctx.program;
     let opts = TurtleOptions::new(program, None, None, None);
     let own = turtle::query_sites(program, string, &opts).ok()?;
@@ -66,6 +67,8 @@ impl Environment for TurtleQueries {
                 "?H" => f.h,
                 "?L" => f.l,
                 "?U" => f.u,
+                // The scope's size (docs/shapes.md).
+                "?S" => s.scope,
                 _ => continue,
             };
             let n = s.arity.min(3);

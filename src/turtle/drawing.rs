@@ -64,6 +64,11 @@ pub struct Drawing {
     pub polygons: Vec<Polygon>,
     pub shapes: Vec<Shape>,
     pub placements: Vec<Placement>,
+    /// One line per constraint rule applied (docs/shapes.md).
+    pub constraints: Vec<String>,
+    /// How many primitives of each kind (`block`, `cylinder`, `prism`)
+    /// were drawn as polygons (docs/shapes.md).
+    pub primitives: std::collections::BTreeMap<String, usize>,
 }
 
 impl Drawing {
@@ -102,6 +107,12 @@ impl Drawing {
                 v(s.normal),
                 n(s.radius)
             );
+        }
+        for (kind, n) in &self.primitives {
+            let _ = writeln!(out, "primitives {kind}: {n}");
+        }
+        for c in &self.constraints {
+            let _ = writeln!(out, "constraint: {c}");
         }
         for p in &self.placements {
             let m = p.transform;

@@ -64,6 +64,88 @@ pub enum TurtleError {
     #[error("module {index} of the string, `{text}`, divides the step scale by zero")]
     #[diagnostic(code(lsys::turtle::zero_scale), help("`@Dd(s)` needs s ≠ 0"))]
     ZeroScale { index: usize, text: String },
+
+    /// A split that cannot be laid out, and the other shape-command
+    /// errors (boxed: their spans would make every turtle error large).
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Shape(Box<ShapeError>),
+}
+
+/// Errors of the shape commands (docs/shapes.md).
+#[derive(Debug, Error, Diagnostic)]
+pub enum ShapeError {
+    #[error("module {index} of the string, `{text}`, cannot split its scope: {problem}")]
+    #[diagnostic(code(lsys::turtle::split_misfit))]
+    SplitMisfit {
+        index: usize,
+        text: String,
+        problem: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("{asked} in a scope {scope} long")]
+        written_by: Option<SourceSpan>,
+        asked: String,
+        scope: String,
+        #[help]
+        help: String,
+    },
+
+    #[error("module {index} of the string, `{text}`, needs {wanted} after it, but {found}")]
+    #[diagnostic(code(lsys::turtle::split_branches))]
+    SplitBranches {
+        index: usize,
+        text: String,
+        wanted: String,
+        found: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("this split")]
+        written_by: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
+    #[error("module {index} of the string, `{text}`, needs a scope, and none is set")]
+    #[diagnostic(code(lsys::turtle::no_scope))]
+    NoScope {
+        index: usize,
+        text: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("used here")]
+        written_by: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+}
+
+impl From<ShapeError> for TurtleError {
+    fn from(e: ShapeError) -> TurtleError {
+        TurtleError::Shape(Box::new(e))
+    }
+}
+
+/// The grammar text and the first successor module (axiom first) that
+/// writes `sym`: the derivation does not record which production wrote a
+/// module, so this is the best place to point at.
+pub(crate) fn blame(
+    program: &Program,
+    sym: crate::resolve::ir::SymId,
+) -> (NamedSource<Arc<String>>, Option<SourceSpan>) {
+    let found = program.axiom.iter().find(|m| m.sym == sym).or_else(|| {
+        program
+            .productions
+            .iter()
+            .chain(&program.decomposition)
+            .chain(&program.homomorphism)
+            .flat_map(|p| p.succ.iter())
+            .find(|m| m.sym == sym)
+    });
+    match found {
+        Some(m) => (program.sources.named_source(m.span), Some(m.span.into())),
+        None => (NamedSource::new("", Arc::new(String::new())), None),
+    }
 }
 
 impl TurtleError {

@@ -2,9 +2,9 @@
 //! mapped once to an `Act` through the command table and the file's
 //! dialect, then the string is walked left to right with a branch stack.
 
-use glam::{DVec3, Mat4, Vec3, Vec4};
+use glam::{DVec3, Vec3};
 
-use super::drawing::{Chain, Drawing, Placement, Polygon, TubePoint};
+use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
 use super::frame::Frame;
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
@@ -23,14 +23,16 @@ pub struct TurtleOptions {
     pub step: f32,
     /// Initial line width (the tube diameter).
     pub width: f32,
+    /// What `#` and `!` without a parameter add and take away.
+    pub width_increment: f32,
+    /// Widths are cpfg screen pixels (see `turtle::cpfg`).
+    pub pixel_lines: bool,
 }
 
 /// The default angle when neither the file nor the command line gives one.
 pub const DEFAULT_ANGLE: f64 = 90.0;
 /// The default line width: a tenth of the default step.
 pub const DEFAULT_WIDTH: f64 = 0.1;
-/// Curve segments between two control points of a generalized cylinder.
-const DEFAULT_GC_SEGMENTS: usize = 8;
 
 impl TurtleOptions {
     /// The file's headers, each overridden by the command line when given.
@@ -41,11 +43,14 @@ impl TurtleOptions {
         width: Option<f64>,
     ) -> Self {
         let file = &program.turtle;
+        let width = width.or(file.width).unwrap_or(DEFAULT_WIDTH);
         TurtleOptions {
             profile: program.profile,
             angle: angle.or(file.angle).unwrap_or(DEFAULT_ANGLE) as f32,
             step: step.or(file.step).unwrap_or(1.0) as f32,
-            width: width.or(file.width).unwrap_or(DEFAULT_WIDTH) as f32,
+            width: width as f32,
+            width_increment: file.width_increment.unwrap_or(width * 0.1) as f32,
+            pixel_lines: file.pixel_lines,
         }
     }
 }
@@ -59,6 +64,9 @@ enum Act {
 }
 
 fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
+    if name == "?" && dialect == Dialect::Cpfg {
+        return Act::Command(Action::SubStart);
+    }
     match kind {
         SymbolKind::Component => Act::Place,
         _ => Act::Command(
@@ -69,40 +77,50 @@ fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
     }
 }
 
-/// One control point of a generalized cylinder.
 #[derive(Clone, Copy, Debug)]
-struct CylPoint {
-    frame: Frame,
-    radius: f32,
-    segments: usize,
-}
-
-#[derive(Clone, Copy, Debug)]
-struct State {
-    frame: Frame,
-    width: f32,
-    colour: u32,
-    scale: f32,
+pub(super) struct State {
+    pub(super) frame: Frame,
+    /// The scope's size (docs/shapes.md); its origin and axes are the
+    /// frame's. `None` until `@Scope`.
+    pub(super) scope: Option<DVec3>,
+    /// `@Snap(d)`: blocks drawn now snap to earlier ones within d.
+    pub(super) snap: f64,
+    pub(super) width: f32,
+    pub(super) colour: u32,
+    pub(super) scale: f32,
     /// The chain the next drawn segment may extend.
     chain: Option<usize>,
-    /// The open generalized cylinder, an index into `Turtle::cylinders`.
-    cylinder: Option<usize>,
+    /// The open generalized cylinder: its last control point, and the
+    /// chain its last segment extended. A branch copies it and goes on
+    /// from the branch point, as cpfg's spline stack does.
+    pub(super) cylinder: Option<super::cylinder::Open>,
     tropism: Vec3,
     elasticity: f32,
 }
 
-struct Turtle<'a> {
+pub(super) struct Turtle<'a> {
     opts: &'a TurtleOptions,
     /// For errors that point at the grammar.
-    program: &'a Program,
+    pub(super) program: &'a Program,
     symbols: &'a Symbols,
-    drawing: Drawing,
-    state: State,
+    pub(super) drawing: Drawing,
+    pub(super) state: State,
     stack: Vec<State>,
     /// Open polygons: global, not per branch, so that a polygon can collect
     /// vertices from several branches (ABOP's leaves).
     polygons: Vec<(usize, Vec<Vec3>)>,
-    cylinders: Vec<Vec<CylPoint>>,
+    /// The scales in force before each open sub-L-system (`?(n, s)`).
+    subs: Vec<f32>,
+    /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
+    pub(super) solids: Vec<super::solid::Solid>,
+    pub(super) holes: Vec<super::solid::Solid>,
+}
+
+/// The string being walked and each symbol's act.
+pub(super) struct Walk<'s> {
+    pub(super) heads: &'s [u32],
+    pub(super) params: &'s [f64],
+    acts: &'s [Act],
 }
 
 /// Interprets `store` (normally the string after the homomorphism).
@@ -127,6 +145,8 @@ pub struct QuerySite {
     /// The line width and the scale (`@Dd`) in force.
     pub width: f32,
     pub scale: f32,
+    /// The scope's size (zero outside any scope): `?S(sx,sy,sz)`.
+    pub scope: DVec3,
 }
 
 /// Every query module with parameters in `store` (`?P`, `?E`, ...), in
@@ -146,7 +166,7 @@ pub fn query_sites(
 }
 
 /// Called with each query module's site.
-type QueryFn<'a> = dyn FnMut(QuerySite) + 'a;
+pub(super) type QueryFn<'a> = dyn FnMut(QuerySite) + 'a;
 
 /// [`interpret`], telling `on_query` the turtle's state at every query
 /// module.
@@ -168,6 +188,8 @@ fn interpret_with(
         symbols: &program.symbols,
         drawing: Drawing::default(),
         state: State {
+            scope: None,
+            snap: 0.0,
             frame: if opts.profile.cpfg_turtle {
                 Frame::cpfg()
             } else {
@@ -183,79 +205,25 @@ fn interpret_with(
         },
         stack: Vec::new(),
         polygons: Vec::new(),
-        cylinders: Vec::new(),
+        subs: Vec::new(),
+        solids: Vec::new(),
+        holes: Vec::new(),
     };
-    let heads = store.heads();
-    let params = store.params();
-    let mut offset = 0;
-    let mut i = 0;
-    while i < heads.len() {
-        let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
-        let args = &params[offset..offset + arity];
-        if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
-            on_query(QuerySite {
-                sym,
-                arity,
-                index: i,
-                offset,
-                frame: t.state.frame,
-                width: t.state.width,
-                scale: t.state.scale,
-            });
-        }
-        offset += arity;
-        let act = acts[sym as usize];
-        if act != Act::Command(Action::Nothing) {
-            if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
-                return Err(TurtleError::NonFinite {
-                    index: i + 1,
-                    text: module_text(&program.symbols, sym, args),
-                    symbol: program.symbols.name(sym).to_string(),
-                    value: bad,
-                });
-            }
-            if act == Act::Command(Action::Cut) {
-                // Skip to the `]` that ends this branch (or the end), and
-                // let that `]` pop the branch as usual.
-                let (end, skipped) = rest_of_branch(heads, i + 1);
-                i = end;
-                offset += skipped;
-                continue;
-            }
-            match act {
-                Act::Command(a) => t.apply(a, sym, args, i)?,
-                Act::Place => t.place(sym, args, i),
-            }
-            // The model is in 32-bit floats: steps that add up past their
-            // range would reach the exporter as infinities.
-            let f = &t.state.frame;
-            // The frame computes in f64; the model is stored in f32.
-            let finite = f.pos.as_vec3().is_finite()
-                && f.h.is_finite()
-                && f.u.is_finite()
-                && f.l.is_finite()
-                && t.state.width.is_finite();
-            if !finite {
-                return Err(TurtleError::Overflow {
-                    index: i + 1,
-                    text: module_text(&program.symbols, sym, args),
-                    symbol: program.symbols.name(sym).to_string(),
-                });
-            }
-        }
-        i += 1;
-    }
+    let walk = Walk {
+        heads: store.heads(),
+        params: store.params(),
+        acts: &acts,
+    };
+    t.walk(&walk, on_query, 0, walk.heads.len(), 0)?;
     if let Some((first, _)) = t.polygons.first() {
         return Err(TurtleError::UnclosedPolygon {
             count: t.polygons.len(),
             first: *first + 1,
         });
     }
-    // Close generalized cylinders left open at the end of the string.
-    for k in 0..t.cylinders.len() {
-        if t.cylinders[k].len() > 1 {
-            t.finish_cylinder(k);
-        }
+    t.draw_solids();
+    if opts.pixel_lines {
+        super::cpfg::pixels_to_units(&mut t.drawing);
     }
     Ok(t.drawing)
 }
@@ -271,6 +239,83 @@ fn module_text(symbols: &Symbols, sym: SymId, args: &[f64]) -> String {
 }
 
 impl Turtle<'_> {
+    /// Interprets modules `i..end`, whose parameters start at `offset`.
+    pub(super) fn walk(
+        &mut self,
+        w: &Walk,
+        on_query: &mut QueryFn,
+        mut i: usize,
+        end: usize,
+        mut offset: usize,
+    ) -> Result<(), TurtleError> {
+        let (heads, params, program) = (w.heads, w.params, self.program);
+        let t = self;
+        while i < end {
+            let (sym, arity) = (head_sym(heads[i]), head_arity(heads[i]));
+            let args = &params[offset..offset + arity];
+            if arity > 0 && program.symbols.list[sym as usize].kind == SymbolKind::Query {
+                on_query(QuerySite {
+                    sym,
+                    arity,
+                    index: i,
+                    offset,
+                    frame: t.state.frame,
+                    width: t.state.width,
+                    scale: t.state.scale,
+                    scope: t.state.scope.unwrap_or_default(),
+                });
+            }
+            offset += arity;
+            let act = w.acts[sym as usize];
+            if act != Act::Command(Action::Nothing) {
+                if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
+                    return Err(TurtleError::NonFinite {
+                        index: i + 1,
+                        text: module_text(&program.symbols, sym, args),
+                        symbol: program.symbols.name(sym).to_string(),
+                        value: bad,
+                    });
+                }
+                if act == Act::Command(Action::Cut) {
+                    // Skip to the `]` that ends this branch (or the end), and
+                    // let that `]` pop the branch as usual.
+                    let (end, skipped) = rest_of_branch(heads, i + 1);
+                    i = end;
+                    offset += skipped;
+                    continue;
+                }
+                if let Act::Command(Action::Scope(c)) = act {
+                    // Shape commands (turtle/scope_walk.rs); splits consume
+                    // the branches that follow them.
+                    (i, offset) = t.scope_cmd(w, on_query, c, sym, args, i, offset)?;
+                    continue;
+                }
+                match act {
+                    Act::Command(a) => t.apply(a, sym, args, i)?,
+                    Act::Place => t.place(sym, args, i),
+                }
+                // The model is in 32-bit floats: steps that add up past their
+                // range would reach the exporter as infinities.
+                let f = &t.state.frame;
+                // The frame computes in f64; the model is stored in f32.
+                let finite = f.pos.as_vec3().is_finite()
+                    && f.h.is_finite()
+                    && f.u.is_finite()
+                    && f.l.is_finite()
+                    && t.state.width.is_finite();
+                if !finite {
+                    return Err(TurtleError::Overflow {
+                        index: i + 1,
+                        text: module_text(&program.symbols, sym, args),
+                        symbol: program.symbols.name(sym).to_string(),
+                    });
+                }
+            }
+            i += 1;
+        }
+        Ok(())
+    }
+
     fn angle(&self, args: &[f64]) -> f32 {
         args.first().map_or(self.opts.angle, |&a| a as f32)
     }
@@ -285,7 +330,8 @@ impl Turtle<'_> {
         use Action::*;
         let s = &mut self.state;
         match act {
-            Nothing | Cut => {}
+            // Shape commands are run by `scope_cmd` before `apply`.
+            Nothing | Cut | Scope(_) => {}
             Move { draw, vertex } => {
                 let d = args.first().map_or(self.opts.step, |&a| a as f32) * s.scale;
                 self.forward(d, draw, vertex);
@@ -311,9 +357,9 @@ impl Turtle<'_> {
             Push => {
                 self.stack.push(self.state);
                 // A branch draws its own tubes; the parent's chain resumes
-                // after the matching `]`.
+                // after the matching `]`. An open generalized cylinder
+                // goes on in the branch.
                 self.state.chain = None;
-                self.state.cylinder = None;
             }
             Pop => {
                 self.state = self
@@ -321,13 +367,16 @@ impl Turtle<'_> {
                     .pop()
                     .ok_or_else(|| TurtleError::unbalanced(index + 1, self.program))?;
             }
+            SetWidth | IncWidth if self.opts.profile.cpfg_turtle => {
+                super::cpfg::set_width(s, act == IncWidth, args, self.opts.width_increment)
+            }
             SetWidth => match args.first() {
                 Some(&w) => s.width = (w as f32).max(0.0),
-                None => s.width = (s.width - self.opts.width * 0.1).max(0.0),
+                None => s.width = (s.width - self.opts.width_increment).max(0.0),
             },
             IncWidth => match args.first() {
                 Some(&w) => s.width = (s.width + w as f32).max(0.0),
-                None => s.width += self.opts.width * 0.1,
+                None => s.width += self.opts.width_increment,
             },
             SetColour => match args.first() {
                 Some(&c) => s.colour = colour_index(c),
@@ -342,8 +391,11 @@ impl Turtle<'_> {
                 None => s.colour = s.colour.saturating_add(1),
             },
             PolyStart => {
+                // cpfg's `{` records no vertex (only `.`, `F`, `f` do):
+                // leaves written `{.` ... `}` across branches depend on it.
                 let start = s.frame.pos.as_vec3();
-                self.polygons.push((index, vec![start]));
+                let first = (!self.opts.profile.cpfg_turtle).then_some(start);
+                self.polygons.push((index, first.into_iter().collect()));
             }
             PolyVertex => {
                 let p = s.frame.pos.as_vec3();
@@ -405,22 +457,12 @@ impl Turtle<'_> {
                     _ => {}
                 }
             }
-            CylStart => {
-                let point = self.cyl_point(args);
-                self.cylinders.push(vec![point]);
-                self.state.cylinder = Some(self.cylinders.len() - 1);
-                self.state.chain = None;
+            CylStart | CylPoint | CylEnd => {
+                let s = &mut self.state;
+                super::cylinder::control_point(&mut self.drawing, s, act, args);
             }
-            CylPoint | CylEnd => {
-                if let Some(k) = self.state.cylinder {
-                    let point = self.cyl_point(args);
-                    self.cylinders[k].push(point);
-                    if act == CylEnd {
-                        self.finish_cylinder(k);
-                        self.state.cylinder = None;
-                    }
-                }
-            }
+            SubStart => super::cpfg::enter_sub(&mut self.subs, s, args),
+            SubEnd => super::cpfg::leave_sub(&mut self.subs, s),
             ScaleSet => s.scale = args.first().map_or(1.0, |&a| a as f32),
             ScaleMul => s.scale *= args.first().map_or(1.0, |&a| a as f32),
             ScaleDiv => {
@@ -449,7 +491,12 @@ impl Turtle<'_> {
                     push_vertex(poly, to);
                 }
             }
-        } else if draw && s.cylinder.is_none() && s.width > 0.0 && d != 0.0 {
+        } else if draw
+            // cpfg's `F` draws inside a generalized cylinder too.
+            && (s.cylinder.is_none() || self.opts.profile.cpfg_turtle)
+            && s.width > 0.0
+            && d != 0.0
+        {
             let radius = s.width * 0.5;
             let point = TubePoint {
                 pos: to,
@@ -484,89 +531,6 @@ impl Turtle<'_> {
         if s.elasticity != 0.0 {
             s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));
         }
-    }
-
-    fn cyl_point(&self, args: &[f64]) -> CylPoint {
-        CylPoint {
-            frame: self.state.frame,
-            radius: self.state.width * 0.5,
-            segments: args
-                .first()
-                .map_or(DEFAULT_GC_SEGMENTS, |&n| (n.max(1.0) as usize).min(1024)),
-        }
-    }
-
-    /// Samples the cubic Hermite curve through the cylinder's control points
-    /// (tangents along each point's heading, scaled by the distance to the
-    /// next point) into one tube chain.
-    fn finish_cylinder(&mut self, k: usize) {
-        let cps = std::mem::take(&mut self.cylinders[k]);
-        if cps.len() < 2 {
-            return;
-        }
-        let mut points = vec![TubePoint {
-            pos: cps[0].frame.pos.as_vec3(),
-            radius: cps[0].radius,
-            up: cps[0].frame.u.as_vec3(),
-        }];
-        for w in cps.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            let (ap, bp) = (a.frame.pos.as_vec3(), b.frame.pos.as_vec3());
-            let (ah, bh) = (a.frame.h.as_vec3(), b.frame.h.as_vec3());
-            let (au, bu) = (a.frame.u.as_vec3(), b.frame.u.as_vec3());
-            let dist = ap.distance(bp);
-            let (m0, m1) = (ah * dist, bh * dist);
-            for step in 1..=b.segments {
-                let t = step as f32 / b.segments as f32;
-                let (t2, t3) = (t * t, t * t * t);
-                let pos = ap * (2.0 * t3 - 3.0 * t2 + 1.0)
-                    + m0 * (t3 - 2.0 * t2 + t)
-                    + bp * (-2.0 * t3 + 3.0 * t2)
-                    + m1 * (t3 - t2);
-                points.push(TubePoint {
-                    pos,
-                    radius: a.radius + (b.radius - a.radius) * t,
-                    up: au.lerp(bu, t).normalize_or(au),
-                });
-            }
-        }
-        points.dedup_by(|b, a| a.pos.distance(b.pos) < 1e-7);
-        if points.len() >= 2 && points.iter().any(|p| p.radius > 0.0) {
-            self.drawing.chains.push(Chain {
-                colour: self.state.colour,
-                points,
-            });
-        }
-    }
-
-    /// `~X`, `~X(s)`, `~X(sx,sy,sz)`: the unit box's width (x) along the
-    /// turtle's L, its height (y) along H and its front (−z) facing U, with
-    /// the middle of its bottom face at the turtle.
-    fn place(&mut self, sym: SymId, args: &[f64], index: usize) {
-        let s = match *args {
-            [] => Vec3::ONE,
-            [k] => Vec3::splat(k as f32),
-            [x, y, z, ..] => Vec3::new(x as f32, y as f32, z as f32),
-            [x, y] => Vec3::new(x as f32, y as f32, 1.0),
-        };
-        if s.x == 0.0 || s.y == 0.0 || s.z == 0.0 {
-            // The paper switches decorations off by scaling them to 0.
-            return;
-        }
-        let f = &self.state.frame;
-        let (fl, fh, fu, fp) = (f.l.as_vec3(), f.h.as_vec3(), f.u.as_vec3(), f.pos.as_vec3());
-        let transform = Mat4::from_cols(
-            (fl * s.x).extend(0.0),
-            (fh * s.y).extend(0.0),
-            (-fu * s.z).extend(0.0),
-            Vec4::from((fp + fh * (s.y * 0.5), 1.0)),
-        );
-        self.drawing.placements.push(Placement {
-            symbol: sym,
-            transform,
-            colour: self.state.colour,
-            module: index,
-        });
     }
 }
 

@@ -1,0 +1,200 @@
+//! Grammar mode (live preview): a `.lsys` file in the opened folder ->
+//! compiled with the page's `-D` overrides, built at the page's step ->
+//! the model and its diagnostics. The root file's `#define`s become the
+//! page's sliders. A failed build keeps the last good model.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+use serde_json::{json, Value};
+
+use super::model::{self, Model};
+
+/// A `#define` of the root file, as the page shows it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Define {
+    pub name: String,
+    pub value: String,
+    /// A slider's range, for a number.
+    pub range: Option<(f64, f64)>,
+    pub integer: bool,
+}
+
+pub struct GrammarSession {
+    /// The root file, absolute.
+    pub path: PathBuf,
+    /// The same, relative to the opened folder (for the page).
+    pub file: String,
+    pub defines: Vec<Define>,
+    pub overrides: BTreeMap<String, String>,
+    /// The step shown (`None`: the grammar's derivation length).
+    pub step: Option<u32>,
+    pub length: u32,
+    pub model: Option<Model>,
+    pub diagnostics: Vec<Value>,
+    /// Whether `model` is from the current text (false: the last good one).
+    pub current: bool,
+}
+
+impl GrammarSession {
+    pub fn open(path: PathBuf, file: String) -> GrammarSession {
+        let mut s = GrammarSession {
+            path,
+            file,
+            defines: Vec::new(),
+            overrides: BTreeMap::new(),
+            step: None,
+            length: 0,
+            model: None,
+            diagnostics: Vec::new(),
+            current: false,
+        };
+        s.rebuild();
+        s
+    }
+
+    /// Compiles and builds again (after a save, or a change on the page).
+    pub fn rebuild(&mut self) {
+        if let Ok(text) = std::fs::read_to_string(&self.path) {
+            self.defines = defines_of(&text);
+        }
+        let defines: Vec<(String, String)> = self
+            .overrides
+            .iter()
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
+        let name = self.path.to_string_lossy().into_owned();
+        let built = model::compile(&name, None, &defines).and_then(|g| {
+            self.length = g.derivation_length();
+            let steps = self.step.unwrap_or(self.length);
+            let warnings = model::diagnostics_json(g.warnings());
+            model::build(&g, steps, false).map(|m| (m, warnings))
+        });
+        match built {
+            Ok((m, warnings)) => {
+                self.model = Some(m);
+                self.diagnostics = warnings;
+                self.current = true;
+            }
+            Err(d) => {
+                self.diagnostics = model::diagnostics_json(&d);
+                self.current = false;
+            }
+        }
+    }
+
+    /// Takes the page's overrides and step, and rebuilds.
+    pub fn set(&mut self, v: &Value) {
+        if let Some(d) = v["defines"].as_object() {
+            self.overrides = d
+                .iter()
+                .filter_map(|(k, v)| match v {
+                    Value::Number(n) => Some((k.clone(), n.to_string())),
+                    Value::String(s) if !s.trim().is_empty() => Some((k.clone(), s.clone())),
+                    _ => None,
+                })
+                .collect();
+        }
+        match &v["step"] {
+            Value::Number(n) => self.step = n.as_u64().map(|s| s.min(100_000) as u32),
+            Value::Null if v.get("step").is_some() => self.step = None,
+            _ => {}
+        }
+        self.rebuild();
+    }
+
+    pub fn state(&self) -> Value {
+        let defines: Vec<Value> = self
+            .defines
+            .iter()
+            .map(|d| {
+                json!({
+                    "name": d.name,
+                    "value": d.value,
+                    "override": self.overrides.get(&d.name),
+                    "range": d.range.map(|(a, b)| [a, b]),
+                    "integer": d.integer,
+                })
+            })
+            .collect();
+        json!({
+            "mode": "grammar",
+            "file": self.file,
+            "defines": defines,
+            "step": self.step.unwrap_or(self.length),
+            "length": self.length,
+            "diagnostics": self.diagnostics,
+            "current": self.current,
+            "parts": self.model.as_ref().map_or(0, |m| m.parts),
+            "triangles": self.model.as_ref().map_or(0, |m| m.triangles),
+        })
+    }
+}
+
+/// The `#define NAME VALUE` lines of a grammar's text (function-like
+/// macros left out): a number gets a slider from 0 to twice it (around
+/// it when negative; 0..1 for 0).
+pub fn defines_of(text: &str) -> Vec<Define> {
+    let mut out: Vec<Define> = Vec::new();
+    for line in text.lines() {
+        let Some(rest) = line.trim_start().strip_prefix("#define") else {
+            continue;
+        };
+        let rest = rest.trim();
+        let name: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '.')
+            .collect();
+        let after = &rest[name.len()..];
+        if name.is_empty() || after.starts_with('(') {
+            continue;
+        }
+        let value = after.split("//").next().unwrap_or("").trim().to_string();
+        let number = value.parse::<f64>().ok().filter(|v| v.is_finite());
+        let integer = number.is_some() && !value.contains(['.', 'e', 'E']);
+        let range = number.map(|v| match v {
+            v if v > 0.0 => (
+                0.0,
+                if integer {
+                    (2.0 * v).max(v + 5.0)
+                } else {
+                    2.0 * v
+                },
+            ),
+            v if v < 0.0 => (2.0 * v, -2.0 * v),
+            _ => (0.0, if integer { 10.0 } else { 1.0 }),
+        });
+        out.retain(|d| d.name != name);
+        out.push(Define {
+            name,
+            value,
+            range,
+            integer,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defines_become_sliders() {
+        let d = defines_of(
+            "#define N 4\n#define angle 22.5 // degrees\n#define F(x) x\n#define NAME foo\n",
+        );
+        let shown: Vec<String> = d
+            .iter()
+            .map(|d| format!("{} {} {:?} {}", d.name, d.value, d.range, d.integer))
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                "N 4 Some((0.0, 9.0)) true",
+                "angle 22.5 Some((0.0, 45.0)) false",
+                "NAME foo None false"
+            ]
+        );
+    }
+}

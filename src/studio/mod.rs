@@ -1,0 +1,279 @@
+//! `lsys studio`: a local web server for the Pailou editor and the live
+//! grammar preview. Input: a folder (and optionally a `.lsys` or graph
+//! `.toml` in it) and an address; output: the page, a JSON API and GLB
+//! models over HTTP, updates pushed as server-sent events.
+//!
+//! The server is synchronous (tiny_http, one thread per request) like the
+//! rest of the crate. It binds to loopback unless told otherwise, answers
+//! only requests whose `Host`/`Origin` is its own, reads and writes only
+//! inside the opened folder, limits request bodies, and never lets a bad
+//! graph or grammar take it down (docs/studio.md).
+
+mod edit;
+mod grammar;
+mod http;
+mod model;
+mod pailou;
+mod safety;
+
+use std::net::SocketAddr;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::time::{Duration, SystemTime};
+
+pub use edit::EditGraph;
+pub use grammar::{defines_of, Define, GrammarSession};
+pub use model::Model;
+pub use pailou::{PailouSession, DEFAULT_ENTRANCE};
+pub use safety::{confine, ConfineError};
+
+/// What to open and where to listen.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// A `.lsys` file, a graph `.toml` or a folder; `None`: the current
+    /// folder with the default entrance.
+    pub path: Option<PathBuf>,
+    /// The address to bind (loopback unless the user says otherwise).
+    pub bind: std::net::IpAddr,
+    /// 0 picks a free port.
+    pub port: u16,
+    /// The built front end (`web/studio/dist`); `None` looks next to the
+    /// crate's sources, and without one the server's own page says how to
+    /// build it.
+    pub assets: Option<PathBuf>,
+}
+
+/// A running studio.
+pub struct Handle {
+    pub addr: SocketAddr,
+    server: Arc<tiny_http::Server>,
+    shared: Arc<Shared>,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Handle {
+    pub fn url(&self) -> String {
+        format!("http://{}/", self.addr)
+    }
+
+    /// Stops accepting requests and waits for the accept loop to end.
+    pub fn stop(mut self) {
+        self.shutdown();
+    }
+
+    /// Blocks until the server stops (Ctrl-C ends the process).
+    pub fn wait(mut self) {
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+
+    fn shutdown(&mut self) {
+        *lock(&self.shared.stopped) = true;
+        self.shared.changed.notify_all();
+        self.server.unblock();
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}
+
+impl Drop for Handle {
+    fn drop(&mut self) {
+        if self.thread.is_some() {
+            self.shutdown();
+        }
+    }
+}
+
+pub(crate) enum Session {
+    Pailou(pailou::PailouSession),
+    Grammar(grammar::GrammarSession),
+}
+
+/// What every request thread shares.
+pub(crate) struct Shared {
+    /// The opened folder, canonical.
+    pub root: PathBuf,
+    pub assets: Option<PathBuf>,
+    /// `host:port` values the server answers to.
+    pub hosts: Vec<String>,
+    pub session: Mutex<Session>,
+    /// Bumped on every change of the model; waited on by event streams.
+    pub version: Mutex<u64>,
+    pub changed: Condvar,
+    pub stopped: Mutex<bool>,
+}
+
+impl Shared {
+    pub fn bump(&self) {
+        *lock(&self.version) += 1;
+        self.changed.notify_all();
+    }
+}
+
+/// A lock that survives a panic in another request (the session's data
+/// is replaced whole on success, so it is never half-updated).
+pub(crate) fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The front end's build, next to the crate's sources.
+pub fn default_assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("web/studio/dist")
+}
+
+/// Opens `config.path` and starts serving; returns once listening.
+pub fn start(config: Config) -> Result<Handle, String> {
+    let (root, session) = open_path(config.path.as_deref())?;
+    let server = tiny_http::Server::http(SocketAddr::new(config.bind, config.port))
+        .map_err(|e| format!("cannot listen on {}:{}: {e}", config.bind, config.port))?;
+    let addr = server
+        .server_addr()
+        .to_ip()
+        .ok_or("the server has no IP address")?;
+    let port = addr.port();
+    let mut hosts = vec![
+        format!("127.0.0.1:{port}"),
+        format!("localhost:{port}"),
+        format!("[::1]:{port}"),
+    ];
+    hosts.push(match addr.ip() {
+        std::net::IpAddr::V6(ip) => format!("[{ip}]:{port}"),
+        ip => format!("{ip}:{port}"),
+    });
+    let assets = config
+        .assets
+        .or_else(|| Some(default_assets()))
+        .filter(|a| a.join("index.html").is_file());
+    let shared = Arc::new(Shared {
+        root,
+        assets,
+        hosts,
+        session: Mutex::new(session),
+        version: Mutex::new(1),
+        changed: Condvar::new(),
+        stopped: Mutex::new(false),
+    });
+    let server = Arc::new(server);
+    let watcher = shared.clone();
+    std::thread::Builder::new()
+        .name("studio-watch".into())
+        .stack_size(256 << 20)
+        .spawn(move || watch(&watcher))
+        .map_err(|e| e.to_string())?;
+    let (s, sh) = (server.clone(), shared.clone());
+    let thread = std::thread::Builder::new()
+        .name("studio-accept".into())
+        .spawn(move || http::serve(&s, &sh))
+        .map_err(|e| e.to_string())?;
+    Ok(Handle {
+        addr,
+        server,
+        shared,
+        thread: Some(thread),
+    })
+}
+
+/// The folder and first session for a path from the command line.
+fn open_path(path: Option<&Path>) -> Result<(PathBuf, Session), String> {
+    let path = path.unwrap_or(Path::new("."));
+    let full = path
+        .canonicalize()
+        .map_err(|e| format!("cannot open {}: {e}", path.display()))?;
+    if full.is_dir() {
+        let session = Session::Pailou(pailou::PailouSession::open(
+            "default entrance",
+            DEFAULT_ENTRANCE,
+            None,
+        ));
+        return Ok((full, session));
+    }
+    let root = full
+        .parent()
+        .ok_or_else(|| format!("{} has no folder", path.display()))?
+        .to_path_buf();
+    let name = full
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    Ok((root.clone(), open_file(&root, &name)?))
+}
+
+/// A session for `rel` (a graph `.toml` or a grammar), inside `root`.
+pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
+    let full = confine(root, rel).map_err(|e| e.to_string())?;
+    if rel.ends_with(".toml") {
+        let text = std::fs::read_to_string(&full).map_err(|e| format!("cannot read {rel}: {e}"))?;
+        Ok(Session::Pailou(pailou::PailouSession::open(
+            rel,
+            &text,
+            Some(rel.to_string()),
+        )))
+    } else if full.is_file() {
+        Ok(Session::Grammar(grammar::GrammarSession::open(
+            full,
+            rel.to_string(),
+        )))
+    } else {
+        Err(format!(
+            "{rel} is neither a graph (.toml) nor a grammar file"
+        ))
+    }
+}
+
+/// Grammar mode's watcher: polls the modification times of the grammar
+/// files in the opened folder (includes and cpfg side files among them)
+/// and rebuilds when one changes. Polling, not notify: editors save by
+/// rename, and a folder of grammars is small.
+fn watch(shared: &Shared) {
+    let mut last: Vec<(PathBuf, SystemTime)> = Vec::new();
+    loop {
+        std::thread::sleep(Duration::from_millis(150));
+        if *lock(&shared.stopped) {
+            return;
+        }
+        if !matches!(*lock(&shared.session), Session::Grammar(_)) {
+            last.clear();
+            continue;
+        }
+        let now = stamps(&shared.root);
+        if now != last {
+            let first = last.is_empty();
+            last = now;
+            if first {
+                continue;
+            }
+            if let Session::Grammar(g) = &mut *lock(&shared.session) {
+                g.rebuild();
+            }
+            shared.bump();
+        }
+    }
+}
+
+/// (file, modified) of the folder's files, two levels deep, at most 2000.
+fn stamps(root: &Path) -> Vec<(PathBuf, SystemTime)> {
+    let mut out = Vec::new();
+    let mut dirs = vec![(root.to_path_buf(), 0)];
+    while let Some((dir, depth)) = dirs.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            let Ok(meta) = e.metadata() else { continue };
+            if meta.is_dir() {
+                let name = e.file_name();
+                let hidden = name.to_string_lossy().starts_with('.');
+                if depth < 2 && !hidden && name != "node_modules" && name != "target" {
+                    dirs.push((p, depth + 1));
+                }
+            } else if out.len() < 2000 {
+                out.push((p, meta.modified().unwrap_or(SystemTime::UNIX_EPOCH)));
+            }
+        }
+    }
+    out.sort();
+    out
+}

@@ -1,0 +1,290 @@
+//! Pailou mode (the paper's iconized editor, Sec. 4): a component graph
+//! -> edits from the page (add from the palette, remove, duplicate an
+//! entrance set, parameters, type, style) -> each edited graph read by the
+//! CLI's graph reader, built, and checked; an edit whose graph does not
+//! read or build is refused with the diagnostic and the last good graph
+//! and model stay.
+
+use std::collections::BTreeMap;
+
+use serde_json::{json, Value};
+
+use super::edit::EditGraph;
+use super::model::{self, Model};
+use crate::pailou::{self, graph};
+
+pub struct PailouSession {
+    /// The graph file (relative to the opened folder), if one was opened.
+    pub file: Option<String>,
+    pub graph: EditGraph,
+    pub model: Option<Model>,
+    /// Why the opened graph or the last edit was refused.
+    pub error: Option<Value>,
+    pub unplaced: Vec<String>,
+    pub chart: String,
+    /// The emitted grammar of the last good graph.
+    pub lsys: String,
+    /// The build's defines (the graph's, with the Toukung levels passed on).
+    defines: Vec<(String, String)>,
+    pub active: String,
+}
+
+/// The default entrance: a lintel on two pillars (the paper's Fig. 6
+/// starts from it).
+pub const DEFAULT_ENTRANCE: &str = "type = \"ridge\"\ncentre = \"L11\"\n\n[components]\nP1R = \"pillar\"\nL11 = \"lintel\"\nP1L = \"pillar\"\n\n[attach]\nL11 = [\"P1L\", \"P1R\"]\n";
+
+impl PailouSession {
+    /// Opens a graph's text, named `name` in diagnostics; `file` is where
+    /// it is saved back.
+    pub fn open(name: &str, text: &str, file: Option<String>) -> PailouSession {
+        let mut s = PailouSession {
+            file,
+            graph: EditGraph::parse(text).unwrap_or_default(),
+            model: None,
+            error: None,
+            unplaced: Vec::new(),
+            chart: String::new(),
+            lsys: String::new(),
+            defines: Vec::new(),
+            active: String::new(),
+        };
+        s.active = s.graph.centre.clone();
+        if let Err(e) = s.rebuild_from(name, text) {
+            s.error = Some(e);
+        }
+        s
+    }
+
+    /// Reads and builds `text`; on success it becomes the current graph.
+    fn rebuild_from(&mut self, name: &str, text: &str) -> Result<(), Value> {
+        let g = graph::read(name, text, graph::RELATIONS).map_err(|e| model::one_json(&*e))?;
+        let title = format!("graph {name}");
+        let source = pailou::source(&g.layout, &title);
+        let mut defines = g.defines.clone();
+        pailou::toukung_levels(&mut defines);
+        let grammar =
+            model::compile("pailou-graph.lsys", Some(&source), &defines).map_err(|d| first(&d))?;
+        let built =
+            model::build(&grammar, grammar.derivation_length(), true).map_err(|d| first(&d))?;
+        self.model = Some(built);
+        self.unplaced = g.unplaced;
+        self.chart = g.layout.chart();
+        self.lsys = source;
+        self.defines = defines;
+        self.error = None;
+        Ok(())
+    }
+
+    /// Applies one edit from the page. `Err` carries the diagnostic of a
+    /// refused edit (the graph and model are unchanged).
+    pub fn apply(&mut self, edit: &Value) -> Result<(), Value> {
+        let op = edit["op"].as_str().unwrap_or("");
+        let id = edit["id"].as_str().unwrap_or("").to_string();
+        let mut g = self.graph.clone();
+        let refuse = |m: String| json!({"severity": "error", "message": m, "rendered": m, "code": "lsys::studio::edit"});
+        match op {
+            "select" => {
+                if g.kind_of(&id).is_none() {
+                    return Err(refuse(format!("there is no component `{id}`")));
+                }
+                self.active = id;
+                return Ok(());
+            }
+            "move" => {
+                let (Some(x), Some(y)) = (edit["x"].as_f64(), edit["y"].as_f64()) else {
+                    return Err(refuse("a move needs x and y".into()));
+                };
+                if g.kind_of(&id).is_some() {
+                    self.graph.positions.insert(id, (x, y));
+                }
+                return Ok(());
+            }
+            "add" => {
+                let kind = edit["kind"].as_str().unwrap_or("");
+                let allowed = palette(&g, &id);
+                if !allowed.iter().any(|k| k == kind) {
+                    // Made anyway, so that the refusal is the graph
+                    // reader's own diagnostic, as `lsys pailou` gives it.
+                    g.components.push(("NEW".into(), kind.into()));
+                    g.attach.push(("NEW".into(), vec![id.clone()]));
+                } else {
+                    let added = g.add(&id, kind).map_err(refuse)?;
+                    if let Some(first) = added.last() {
+                        self.active = first.clone();
+                    }
+                }
+            }
+            "remove" => {
+                g.remove(&id).map_err(refuse)?;
+            }
+            "duplicate" => {
+                g.duplicate_entrance(&id).map_err(refuse)?;
+            }
+            "define" => {
+                let name = edit["name"].as_str().unwrap_or("");
+                if name.is_empty() {
+                    return Err(refuse("a define needs a name".into()));
+                }
+                let value = match &edit["value"] {
+                    Value::Null => None,
+                    Value::Number(n) if n.is_i64() => {
+                        Some(toml::Value::Integer(n.as_i64().unwrap_or(0)))
+                    }
+                    Value::Number(n) => Some(toml::Value::Float(n.as_f64().unwrap_or(0.0))),
+                    Value::String(s) => Some(toml::Value::String(s.clone())),
+                    _ => return Err(refuse("a define's value is a number or text".into())),
+                };
+                g.set_define(name, value);
+            }
+            "type" => g.kind = edit["value"].as_str().unwrap_or("ridge").to_string(),
+            "style" => {
+                let style = edit["style"].as_str().unwrap_or("");
+                let kind = match edit["type"].as_str().unwrap_or(&g.kind) {
+                    "pillar" => pailou::PailouType::Pillar,
+                    _ => pailou::PailouType::Ridge,
+                };
+                let layout = pailou::style_layout(style, kind)
+                    .map_err(|e| refuse(format!("the style {style}: {e}")))?;
+                let defines = std::mem::take(&mut g.defines);
+                g = EditGraph::parse(&graph::emit(&layout, kind, style)).map_err(refuse)?;
+                g.defines = defines;
+            }
+            _ => return Err(refuse(format!("unknown edit `{op}`"))),
+        }
+        let text = g.to_toml();
+        let name = self.file.clone().unwrap_or_else(|| "graph.toml".into());
+        self.rebuild_from(&name, &text)?;
+        if g.kind_of(&self.active).is_none() {
+            self.active = g.centre.clone();
+        }
+        self.graph = g;
+        Ok(())
+    }
+
+    /// The state the page draws.
+    pub fn state(&self) -> Value {
+        let pos = positions(&self.graph);
+        let components: Vec<Value> = self
+            .graph
+            .components
+            .iter()
+            .map(|(id, kind)| {
+                let (x, y) = pos.get(id).copied().unwrap_or((0.0, 0.0));
+                json!({"id": id, "kind": kind, "on": self.graph.on(id), "x": x, "y": y})
+            })
+            .collect();
+        let defines: BTreeMap<&str, &toml::Value> = self
+            .graph
+            .defines
+            .iter()
+            .map(|(k, v)| (k.as_str(), v))
+            .collect();
+        json!({
+            "mode": "pailou",
+            "file": self.file,
+            "type": self.graph.kind,
+            "centre": self.graph.centre,
+            "active": self.active,
+            "palette": palette(&self.graph, &self.active),
+            "components": components,
+            "defines": serde_json::to_value(defines).unwrap_or_default(),
+            "build_defines": self.defines,
+            "chart": self.chart,
+            "unplaced": self.unplaced,
+            "error": self.error,
+            "problems": self.model.as_ref().map(|m| m.problems.clone()).unwrap_or_default(),
+            "parts": self.model.as_ref().map_or(0, |m| m.parts),
+            "triangles": self.model.as_ref().map_or(0, |m| m.triangles),
+            "toml": self.graph.to_toml(),
+        })
+    }
+}
+
+fn first(d: &crate::diag::Diagnostics) -> Value {
+    model::diagnostics_json(d)
+        .into_iter()
+        .next()
+        .unwrap_or_else(|| json!({"message": d.to_string(), "rendered": d.to_string()}))
+}
+
+/// The kinds the relation matrix lets attach to `id` (graph kinds only).
+pub fn palette(g: &EditGraph, id: &str) -> Vec<String> {
+    let matrix: BTreeMap<String, Vec<String>> =
+        toml::from_str(graph::RELATIONS).unwrap_or_default();
+    let kind = g.kind_of(id).unwrap_or("");
+    matrix
+        .get(kind)
+        .map(|v| {
+            v.iter()
+                .filter(|k| graph::KINDS_OF_COMPONENT.contains(&k.as_str()))
+                .cloned()
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Where each icon is drawn: dragged ones where they were left; ground
+/// pillars in a row by their entrance; everything else above (resting on)
+/// or below (hanging from) what it attaches to, siblings side by side.
+fn positions(g: &EditGraph) -> BTreeMap<String, (f64, f64)> {
+    const GROUND: f64 = 460.0;
+    let mut at: BTreeMap<String, (f64, f64)> = BTreeMap::new();
+    for (chain, sign) in g.chains().iter().zip([1.0, -1.0]) {
+        for (k, (_, pillar)) in chain.iter().enumerate() {
+            at.insert(pillar.clone(), (sign * (110.0 + 220.0 * k as f64), GROUND));
+        }
+    }
+    let hangs = |k: &str| {
+        matches!(
+            k,
+            "queti" | "yundan" | "flower_board" | "inscribed_board" | "pillar_base"
+        )
+    };
+    loop {
+        // Ready: every target placed. Grouped by (targets, direction).
+        let mut groups: BTreeMap<(Vec<String>, bool), Vec<String>> = BTreeMap::new();
+        for (id, kind) in &g.components {
+            if at.contains_key(id) {
+                continue;
+            }
+            let on = g.on(id);
+            if !on.is_empty() && on.iter().all(|t| at.contains_key(t)) {
+                groups
+                    .entry((on.to_vec(), hangs(kind)))
+                    .or_default()
+                    .push(id.clone());
+            }
+        }
+        if groups.is_empty() {
+            break;
+        }
+        for ((on, down), ids) in groups {
+            let xs: Vec<f64> = on.iter().map(|t| at[t].0).collect();
+            let ys = on.iter().map(|t| at[t].1);
+            let x = xs.iter().sum::<f64>() / xs.len() as f64;
+            let y = if down {
+                ys.fold(f64::MIN, f64::max) + 70.0
+            } else {
+                ys.fold(f64::MAX, f64::min) - 90.0
+            };
+            let n = ids.len() as f64;
+            for (i, id) in ids.into_iter().enumerate() {
+                at.insert(id, (x + (i as f64 - (n - 1.0) / 2.0) * 62.0, y));
+            }
+        }
+    }
+    // Attached to nothing (or to a cycle): a row at the bottom.
+    let mut x = -300.0;
+    for (id, _) in &g.components {
+        at.entry(id.clone()).or_insert_with(|| {
+            x += 70.0;
+            (x, GROUND + 200.0)
+        });
+    }
+    for (id, p) in &g.positions {
+        if at.contains_key(id) {
+            at.insert(id.clone(), *p);
+        }
+    }
+    at
+}

@@ -1,0 +1,314 @@
+//! Primitives fitted to a scope (`@Block`, `@Cyl`, `@Prism`) and the
+//! constraint rule "a hole that intersects a block cuts an opening in it"
+//! (`@Hole`). Input: the solids and holes the turtle met, each with its
+//! scope; output: polygons for the drawing and one line per cut made.
+//!
+//! The cut is exact at face level for boxes, not a general mesh boolean:
+//! a hole cuts a block when their scopes have parallel axes; the opening
+//! goes through the block along its z axis (its thickness), over the part
+//! of the hole's x–y rectangle that lies on the block. The block's front
+//! and back faces are then tiled by the grid of every opening's edges,
+//! leaving out the cells inside an opening, and each opening gets its four
+//! reveal faces. Holes at an angle to the block are reported, not cut.
+
+use glam::{DVec3, Vec3};
+
+use super::drawing::Polygon;
+use super::frame::Frame;
+use super::scope::{axes, num};
+use crate::lang::scope_commands::Primitive;
+
+/// A primitive or a hole with its scope.
+#[derive(Clone, Copy, Debug)]
+pub struct Solid {
+    pub kind: Primitive,
+    pub frame: Frame,
+    pub size: DVec3,
+    pub colour: u32,
+    /// Sides of a cylinder.
+    pub sides: usize,
+    /// Index of the module in the string (1-based in reports).
+    pub module: usize,
+    /// Order drawn: a hole cuts only the blocks drawn before it (the
+    /// existing scene, as seed 004's T(s, o) tests a new object o against
+    /// the scene s), never the window frame drawn after it.
+    pub seq: usize,
+    /// `@Snap(d)` in force when it was drawn.
+    pub snap: f64,
+}
+
+/// An opening in a block, in the block's x–y coordinates.
+#[derive(Clone, Copy, Debug)]
+struct Opening {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+const EPS: f64 = 1e-7;
+
+/// Draws `solids` into polygons, cutting each `holes` opening into the
+/// blocks it intersects; returns the polygons and the report lines.
+pub fn build(solids: &[Solid], holes: &[Solid]) -> (Vec<Polygon>, Vec<String>) {
+    let mut polys = Vec::new();
+    let mut report = Vec::new();
+    let solids = super::snap::snap(solids, &mut report);
+    for s in &solids {
+        // A flat scope (a face) has no room for a cylinder or a prism.
+        let flat = s.size.z <= 0.0 && s.kind != Primitive::Block;
+        if s.size.x <= 0.0 || s.size.y <= 0.0 || flat {
+            continue;
+        }
+        match s.kind {
+            Primitive::Block => {
+                let openings = openings(s, holes, &mut report);
+                block(s, &openings, &mut polys);
+            }
+            Primitive::Cylinder => cylinder(s, &mut polys),
+            Primitive::Prism => prism(s, &mut polys),
+        }
+    }
+    (polys, report)
+}
+
+/// The name `--stats` counts a primitive under.
+pub fn kind_name(k: Primitive) -> &'static str {
+    match k {
+        Primitive::Block => "block",
+        Primitive::Cylinder => "cylinder",
+        Primitive::Prism => "prism",
+    }
+}
+
+/// The openings that `holes` cut in block `b`, with a report line each.
+fn openings(b: &Solid, holes: &[Solid], report: &mut Vec<String>) -> Vec<Opening> {
+    let [bx, by, bz] = axes(&b.frame);
+    let mut out = Vec::new();
+    for h in holes.iter().filter(|h| h.seq > b.seq) {
+        let [hx, hy, hz] = axes(&h.frame);
+        // The hole's corners in the block's coordinates.
+        let local = |p: DVec3| {
+            let d = p - b.frame.pos;
+            DVec3::new(d.dot(bx), d.dot(by), d.dot(bz))
+        };
+        let corners: Vec<DVec3> = (0..8)
+            .map(|k| {
+                let c = DVec3::new(
+                    if k & 1 == 0 { 0.0 } else { h.size.x },
+                    if k & 2 == 0 { 0.0 } else { h.size.y },
+                    if k & 4 == 0 { 0.0 } else { h.size.z },
+                );
+                local(h.frame.pos + hx * c.x + hy * c.y + hz * c.z)
+            })
+            .collect();
+        let lo = corners.iter().fold(DVec3::INFINITY, |a, c| a.min(*c));
+        let hi = corners.iter().fold(DVec3::NEG_INFINITY, |a, c| a.max(*c));
+        let overlap = (0..3).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS)
+            || (h.size.z == 0.0
+                && lo.z >= -EPS
+                && hi.z <= b.size.z + EPS
+                && (0..2).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS));
+        if !overlap {
+            continue;
+        }
+        let parallel = [hx, hy, hz]
+            .iter()
+            .all(|a| [bx, by, bz].iter().any(|c| a.dot(*c).abs() > 1.0 - 1e-6));
+        if !parallel {
+            report.push(format!(
+                "hole (module {}) meets block (module {}) at an angle: not cut (only holes parallel to the block are)",
+                h.module + 1,
+                b.module + 1
+            ));
+            continue;
+        }
+        let o = Opening {
+            x0: lo.x.max(0.0),
+            x1: hi.x.min(b.size.x),
+            y0: lo.y.max(0.0),
+            y1: hi.y.min(b.size.y),
+        };
+        let at = h.frame.pos;
+        report.push(format!(
+            "hole (module {}, at {}, {}, {}) intersects block (module {}): cut an opening {} x {} at ({}, {}) of its face, through its depth {}",
+            h.module + 1,
+            num(at.x),
+            num(at.y),
+            num(at.z),
+            b.module + 1,
+            num(o.x1 - o.x0),
+            num(o.y1 - o.y0),
+            num(o.x0),
+            num(o.y0),
+            num(b.size.z)
+        ));
+        out.push(o);
+    }
+    out
+}
+
+fn push(polys: &mut Vec<Polygon>, colour: u32, pts: &[DVec3]) {
+    polys.push(Polygon {
+        colour,
+        points: pts.iter().map(|p| p.as_vec3()).collect::<Vec<Vec3>>(),
+    });
+}
+
+/// A box, its front (z = sz) and back (z = 0) faces tiled around openings.
+fn block(s: &Solid, openings: &[Opening], polys: &mut Vec<Polygon>) {
+    let [x, y, z] = axes(&s.frame);
+    let (sx, sy, sz) = (s.size.x, s.size.y, s.size.z);
+    let p = |a: f64, b: f64, c: f64| s.frame.pos + x * a + y * b + z * c;
+    let c = s.colour;
+    let flat = sz.abs() < EPS;
+    // Sides: left, right, bottom, top (whole; openings go through z).
+    if !flat {
+        push(
+            polys,
+            c,
+            &[p(0., 0., 0.), p(0., 0., sz), p(0., sy, sz), p(0., sy, 0.)],
+        );
+        push(
+            polys,
+            c,
+            &[p(sx, 0., 0.), p(sx, sy, 0.), p(sx, sy, sz), p(sx, 0., sz)],
+        );
+        push(
+            polys,
+            c,
+            &[p(0., 0., 0.), p(sx, 0., 0.), p(sx, 0., sz), p(0., 0., sz)],
+        );
+        push(
+            polys,
+            c,
+            &[p(0., sy, 0.), p(0., sy, sz), p(sx, sy, sz), p(sx, sy, 0.)],
+        );
+    }
+    // The grid of opening edges over the x–y face.
+    let mut xs = vec![0.0, sx];
+    let mut ys = vec![0.0, sy];
+    for o in openings {
+        xs.extend([o.x0, o.x1]);
+        ys.extend([o.y0, o.y1]);
+    }
+    for v in [&mut xs, &mut ys] {
+        v.sort_by(f64::total_cmp);
+        v.dedup_by(|a, b| (*a - *b).abs() < EPS);
+    }
+    for i in 0..xs.len() - 1 {
+        for j in 0..ys.len() - 1 {
+            let (mx, my) = ((xs[i] + xs[i + 1]) / 2.0, (ys[j] + ys[j + 1]) / 2.0);
+            if openings
+                .iter()
+                .any(|o| mx > o.x0 && mx < o.x1 && my > o.y0 && my < o.y1)
+            {
+                continue;
+            }
+            let (a, b, d, e) = (xs[i], xs[i + 1], ys[j], ys[j + 1]);
+            push(
+                polys,
+                c,
+                &[p(a, d, sz), p(b, d, sz), p(b, e, sz), p(a, e, sz)],
+            );
+            if !flat {
+                push(
+                    polys,
+                    c,
+                    &[p(a, d, 0.), p(a, e, 0.), p(b, e, 0.), p(b, d, 0.)],
+                );
+            }
+        }
+    }
+    // Reveals: the opening's four inner faces.
+    if !flat {
+        for o in openings {
+            let (a, b, d, e) = (o.x0, o.x1, o.y0, o.y1);
+            push(
+                polys,
+                c,
+                &[p(a, d, 0.), p(b, d, 0.), p(b, d, sz), p(a, d, sz)],
+            );
+            push(
+                polys,
+                c,
+                &[p(a, e, 0.), p(a, e, sz), p(b, e, sz), p(b, e, 0.)],
+            );
+            push(
+                polys,
+                c,
+                &[p(a, d, 0.), p(a, d, sz), p(a, e, sz), p(a, e, 0.)],
+            );
+            push(
+                polys,
+                c,
+                &[p(b, d, 0.), p(b, e, 0.), p(b, e, sz), p(b, d, sz)],
+            );
+        }
+    }
+}
+
+/// An upright cylinder inscribed in the scope (elliptic if sx ≠ sz).
+fn cylinder(s: &Solid, polys: &mut Vec<Polygon>) {
+    let [x, y, z] = axes(&s.frame);
+    let n = s.sides.max(3);
+    let centre = s.frame.pos + x * (s.size.x / 2.0) + z * (s.size.z / 2.0);
+    let ring: Vec<DVec3> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            centre + x * (t.cos() * s.size.x / 2.0) - z * (t.sin() * s.size.z / 2.0)
+        })
+        .collect();
+    let top = y * s.size.y;
+    for k in 0..n {
+        let (a, b) = (ring[k], ring[(k + 1) % n]);
+        push(polys, s.colour, &[a, b, b + top, a + top]);
+    }
+    let mut cap: Vec<DVec3> = ring.iter().map(|p| *p + top).collect();
+    push(polys, s.colour, &cap);
+    cap = ring.iter().rev().copied().collect();
+    push(polys, s.colour, &cap);
+}
+
+/// A gable prism: the ridge runs along x at the top middle of z.
+fn prism(s: &Solid, polys: &mut Vec<Polygon>) {
+    let [x, y, z] = axes(&s.frame);
+    let (sx, sy, sz) = (s.size.x, s.size.y, s.size.z);
+    let p = |a: f64, b: f64, c: f64| s.frame.pos + x * a + y * b + z * c;
+    let c = s.colour;
+    push(
+        polys,
+        c,
+        &[
+            p(0., 0., sz),
+            p(sx, 0., sz),
+            p(sx, sy, sz / 2.),
+            p(0., sy, sz / 2.),
+        ],
+    );
+    push(
+        polys,
+        c,
+        &[
+            p(sx, 0., 0.),
+            p(0., 0., 0.),
+            p(0., sy, sz / 2.),
+            p(sx, sy, sz / 2.),
+        ],
+    );
+    push(
+        polys,
+        c,
+        &[p(0., 0., 0.), p(0., 0., sz), p(0., sy, sz / 2.)],
+    );
+    push(
+        polys,
+        c,
+        &[p(sx, 0., sz), p(sx, 0., 0.), p(sx, sy, sz / 2.)],
+    );
+    push(
+        polys,
+        c,
+        &[p(0., 0., 0.), p(sx, 0., 0.), p(sx, 0., sz), p(0., 0., sz)],
+    );
+}

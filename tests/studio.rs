@@ -1,0 +1,376 @@
+//! `lsys studio`'s server without a browser: the JSON API (edits, palette,
+//! save and reopen, grammar mode) and its safety rules (paths confined to
+//! the folder, Host/Origin checks, body limit, bad input never crashes).
+#![cfg(feature = "studio")]
+
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::path::Path;
+
+use lsys::studio::{start, Config, Handle};
+use serde_json::{json, Value};
+
+fn studio(path: &Path) -> Handle {
+    start(Config {
+        path: Some(path.to_path_buf()),
+        bind: "127.0.0.1".parse().unwrap(),
+        port: 0,
+        assets: Some(path.join("no-assets")),
+    })
+    .expect("the studio starts")
+}
+
+/// One request (HTTP/1.1, closed after); returns (status, body).
+fn request(
+    h: &Handle,
+    method: &str,
+    path: &str,
+    headers: &[(&str, &str)],
+    body: &[u8],
+) -> (u16, Vec<u8>) {
+    let mut s = TcpStream::connect(h.addr).unwrap();
+    let host = format!("127.0.0.1:{}", h.addr.port());
+    let mut head = format!(
+        "{method} {path} HTTP/1.1\r\nConnection: close\r\nContent-Length: {}\r\n",
+        body.len()
+    );
+    if !headers.iter().any(|(k, _)| *k == "Host") {
+        head += &format!("Host: {host}\r\n");
+    }
+    for (k, v) in headers {
+        head += &format!("{k}: {v}\r\n");
+    }
+    head += "\r\n";
+    s.write_all(head.as_bytes()).unwrap();
+    let _ = s.write_all(body);
+    let mut out = Vec::new();
+    let _ = s.read_to_end(&mut out);
+    let split = out
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("a response head");
+    let status = std::str::from_utf8(&out[9..12]).unwrap().parse().unwrap();
+    let head = String::from_utf8_lossy(&out[..split]).to_ascii_lowercase();
+    let body = &out[split + 4..];
+    if !head.contains("transfer-encoding: chunked") {
+        return (status, body.to_vec());
+    }
+    // Chunked (tiny_http sends large bodies so): size line, data, CRLF.
+    let (mut plain, mut rest) = (Vec::new(), body);
+    while let Some(eol) = rest.windows(2).position(|w| w == b"\r\n") {
+        let size =
+            usize::from_str_radix(std::str::from_utf8(&rest[..eol]).unwrap().trim(), 16).unwrap();
+        if size == 0 {
+            break;
+        }
+        plain.extend_from_slice(&rest[eol + 2..eol + 2 + size]);
+        rest = &rest[eol + 4 + size..];
+    }
+    (status, plain)
+}
+
+fn get(h: &Handle, path: &str) -> (u16, Value) {
+    let (s, b) = request(h, "GET", path, &[], b"");
+    (s, serde_json::from_slice(&b).unwrap_or(Value::Null))
+}
+
+fn post(h: &Handle, path: &str, v: Value) -> (u16, Value) {
+    let (s, b) = request(
+        h,
+        "POST",
+        path,
+        &[("Content-Type", "application/json")],
+        v.to_string().as_bytes(),
+    );
+    (
+        s,
+        serde_json::from_slice(&b).unwrap_or_else(|_| json!(String::from_utf8_lossy(&b))),
+    )
+}
+
+#[test]
+fn clicks_build_a_2_1_1_pailou_and_save_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    let (_, s) = get(&h, "/api/state");
+    assert_eq!(s["mode"], "pailou");
+    assert_eq!(s["active"], "L11");
+    let parts0 = s["parts"].as_u64().unwrap();
+    let (_, p) = get(&h, "/api/palette?id=L11");
+    assert_eq!(
+        p["kinds"],
+        json!([
+            "middle_toukung",
+            "side_toukung",
+            "flower_board",
+            "queti",
+            "suspended_pillar",
+            "inscribed_board",
+            "eaves_roof",
+            "clipped_roof"
+        ])
+    );
+    let (code, r) = post(
+        &h,
+        "/api/edit",
+        json!({"op": "add", "id": "L11", "kind": "flower_board"}),
+    );
+    assert_eq!(code, 200, "{r}");
+    assert!(r["state"]["parts"].as_u64().unwrap() > parts0);
+    for (id, kind) in [
+        ("L11", "middle_toukung"),
+        ("TMn1", "eaves_roof"),
+        ("L11", "side_toukung"),
+        ("L11", "queti"),
+        ("Qn1", "yundan"),
+        ("L11", "inscribed_board"),
+        ("P1R", "pillar_base"),
+    ] {
+        let (code, r) = post(
+            &h,
+            "/api/edit",
+            json!({"op": "add", "id": id, "kind": kind}),
+        );
+        assert_eq!(code, 200, "{id} + {kind}: {r}");
+    }
+    let (_, s) = get(&h, "/api/state");
+    assert_eq!(s["problems"], json!([]));
+    assert_eq!(s["unplaced"], json!([]));
+    insta::assert_snapshot!("studio_2_1_1_graph", s["toml"].as_str().unwrap());
+    insta::assert_snapshot!("studio_2_1_1_chart", s["chart"].as_str().unwrap());
+    // The saved graph is one `lsys pailou` reads, and it reopens alike.
+    let (code, r) = post(&h, "/api/save", json!({"path": "fig6.toml"}));
+    assert_eq!(code, 200, "{r}");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["pailou", "fig6.toml", "--chart"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        String::from_utf8_lossy(&out.stdout),
+        s["chart"].as_str().unwrap()
+    );
+    let (code, r) = post(&h, "/api/open", json!({"path": "fig6.toml"}));
+    assert_eq!(code, 200, "{r}");
+    assert_eq!(r["parts"], s["parts"]);
+    assert_eq!(r["file"], "fig6.toml");
+    let (code, glb) = request(&h, "GET", "/api/model.glb", &[], b"");
+    assert_eq!((code, &glb[..4]), (200, &b"glTF"[..]));
+    h.stop();
+}
+
+#[test]
+fn duplicating_the_centre_adds_an_entrance_each_side() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    post(
+        &h,
+        "/api/edit",
+        json!({"op": "add", "id": "L11", "kind": "flower_board"}),
+    );
+    let (code, r) = post(&h, "/api/edit", json!({"op": "duplicate", "id": "L11"}));
+    assert_eq!(code, 200, "{r}");
+    let chart = r["state"]["chart"].as_str().unwrap();
+    assert!(chart.starts_with("level 1  [G21 ][G11 ][G21 ]"), "{chart}");
+    // Removing one side's copy removes its mirror too: back to one entrance.
+    let (code, r) = post(&h, "/api/edit", json!({"op": "remove", "id": "Pn1R"}));
+    assert_eq!(code, 200, "{r}");
+    assert!(r["state"]["chart"]
+        .as_str()
+        .unwrap()
+        .starts_with("level 1  [G11 ]"));
+    h.stop();
+}
+
+/// The studio refuses an illegal attachment with the CLI's own words.
+#[test]
+fn illegal_attachment_diagnostic_is_the_clis() {
+    let dir = tempfile::tempdir().unwrap();
+    let graph = "centre = \"L11\"\n[components]\nL11 = \"lintel\"\nP1R = \"pillar\"\nP1L = \"pillar\"\nIB = \"inscribed_board\"\n[attach]\nL11 = [\"P1R\", \"P1L\"]\nIB = [\"P1R\"]\n";
+    std::fs::write(dir.path().join("bad.toml"), graph).unwrap();
+    let h = studio(&dir.path().join("bad.toml"));
+    let (_, s) = get(&h, "/api/state");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["--color", "never", "pailou", "bad.toml", "-o", "x.glb"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(65));
+    assert_eq!(
+        s["error"]["rendered"].as_str().unwrap(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(s["error"]["code"], "lsys::pailou::graph");
+    assert_eq!(
+        (s["error"]["line"].as_u64(), s["error"]["col"].as_u64()),
+        (Some(9), Some(7))
+    );
+    // An edit through the API is refused the same way, and nothing changes.
+    let h2 = studio(dir.path());
+    let (code, r) = post(
+        &h2,
+        "/api/edit",
+        json!({"op": "add", "id": "P1R", "kind": "inscribed_board"}),
+    );
+    assert_eq!(code, 422);
+    assert!(r["refused"]["message"]
+        .as_str()
+        .unwrap()
+        .contains("(inscribed_board) cannot attach to `P1R` (pillar)"));
+    assert_eq!(r["state"]["components"].as_array().unwrap().len(), 3);
+    h.stop();
+    h2.stop();
+}
+
+#[test]
+fn paths_stay_inside_the_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let inside = dir.path().join("open");
+    std::fs::create_dir(&inside).unwrap();
+    let outside = dir.path().join("secret");
+    std::fs::create_dir(&outside).unwrap();
+    std::fs::write(outside.join("g.toml"), lsys::studio::DEFAULT_ENTRANCE).unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(&outside, inside.join("link")).unwrap();
+    let h = studio(&inside);
+    let abs = outside.join("x.toml").display().to_string();
+    for p in [
+        "../secret/x.toml",
+        abs.as_str(),
+        "link/x.toml",
+        "",
+        "a/../../x.toml",
+    ] {
+        let (code, r) = post(&h, "/api/save", json!({"path": p}));
+        assert_eq!(code, 403, "save {p}: {r}");
+    }
+    for p in ["../secret/g.toml", "link/g.toml", "/etc/passwd"] {
+        let (code, r) = post(&h, "/api/open", json!({"path": p}));
+        assert_eq!(code, 403, "open {p}: {r}");
+    }
+    assert!(!outside.join("x.toml").exists());
+    let (code, _) = request(&h, "GET", "/assets/../../Cargo.toml", &[], b"");
+    assert!(code == 403 || code == 404, "{code}");
+    let (code, r) = post(&h, "/api/save", json!({"path": "mine.toml"}));
+    assert_eq!(code, 200, "{r}");
+    assert!(inside.join("mine.toml").is_file());
+    h.stop();
+}
+
+#[test]
+fn foreign_hosts_origins_and_big_bodies_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    let (code, _) = request(
+        &h,
+        "GET",
+        "/api/state",
+        &[("Host", "attacker.example:80")],
+        b"",
+    );
+    assert_eq!(code, 403);
+    let own = format!("http://127.0.0.1:{}", h.addr.port());
+    let (code, _) = request(&h, "GET", "/api/state", &[("Origin", own.as_str())], b"");
+    assert_eq!(code, 200);
+    let (code, _) = request(
+        &h,
+        "POST",
+        "/api/edit",
+        &[("Origin", "http://attacker.example")],
+        b"{}",
+    );
+    assert_eq!(code, 403);
+    let big = vec![b' '; (1 << 20) + 10];
+    let (code, _) = request(&h, "POST", "/api/edit", &[], &big);
+    assert_eq!(code, 413);
+    // Not JSON, unknown edits, unknown ids: answered, never a crash.
+    let (code, _) = request(&h, "POST", "/api/edit", &[], b"{not json");
+    assert_eq!(code, 400);
+    assert_eq!(post(&h, "/api/edit", json!({"op": "explode"})).0, 422);
+    assert_eq!(
+        post(&h, "/api/edit", json!({"op": "remove", "id": "nope"})).0,
+        422
+    );
+    assert_eq!(get(&h, "/api/state").0, 200);
+    // The page without a built front end says how to build it.
+    let (code, page) = request(&h, "GET", "/", &[], b"");
+    assert_eq!(code, 200);
+    assert!(String::from_utf8_lossy(&page).contains("npm ci &amp;&amp; npm run build"));
+    h.stop();
+}
+
+#[test]
+fn grammar_mode_keeps_the_last_good_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("bush.lsys");
+    std::fs::write(&g, "#define N 2\n#define ANGLE 25.7\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n").unwrap();
+    let h = studio(&g);
+    let (_, s) = get(&h, "/api/state");
+    assert_eq!(s["mode"], "grammar");
+    assert_eq!(
+        (s["step"].as_u64(), s["length"].as_u64()),
+        (Some(2), Some(2))
+    );
+    assert_eq!(
+        s["defines"][0],
+        json!({"name": "N", "value": "2", "override": null, "range": [0.0, 7.0], "integer": true})
+    );
+    let t2 = s["triangles"].as_u64().unwrap();
+    let (_, s) = post(&h, "/api/grammar", json!({"defines": {"N": 3}}));
+    let t3 = s["triangles"].as_u64().unwrap();
+    assert!(t3 > t2, "{t2} -> {t3}");
+    let (_, s) = post(&h, "/api/grammar", json!({"step": 1}));
+    assert!(s["triangles"].as_u64().unwrap() < t2);
+    // A syntax error: a diagnostic with its place and code, the model kept.
+    std::fs::write(
+        &g,
+        "#define N 2\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F(\n",
+    )
+    .unwrap();
+    let (_, s) = post(&h, "/api/grammar", json!({"step": null}));
+    let d = &s["diagnostics"][0];
+    assert_eq!(d["severity"], "error");
+    assert!(d["file"].as_str().unwrap().ends_with("bush.lsys"), "{d}");
+    assert_eq!(d["line"], 4);
+    assert!(d["code"].as_str().unwrap().starts_with("lsys::"), "{d}");
+    assert_eq!(s["current"], false);
+    assert!(s["triangles"].as_u64().unwrap() > 0);
+    h.stop();
+}
+
+/// The studio saves what it opened: every example graph, parsed by the
+/// editor and written again, reads back to the same layout and defines.
+#[test]
+fn example_graphs_survive_the_editor() {
+    use lsys::pailou::graph::{read, RELATIONS};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pailou");
+    let mut n = 0;
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        let p = e.path();
+        if p.extension().is_none_or(|x| x != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let g = lsys::studio::EditGraph::parse(&text).unwrap();
+        let again = g.to_toml();
+        let (a, b) = (
+            read("a", &text, RELATIONS).unwrap(),
+            read("b", &again, RELATIONS).unwrap(),
+        );
+        assert_eq!(a.layout, b.layout, "{}", p.display());
+        assert_eq!(a.defines, b.defines, "{}", p.display());
+        assert_eq!(
+            lsys::studio::EditGraph::parse(&again).unwrap(),
+            g,
+            "{}",
+            p.display()
+        );
+        n += 1;
+    }
+    assert!(n >= 15, "{n} graphs");
+}

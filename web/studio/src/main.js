@@ -1,0 +1,334 @@
+// lsys studio's page: the component graph (SVG icons), the palette and
+// parameters from the server's state, and a three.js view of the GLB the
+// server builds. Every change goes to the server; the server's state is
+// drawn again (docs/studio.md).
+import * as THREE from "three";
+import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { icon } from "./icons.js";
+
+const $ = (id) => document.getElementById(id);
+const NS = "http://www.w3.org/2000/svg";
+// What the browser tests read.
+const studio = (window.studio = { parts: 0, version: 0, loads: 0, state: null, refused: null });
+
+async function api(path, body) {
+  const r = await fetch(path, body === undefined ? {} : {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify(body),
+  });
+  const type = r.headers.get("Content-Type") || "";
+  const data = type.includes("json") ? await r.json() : await r.text();
+  return { status: r.status, data };
+}
+
+// ---- 3D view ------------------------------------------------------------
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+$("canvas").appendChild(renderer.domElement);
+const scene3 = new THREE.Scene();
+scene3.background = new THREE.Color(0xe9eef2);
+scene3.add(new THREE.HemisphereLight(0xffffff, 0x8a7f70, 1.6));
+const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+sun.position.set(3, 6, 4);
+scene3.add(sun);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 10000);
+camera.position.set(8, 6, 12);
+const controls = new OrbitControls(camera, renderer.domElement);
+let model = null;
+let fitted = false;
+let bounds = new THREE.Box3(new THREE.Vector3(-1, 0, -1), new THREE.Vector3(1, 2, 1));
+
+function resize() {
+  const el = $("canvas");
+  const w = el.clientWidth || 400, h = el.clientHeight || 300;
+  renderer.setSize(w, h);
+  camera.aspect = w / h;
+  camera.updateProjectionMatrix();
+}
+window.addEventListener("resize", () => { resize(); render(); });
+// Drawn on demand (a camera move, a new model), not every frame: a big
+// Pailou is hundreds of thousands of triangles, and a browser without a
+// GPU would spend all its time redrawing an unchanged picture.
+let queued = false;
+function render() {
+  if (queued) return;
+  queued = true;
+  requestAnimationFrame(() => { queued = false; renderer.render(scene3, camera); });
+}
+controls.addEventListener("change", render);
+
+function view(name) {
+  const c = bounds.getCenter(new THREE.Vector3());
+  const r = bounds.getSize(new THREE.Vector3()).length() * 0.5 || 1;
+  const d = r / Math.sin((camera.fov * Math.PI) / 360) * 1.05;
+  const dir = { front: [0, 0, 1], side: [1, 0, 0], top: [0, 1, 0.0001], iso: [1, 0.8, 1] }[name];
+  const v = new THREE.Vector3(...dir).normalize().multiplyScalar(d);
+  camera.position.copy(c).add(v);
+  camera.near = d / 100; camera.far = d * 100;
+  camera.updateProjectionMatrix();
+  controls.target.copy(c);
+  controls.update();
+  render();
+}
+document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => view(b.dataset.view)));
+
+const loader = new GLTFLoader();
+async function loadModel(problemParts) {
+  const r = await fetch("/api/model.glb?v=" + studio.version);
+  if (!r.ok) return;
+  const buf = await r.arrayBuffer();
+  const gltf = await loader.parseAsync(buf, "");
+  if (model) scene3.remove(model);
+  model = gltf.scene;
+  let meshes = 0;
+  const warn = new Set(problemParts);
+  model.traverse((o) => {
+    if (!o.isMesh) return;
+    meshes++;
+    let p = o, hit = false;
+    while (p) { if (warn.has(p.name)) hit = true; p = p.parent; }
+    if (hit) {
+      o.material = o.material.clone();
+      o.material.color = new THREE.Color(0xff2020);
+      o.material.emissive = new THREE.Color(0x660000);
+    }
+  });
+  scene3.add(model);
+  bounds = new THREE.Box3().setFromObject(model);
+  studio.parts = meshes;
+  studio.loads++;
+  $("parts").textContent = `${meshes} drawn parts`;
+  $("parts").dataset.parts = meshes;
+  resize();
+  if (!fitted) { view("iso"); fitted = true; }  // later loads keep the camera
+  render();
+}
+
+// ---- Pailou mode ----------------------------------------------------------
+let dragging = null;
+// Edits in flight: their own answer redraws, so pushed updates wait.
+let pending = 0;
+function drawGraph(s) {
+  const svg = $("graph");
+  svg.replaceChildren();
+  const at = Object.fromEntries(s.components.map((c) => [c.id, c]));
+  const xs = s.components.map((c) => c.x), ys = s.components.map((c) => c.y);
+  const pad = 50;
+  const minx = Math.min(...xs, -200) - pad, maxx = Math.max(...xs, 200) + pad;
+  const miny = Math.min(...ys, 200) - pad, maxy = Math.max(...ys, 460) + pad;
+  svg.setAttribute("viewBox", `${minx} ${miny} ${maxx - minx} ${maxy - miny}`);
+  const warned = new Set(s.problems.flatMap((p) => p.parts.map((n) => n.split("#")[0])));
+  for (const c of s.components)
+    for (const t of c.on) {
+      if (!at[t]) continue;
+      const l = document.createElementNS(NS, "line");
+      l.setAttribute("class", "edge");
+      l.setAttribute("x1", c.x); l.setAttribute("y1", c.y);
+      l.setAttribute("x2", at[t].x); l.setAttribute("y2", at[t].y);
+      l.dataset.from = c.id; l.dataset.to = t;
+      svg.appendChild(l);
+    }
+  for (const c of s.components) {
+    const g = document.createElementNS(NS, "g");
+    g.setAttribute("class", "node" + (c.id === s.active ? " active" : ""));
+    g.setAttribute("transform", `translate(${c.x},${c.y})`);
+    g.dataset.id = c.id;
+    g.dataset.kind = c.kind;
+    g.innerHTML = `<rect class="box" x="-24" y="-24" width="48" height="48" rx="6"></rect>${icon(c.kind)}<text y="36">${c.id}</text><title>${c.id}: ${c.kind.replace("_", " ")}</title>`;
+    g.addEventListener("pointerdown", (e) => {
+      dragging = { id: c.id, g, x0: e.clientX, y0: e.clientY, cx: c.x, cy: c.y, moved: false };
+      svg.setPointerCapture(e.pointerId);
+    });
+    svg.appendChild(g);
+  }
+  svg.dataset.warned = [...warned].join(" ");
+}
+$("graph").addEventListener("pointermove", (e) => {
+  if (!dragging) return;
+  const svg = $("graph");
+  const k = svg.viewBox.baseVal.width / svg.clientWidth;
+  const dx = (e.clientX - dragging.x0) * k, dy = (e.clientY - dragging.y0) * k;
+  if (Math.abs(dx) + Math.abs(dy) > 3) dragging.moved = true;
+  dragging.x = dragging.cx + dx; dragging.y = dragging.cy + dy;
+  dragging.g.setAttribute("transform", `translate(${dragging.x},${dragging.y})`);
+  svg.querySelectorAll(`line[data-from="${dragging.id}"]`).forEach((l) => { l.setAttribute("x1", dragging.x); l.setAttribute("y1", dragging.y); });
+  svg.querySelectorAll(`line[data-to="${dragging.id}"]`).forEach((l) => { l.setAttribute("x2", dragging.x); l.setAttribute("y2", dragging.y); });
+});
+$("graph").addEventListener("pointerup", async () => {
+  const d = dragging;
+  dragging = null;
+  if (!d) return;
+  if (d.moved) await edit({ op: "move", id: d.id, x: d.x, y: d.y });
+  else await edit({ op: "select", id: d.id });
+});
+
+// name, meaning, default, range and step of the Pailou grammar's sliders.
+const PARAMS = [
+  ["ω", "ground pillar height of the central entrance", 10, 2, 30, 0.5],
+  ["αUp", "an entrance above / the one below", 0.5, 0.2, 1, 0.01],
+  ["αSide", "an entrance beside / the inner one", 0.8, 0.3, 1, 0.01],
+  ["αEW", "entrance width / pillar height", 0.8333, 0.4, 1.5, 0.01],
+  ["αPW", "pillar width / pillar height", 0.1148, 0.05, 0.2, 0.001],
+  ["αLW", "Toukung row / entrance width", 1, 0.5, 1.5, 0.01],
+  ["NTL", "Toukung levels", 5, 3, 9, 1],
+];
+function drawParams(s) {
+  const box = $("params");
+  if (box.dataset.built !== "1") {
+    box.innerHTML = PARAMS.map(([n, title, v, lo, hi, step]) =>
+      `<label title="${title}">${n}<input type="range" data-name="${n}" min="${lo}" max="${hi}" step="${step}" value="${v}"><output></output></label>`).join("");
+    box.querySelectorAll("input").forEach((i) => {
+      i.addEventListener("input", () => (i.nextElementSibling.textContent = i.value));
+      i.addEventListener("change", () => edit({ op: "define", name: i.dataset.name, value: Number(i.value) }));
+    });
+    box.dataset.built = "1";
+  }
+  box.querySelectorAll("input").forEach((i) => {
+    const v = s.defines[i.dataset.name];
+    if (v !== undefined) i.value = v;
+    i.nextElementSibling.textContent = v === undefined ? "default" : v;
+  });
+}
+
+function showPailou(s) {
+  drawGraph(s);
+  $("active").textContent = `${s.active} (${(s.components.find((c) => c.id === s.active) || {}).kind || ""})`;
+  $("palette").replaceChildren(...s.palette.map((k) => {
+    const b = document.createElement("button");
+    b.dataset.kind = k;
+    b.innerHTML = `<svg viewBox="-24 -24 48 48" width="22" height="22">${icon(k)}</svg> add ${k.replace("_", " ")}`;
+    b.addEventListener("click", () => edit({ op: "add", id: s.active, kind: k }));
+    return b;
+  }));
+  $("type").value = s.type;
+  $("chart").textContent = s.chart;
+  $("unplaced").replaceChildren(...s.unplaced.map((u) => Object.assign(document.createElement("li"), { textContent: u })));
+  if (s.error) showRefused(s.error); else if (!studio.refused) $("refused").hidden = true;
+  drawParams(s);
+}
+
+function showRefused(e) {
+  studio.refused = e;
+  $("refused").hidden = false;
+  $("refused").textContent = e.rendered || e.message || JSON.stringify(e);
+}
+
+async function edit(body) {
+  // The page stays live while the server builds (large models take a while).
+  if (body.op !== "move" && body.op !== "select") $("status").textContent = "building…";
+  pending++;
+  try {
+    const r = await api("/api/edit", body);
+    if (r.status === 422) showRefused(r.data.refused);
+    else { studio.refused = null; $("refused").hidden = true; }
+    if (r.data && r.data.state) await show(r.data.state, body.op !== "move" && body.op !== "select");
+  } finally {
+    pending--;
+  }
+}
+$("remove").addEventListener("click", () => edit({ op: "remove", id: studio.state.active }));
+$("duplicate").addEventListener("click", () => edit({ op: "duplicate", id: studio.state.active }));
+$("type").addEventListener("change", () => edit({ op: "type", value: $("type").value }));
+$("apply-style").addEventListener("click", () => edit({ op: "style", style: $("style").value.trim(), type: $("type").value }));
+
+// ---- grammar mode ---------------------------------------------------------
+function showGrammar(s) {
+  $("diagnostics").replaceChildren(...s.diagnostics.map((d) => {
+    const div = document.createElement("div");
+    div.className = "diag " + d.severity;
+    div.dataset.code = d.code;
+    div.textContent = `${d.file}:${d.line}:${d.col} ${d.code}\n${d.rendered}`;
+    return div;
+  }));
+  if (!s.diagnostics.length) $("diagnostics").textContent = "no diagnostics";
+  const step = $("step");
+  step.max = Math.max(s.length, s.step, 1);
+  step.value = s.step;
+  $("step-value").textContent = `${s.step} of ${s.length}`;
+  const box = $("grammar-defines");
+  if (box.dataset.file !== s.file || box.children.length !== s.defines.length) {
+    box.dataset.file = s.file;
+    box.replaceChildren(...s.defines.map((d) => {
+      const l = document.createElement("label");
+      const input = d.range
+        ? `<input type="range" data-name="${d.name}" min="${d.range[0]}" max="${d.range[1]}" step="${d.integer ? 1 : (d.range[1] - d.range[0]) / 100}" value="${d.override ?? d.value}">`
+        : `<input data-name="${d.name}" value="${d.override ?? d.value}">`;
+      l.innerHTML = `${d.name}${input}<output>${d.override ?? d.value}</output>`;
+      return l;
+    }));
+    box.querySelectorAll("input").forEach((i) => {
+      i.addEventListener("input", () => (i.nextElementSibling.textContent = i.value));
+      i.addEventListener("change", sendGrammar);
+    });
+  }
+  // A saved file's new values move the sliders not set on the page.
+  for (const d of s.defines) {
+    const i = box.querySelector(`input[data-name="${CSS.escape(d.name)}"]`);
+    if (i && d.override == null && document.activeElement !== i) { i.value = d.value; i.nextElementSibling.textContent = d.value; }
+  }
+}
+function sendGrammar() {
+  $("status").textContent = "building…";
+  const defines = {};
+  $("grammar-defines").querySelectorAll("input").forEach((i) => {
+    const d = studio.state.defines.find((x) => x.name === i.dataset.name);
+    if (d && String(i.value) !== String(d.value)) defines[i.dataset.name] = i.type === "range" ? Number(i.value) : i.value;
+  });
+  return api("/api/grammar", { defines, step: Number($("step").value) }).then((r) => show(r.data, true));
+}
+$("step").addEventListener("input", () => ($("step-value").textContent = $("step").value));
+$("step").addEventListener("change", sendGrammar);
+
+// ---- both -------------------------------------------------------------------
+async function show(s, reload) {
+  studio.state = s;
+  studio.version = s.version;
+  const pailou = s.mode === "pailou";
+  $("mode").textContent = pailou ? "Pailou editor" : "grammar preview";
+  $("file").textContent = s.file || "(default entrance, not saved)";
+  for (const id of ["pailou-left", "pailou-right", "save"]) $(id).hidden = !pailou;
+  $("grammar-left").hidden = pailou;
+  document.querySelector("main").classList.toggle("grammar", !pailou);
+  if (pailou) showPailou(s); else showGrammar(s);
+  const problems = s.problems || [];
+  $("problems").replaceChildren(...problems.map((p) => Object.assign(document.createElement("div"), { textContent: "⚠ " + p.message })));
+  $("status").textContent = `${s.parts} component instances, ${s.triangles} triangles`;
+  if (reload) await loadModel(problems.flatMap((p) => p.parts));
+}
+
+$("save").addEventListener("click", async () => {
+  const name = prompt("Save the graph as (a .toml in the opened folder):", studio.state.file || "pailou.toml");
+  if (!name) return;
+  const r = await api("/api/save", { path: name });
+  $("status").textContent = r.status === 200 ? `saved ${name}` : `not saved: ${r.data.error || r.data}`;
+  refreshFiles();
+});
+document.querySelectorAll(".exports a").forEach((a) => a.addEventListener("click", () => {
+  window.location = `/api/export?format=${a.dataset.format}`;
+}));
+async function refreshFiles() {
+  const r = await api("/api/files");
+  $("open").replaceChildren(new Option("open…", ""), ...r.data.files.map((f) => new Option(f, f)));
+}
+$("open").addEventListener("change", async () => {
+  const f = $("open").value;
+  if (!f) return;
+  const r = await api("/api/open", { path: f });
+  fitted = false;
+  if (r.status === 200) await show(r.data, true);
+  else $("status").textContent = r.data.error || r.data;
+});
+
+// Updates pushed by the server (a saved grammar file, another tab's edit).
+const events = new EventSource("/api/events");
+events.addEventListener("update", async (e) => {
+  if (Number(e.data) === studio.version || pending > 0) return;
+  const r = await api("/api/state");
+  await show(r.data, true);
+});
+
+resize();
+api("/api/state").then((r) => show(r.data, true));
+refreshFiles();

@@ -1,0 +1,192 @@
+// The studio in a real browser (issue 17, item 7): starts `lsys studio` on
+// a free port in a fresh folder, drives Debian's headless Chromium with
+// playwright-core, and checks the Pailou editor and the grammar preview.
+// Screenshots go to docs/images/studio-*.png. Prints "N passed, N failed".
+//
+//   LSYS=path/to/lsys node test/browser.mjs     (default: target/debug/lsys)
+import { spawn } from "node:child_process";
+import { mkdtempSync, writeFileSync, existsSync, readFileSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve, dirname } from "node:path";
+import { fileURLToPath } from "node:url";
+import { chromium } from "playwright-core";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const repo = resolve(here, "../../..");
+const lsys = process.env.LSYS || join(repo, "target/debug/lsys");
+const images = process.env.STUDIO_SHOTS || join(repo, "docs/images");
+const dir = mkdtempSync(join(tmpdir(), "lsys-studio-"));
+let passed = 0, failed = 0;
+function check(name, ok, detail = "") {
+  if (ok) { passed++; console.log(`ok - ${name}`); }
+  else { failed++; console.log(`FAILED - ${name} ${detail}`); }
+}
+
+const server = spawn(lsys, ["studio", dir, "--port", "0", "--assets", join(repo, "web/studio/dist")], { stdio: ["ignore", "pipe", "inherit"] });
+const url = await new Promise((res, rej) => {
+  let out = "";
+  server.stdout.on("data", (d) => { out += d; const m = out.match(/http:\/\/\S+\//); if (m) res(m[0]); });
+  server.on("exit", (c) => rej(new Error(`lsys studio exited with ${c}`)));
+  setTimeout(() => rej(new Error("lsys studio printed no URL in 20 s")), 20000);
+});
+const profile = mkdtempSync(join(tmpdir(), "lsys-studio-chromium-"));
+let browser;
+try {
+  // A fresh profile each run (the persistent context is how Playwright
+  // takes --user-data-dir).
+  browser = await chromium.launchPersistentContext(profile, {
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    headless: true,
+    viewport: { width: 1400, height: 800 },
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+      "--disable-background-networking", "--disable-component-update", "--disable-sync",
+      "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
+  });
+  const page = await browser.newPage();
+  page.on("pageerror", (e) => console.log("page error:", e.message));
+  page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? "fig6.toml" : undefined));
+  await page.goto(url);
+  const loads = () => page.evaluate(() => window.studio.loads);
+  const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 });
+  await waitLoads(1);
+  const parts0 = await page.evaluate(() => window.studio.parts);
+  check("the default entrance loads and draws parts", parts0 > 0, `parts ${parts0}`);
+  check("the active node is the central lintel", (await page.textContent("#active")).startsWith("L11"));
+
+  // Add a flower board to the active lintel through the palette.
+  let n = await loads();
+  await page.click('#palette button[data-kind="flower_board"]');
+  await waitLoads(n + 1);
+  const parts1 = await page.evaluate(() => window.studio.parts);
+  check("adding a flower board adds drawn parts", parts1 > parts0, `${parts0} -> ${parts1}`);
+  const colours = await page.evaluate(() => {
+    const src = document.querySelector("#canvas canvas");
+    const c = document.createElement("canvas");
+    c.width = 200; c.height = 150;
+    const g = c.getContext("2d");
+    g.drawImage(src, 0, 0, 200, 150);
+    const d = g.getImageData(0, 0, 200, 150).data;
+    const seen = new Set();
+    for (let i = 0; i < d.length; i += 4) seen.add((d[i] << 16) | (d[i + 1] << 8) | d[i + 2]);
+    return seen.size;
+  });
+  check("the 3D view is not blank", colours > 20, `${colours} colours`);
+
+  // An illegal attachment: not in the palette, and refused when forced.
+  await page.click('#graph g.node[data-id="L11"]');
+  await page.waitForFunction(() => window.studio.state.active === "L11");
+  const palette = await page.$$eval("#palette button", (b) => b.map((x) => x.dataset.kind));
+  check("the lintel's palette is the relation matrix's", palette.includes("flower_board") && !palette.includes("pillar_base"), palette.join(","));
+  const refused = await page.evaluate(async () => {
+    const r = await fetch("/api/edit", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ op: "add", id: "L11", kind: "pillar_base" }) });
+    return { status: r.status, body: await r.json() };
+  });
+  check("an illegal attachment is refused with the graph reader's diagnostic",
+    refused.status === 422 && refused.body.refused.code === "lsys::pailou::graph" && refused.body.refused.message.includes("cannot attach"),
+    JSON.stringify(refused.body.refused));
+
+  // The rest of a 2-1-1 Pailou by clicks (the paper's Fig. 6).
+  // Each click to the new model drawn: the page's whole rebuild-to-picture.
+  const took = [];
+  const add = async (kind) => {
+    const k = await loads();
+    const t0 = Date.now();
+    await page.click(`#palette button[data-kind="${kind}"]`);
+    await waitLoads(k + 1);
+    took.push(Date.now() - t0);
+  };
+  const select = async (id) => { await page.click(`#graph g.node[data-id="${id}"]`); await page.waitForFunction((id) => window.studio.state.active === id, id); };
+  await select("L11");
+  await add("middle_toukung");
+  await add("eaves_roof");           // the new Toukung is active: the roof rests on it
+  await select("L11");
+  await add("side_toukung");
+  await select("L11");
+  await add("queti");
+  await add("yundan");
+  await select("L11");
+  await add("inscribed_board");
+  await select("P1R");
+  await add("pillar_base");          // mirrored onto P1L
+  const s = await page.evaluate(() => window.studio.state);
+  check("a 2-1-1 Pailou built by clicks has its roof and no structural warning",
+    s.chart.includes("^") && s.problems.length === 0 && s.components.length === 12,
+    `${s.components.length} components, problems ${JSON.stringify(s.problems)}`);
+  // Icons are draggable; where one is left is kept (and saved).
+  const box = await page.locator('#graph g.node[data-id="IBn1"]').boundingBox();
+  const x0 = s.components.find((c) => c.id === "IBn1").x;
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 110, box.y + box.height / 2 - 50, { steps: 5 });
+  await page.mouse.up();
+  await page.waitForFunction((x0) => window.studio.state.components.find((c) => c.id === "IBn1").x > x0 + 20, x0);
+  check("a dragged icon stays where it was left", true);
+  took.sort((a, b) => a - b);
+  console.log(`click to new model drawn: median ${took[took.length >> 1]} ms over ${took.length} edits (${took.join(", ")})`);
+  await page.click('#views button[data-view="iso"]');
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: join(images, "studio-pailou.png") });
+
+  // Save, then open the saved file again.
+  await page.click("#save");
+  await page.waitForFunction(() => document.querySelector("#status").textContent.startsWith("saved"));
+  check("the graph is saved in the opened folder", existsSync(join(dir, "fig6.toml")));
+  const before = s.toml;
+  n = await loads();
+  await page.selectOption("#open", "fig6.toml");
+  await waitLoads(n + 1);
+  const reopened = await page.evaluate(() => window.studio.state);
+  check("the saved graph reopens as the same Pailou", reopened.file === "fig6.toml" && reopened.components.length === 12 && reopened.parts === s.parts,
+    `${reopened.file} ${reopened.components.length} ${reopened.parts}/${s.parts}`);
+  check("the saved text is the graph's", readFileSync(join(dir, "fig6.toml"), "utf8").includes('FBn1 = ["L11"]') && readFileSync(join(dir, "fig6.toml"), "utf8").includes("# @pos IBn1 ") && before.includes("FBn1"));
+
+  // Parameters the layout cannot honour: the structural check's warnings
+  // are listed and their parts drawn red (docs/pailou.md: αSide 0.4 on 4-3-7).
+  n = await loads();
+  await page.fill("#style", "4-3-7");
+  await page.click("#apply-style");
+  await waitLoads(n + 1);
+  n = await loads();
+  await page.$eval('#params input[data-name="αSide"]', (i) => { i.value = "0.4"; i.dispatchEvent(new Event("change")); });
+  await page.waitForFunction((n) => window.studio.state.defines["αSide"] === 0.4 && window.studio.loads > n, n, { timeout: 60000 });
+  const warned = await page.evaluate(() => window.studio.state.problems.length);
+  check("a Pailou whose parts collide shows the structural warnings", warned > 0 && (await page.$$("#problems div")).length === warned, `${warned}`);
+  await page.click('#views button[data-view="front"]');
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: join(images, "studio-warnings.png") });
+
+  // Grammar mode: edit the file on disk, the view follows; a mistake is shown.
+  const g = join(dir, "bush.lsys");
+  const grammar = (n) => `// a bush\n#define ANGLE 25.7\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
+  writeFileSync(g, grammar(2));
+  await page.evaluate(async () => { const r = await fetch("/api/files"); const f = await r.json(); const sel = document.getElementById("open"); sel.replaceChildren(new Option("open…", ""), ...f.files.map((x) => new Option(x, x))); });
+  n = await loads();
+  await page.selectOption("#open", "bush.lsys");
+  await waitLoads(n + 1);
+  const t2 = await page.evaluate(() => window.studio.state.triangles);
+  check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 2, `triangles ${t2}`);
+  n = await loads();
+  writeFileSync(g, grammar(3));
+  await waitLoads(n + 1);
+  const t3 = await page.evaluate(() => window.studio.state.triangles);
+  check("saving the file on disk updates the view", t3 > t2, `${t2} -> ${t3}`);
+  await page.click('#views button[data-view="front"]');
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: join(images, "studio-grammar.png") });
+  const v = await page.evaluate(() => window.studio.version);
+  writeFileSync(g, grammar(3).replace("F[-F]F\n", "F[-F]F(\n"));
+  await page.waitForFunction((v) => window.studio.version > v && window.studio.state.diagnostics.length > 0, v, { timeout: 20000 });
+  const diag = await page.textContent("#diagnostics");
+  check("a syntax error is shown with file:line:col and its code", /bush\.lsys:\d+:\d+ lsys::/.test(diag), diag.slice(0, 200));
+  check("the last good model stays", (await page.evaluate(() => window.studio.state.triangles)) === t3);
+  await page.screenshot({ path: join(images, "studio-grammar-error.png") });
+} catch (e) {
+  check("the scenario ran to its end", false, e.stack);
+} finally {
+  if (browser) await browser.close();
+  server.kill();
+  rmSync(profile, { recursive: true, force: true });
+  rmSync(dir, { recursive: true, force: true });
+}
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed ? 1 : 0);
