@@ -223,7 +223,7 @@ fn internodes(
     for c in &drawing.chains {
         let material = b.material(c.colour);
         let mut placed = Vec::new();
-        internodes::segments(c, facets.widen(sides), |transform| placed.push(transform));
+        internodes::segments(c, |transform| placed.push(transform));
         for transform in placed {
             check(triangles)?;
             b.scene.instances.push(Instance {

@@ -50,8 +50,8 @@ pub fn sides(chains: &[Chain], facets: &Facets) -> u32 {
 }
 
 /// Calls `place(transform)` for every segment of `chain`, a straight run
-/// of equal width counted as one segment; `widen` as for tubes.
-pub fn segments(chain: &Chain, widen: f32, mut place: impl FnMut(Mat4)) {
+/// of equal width counted as one segment.
+pub fn segments(chain: &Chain, mut place: impl FnMut(Mat4)) {
     let pts = &chain.points;
     let mut from = 0;
     for i in 1..pts.len() {
@@ -62,7 +62,7 @@ pub fn segments(chain: &Chain, widen: f32, mut place: impl FnMut(Mat4)) {
         from = i;
         let d = b.pos - a.pos;
         let length = d.length();
-        let radius = a.radius.max(b.radius) * widen;
+        let radius = a.radius.max(b.radius);
         let drawn = length > 0.0 && radius > 0.0;
         if !drawn {
             continue;
@@ -88,7 +88,7 @@ mod tests {
             0.1,
         );
         let mut placed = Vec::new();
-        segments(&c, 1.0, |m| placed.push(m));
+        segments(&c, |m| placed.push(m));
         // the straight run from 0 to 2X is one segment
         assert_eq!(placed.len(), 2);
         let top = placed[0].transform_point3(Vec3::Y);

@@ -49,10 +49,6 @@ pub struct Piece<'a> {
     /// Index of `points[0]` in the whole chain (for [`Piece::keep`]).
     pub offset: usize,
     pub sides: u32,
-    /// Ring vertices lie this many radii out (1, or more for a tube with
-    /// fewer facets than usual, so that it looks as wide: see
-    /// [`super::tubes::Facets::widen`]).
-    pub widen: f32,
     /// A ring to start from instead of a new one (with its own orientation).
     pub start: Option<Ring>,
     pub caps: [Cap; 2],
@@ -68,7 +64,6 @@ pub fn tube(chain: &Chain, sides: u32, mesh: &mut TriMesh) {
                 points: &chain.points[range.clone()],
                 offset: range.start,
                 sides,
-                widen: 1.0,
                 start: None,
                 caps: [Cap::Flat, Cap::Flat],
             },
@@ -186,7 +181,7 @@ pub(super) fn piece(
                 let first = mesh.positions.len() as u32;
                 for &(s, c) in around.iter() {
                     let normal = a * c + b * s;
-                    mesh.vertex(q.pos + normal * (q.radius * p.widen), normal);
+                    mesh.vertex(q.pos + normal * q.radius, normal);
                 }
                 Ring {
                     first,
@@ -353,7 +348,6 @@ pub(super) mod tests {
                 points: &c.points,
                 offset: 0,
                 sides: 5,
-                widen: 1.0,
                 start: None,
                 caps: [Cap::Fan, Cap::Fan],
             },

@@ -66,15 +66,6 @@ impl Facets {
         self.max
     }
 
-    /// How far out to put the vertices of a tube with `sides` facets, in
-    /// radii, so that it shows the same width on average as one with the
-    /// most facets: a polygon's mean width is its perimeter over π, so the
-    /// two polygons get equal perimeters.
-    pub fn widen(&self, sides: u32) -> f32 {
-        let perimeter = |n: u32| n as f32 * (PI / n as f32).sin();
-        perimeter(self.max) / perimeter(sides.max(3))
-    }
-
     /// Facets for a tube of `radius`.
     pub fn sides(&self, radius: f32) -> u32 {
         if self.px_per_unit == 0.0 {
@@ -195,7 +186,6 @@ impl Tubes {
         } else {
             Cap::Flat
         };
-        let widen = self.facets.widen(sides);
         let dir0 = (pts[1].pos - pts[0].pos).normalize_or_zero();
         let start = self
             .rings
@@ -227,7 +217,6 @@ impl Tubes {
                     points: &pts[range.clone()],
                     offset: range.start,
                     sides,
-                    widen,
                     start: if first { start } else { None },
                     caps,
                 },
