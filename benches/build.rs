@@ -1,12 +1,16 @@
 //! Source to `.glb` (issue 6, W3, T and P): derive + turtle + mesh, then
-//! GLB assembly and writing the file, end to end; plus the meshing stage
-//! alone for W3 (modules of the derived string per second).
+//! GLB assembly and writing the file, end to end, through the same atomic
+//! streaming writer as `lsys build`; plus the meshing stage alone for W3
+//! (modules of the derived string per second), and (issue 19) a forest of
+//! ten W2 trees (10.5 M modules) to `.glb` and to `.obj`.
 
 mod common;
 
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
 use lsys::build::{self, BuildOptions};
+use lsys::export::output::{write_scene, Format};
+use lsys::export::render::RenderOptions;
 use lsys::load::Input;
 use lsys::pailou::{self, PailouType};
 use lsys::pipeline::Compilation;
@@ -22,12 +26,17 @@ fn opts() -> BuildOptions {
     }
 }
 
-/// Build `c` and write the GLB to a temporary file; the file's size.
-fn to_glb_file(c: &Compilation, dir: &std::path::Path) -> usize {
+/// Build `c` and write it to `name` (its extension names the format) in
+/// `dir` as `lsys build` does; the bytes written.
+fn to_file(c: &Compilation, dir: &std::path::Path, name: &str) -> u64 {
     let built = build::build(c, &opts()).expect("builds");
-    let bytes = lsys::export::gltf::to_glb(&built.scene).expect("exports");
-    std::fs::write(dir.join("out.glb"), &bytes).expect("writes");
-    bytes.len()
+    let out = dir.join(name);
+    let format = Format::of(&out).expect("a model format");
+    write_scene(&built.scene, &out, format, &RenderOptions::default()).expect("writes")
+}
+
+fn to_glb_file(c: &Compilation, dir: &std::path::Path) -> u64 {
+    to_file(c, dir, "out.glb")
 }
 
 fn w3(bencher: Bencher, c: Compilation) {
@@ -46,6 +55,18 @@ fn w3_w1_glb(bencher: Bencher) {
 #[divan::bench(sample_count = 5, sample_size = 1)]
 fn w3_w2_glb(bencher: Bencher) {
     w3(bencher, common::w2(18));
+}
+
+/// The forest (ten W2 trees, 10.5 M modules) to `.glb` and `.obj`.
+#[divan::bench(args = ["glb", "obj"], sample_count = 3, sample_size = 1)]
+fn forest(bencher: Bencher, ext: &str) {
+    let c = common::grammar("forest.lsys", &[]);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let n = build::build(&c, &opts()).expect("builds").modules;
+    let name = format!("forest.{ext}");
+    bencher
+        .counter(ItemsCount::new(n))
+        .bench_local(|| black_box(to_file(&c, dir.path(), &name)));
 }
 
 /// Meshing alone (tubes), modules of the string per second.

@@ -480,6 +480,11 @@ fn empty_scene_exports_valid_empty_files() {
 /// The scene `lsys build` makes of a grammar (a path relative to the
 /// package, or `std:NAME`).
 fn built(arg: &str) -> Scene {
+    built_with(arg, &Default::default())
+}
+
+/// As [`built`], with `opts`.
+fn built_with(arg: &str, opts: &lsys::build::BuildOptions) -> Scene {
     let input = match arg.strip_prefix("std:") {
         Some(_) => lsys::load::Input::from_arg(arg),
         None => lsys::load::Input::Path(Path::new(env!("CARGO_MANIFEST_DIR")).join(arg)),
@@ -487,9 +492,51 @@ fn built(arg: &str) -> Scene {
     let Ok(comp) = lsys::pipeline::compile(&input, &Default::default()) else {
         panic!("{arg} does not compile");
     };
-    lsys::build::build(&comp, &Default::default())
+    lsys::build::build(&comp, opts)
         .unwrap_or_else(|e| panic!("{arg}: {}", lsys::diag::render_plain(&e)))
         .scene
+}
+
+fn instanced() -> lsys::build::BuildOptions {
+    let mut opts = lsys::build::BuildOptions::default();
+    opts.mesh.instanced = true;
+    opts
+}
+
+/// `--instanced`: one node per cylinder mesh with EXT_mesh_gpu_instancing,
+/// 40 bytes of TRS per segment, the extension required.
+#[test]
+fn export_instanced_internodes_use_gpu_instancing() {
+    let scene = built_with("examples/abop/fig1_24a.lsys", &instanced());
+    let segments = scene.instances.len();
+    assert!(segments > 100, "{segments}");
+    assert!(scene.strokes.is_empty());
+    let glb = to_glb(&scene).unwrap();
+    let json_len = u32::from_le_bytes(glb[12..16].try_into().unwrap()) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + json_len]).unwrap();
+    assert_eq!(doc["extensionsRequired"][0], "EXT_mesh_gpu_instancing");
+    let nodes = doc["nodes"].as_array().unwrap();
+    assert_eq!(nodes.len(), 1, "{nodes:?}");
+    let attributes = &nodes[0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"];
+    let count = |name: &str| {
+        let a = attributes[name].as_u64().unwrap() as usize;
+        doc["accessors"][a]["count"].as_u64().unwrap() as usize
+    };
+    assert_eq!(
+        [count("TRANSLATION"), count("ROTATION"), count("SCALE")],
+        [segments; 3]
+    );
+    // the cylinder once, then 40 bytes a segment
+    let cylinder: usize = scene.components[0]
+        .parts
+        .iter()
+        .map(|p| p.mesh.positions.len() * 24 + p.mesh.indices.len() * 2)
+        .sum();
+    assert!(
+        glb.len() - json_len < cylinder + 40 * segments + 64,
+        "{}",
+        glb.len()
+    );
 }
 
 /// Where the npm package `gltf-validator` is installed, if it is.
@@ -525,6 +572,10 @@ fn khronos_validator_accepts_the_exports() {
         ("bush", built("examples/abop/fig1_24d.lsys")),
         ("leaves", built("examples/plants/bush_3d.lsys")),
         ("toukung", built("std:toukung_side")),
+        (
+            "instanced",
+            built_with("examples/plants/bush_3d.lsys", &instanced()),
+        ),
         // Shape grammars (docs/shapes.md): primitives, fitted components.
         ("veranda", built("examples/shapes/veranda.lsys")),
         ("verandas", built("examples/shapes/verandas.lsys")),

@@ -87,9 +87,11 @@ impl GrammarOptions {
         self
     }
 
-    /// Facets around tubes, spheres and discs.
+    /// Facets around tubes, spheres and discs, the same for every tube
+    /// (without it, thin tubes take fewer: see `MeshOptions::adaptive`).
     pub fn facets(mut self, n: u32) -> Self {
         self.build.mesh.sides = n;
+        self.build.mesh.adaptive = false;
         self
     }
 

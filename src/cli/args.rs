@@ -237,12 +237,15 @@ pub struct LookArgs {
     /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
     pub components: Vec<PathBuf>,
-    /// Level of detail of procedural components: 0 a light preview (bare roofs), 1 roofs with rows of round tiles, 2 twice the tiles.
+    /// Level of detail: 0 a light preview (bare roofs, fewer facets on thin tubes), 1 roofs with rows of round tiles, 2 twice the tiles and rounder thin tubes.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=2))]
     pub detail: u8,
-    /// Facets around tubes, spheres and discs (3 to 64).
-    #[arg(long, value_name = "N", default_value_t = 8, value_parser = clap::value_parser!(u32).range(3..=64))]
-    pub facets: u32,
+    /// Facets around tubes, spheres and discs (3 to 64). Without it spheres and discs get 8, and each tube up to 8: fewer when it is thin against the whole model (see --detail).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(3..=64))]
+    pub facets: Option<u32>,
+    /// Draw tubes as one cylinder per straight segment, all placements of one mesh: a .glb/.gltf then uses EXT_mesh_gpu_instancing (about 40 bytes a segment; viewers without the extension refuse the file). Joints show where branches bend: for line-like models.
+    #[arg(long)]
+    pub instanced: bool,
     /// Stop with an error when the model would have more triangles than this.
     #[arg(long, value_name = "N", default_value_t = 100_000_000)]
     pub max_triangles: usize,

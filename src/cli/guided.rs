@@ -53,7 +53,10 @@ pub fn build_scene(
         detail: m.look.detail,
     };
     let mopts = MeshOptions {
-        sides: m.look.facets,
+        sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
+        adaptive: m.look.facets.is_none(),
+        detail: m.look.detail,
+        instanced: m.look.instanced,
         max_triangles: m.look.max_triangles,
     };
     let scene = match guided::build::scene(&loaded, &outcome, m.look.guides, &search, &mopts) {

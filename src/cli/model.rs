@@ -278,7 +278,10 @@ fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
             detail: m.look.detail,
         },
         mesh: MeshOptions {
-            sides: m.look.facets,
+            sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
+            adaptive: m.look.facets.is_none(),
+            detail: m.look.detail,
+            instanced: m.look.instanced,
             max_triangles: m.look.max_triangles,
         },
     }

@@ -20,9 +20,19 @@ pub fn write_obj(
     obj: &mut dyn Write,
     mtl: &mut dyn Write,
 ) -> io::Result<()> {
-    let names = material_names(scene);
-    write_mtl(scene, &names, mtl)?;
+    write_mtl_file(scene, mtl)?;
+    write_obj_only(scene, mtl_file_name, obj)
+}
 
+/// Writes the scene's `.mtl` file (what [`write_obj`] writes to `mtl`).
+pub fn write_mtl_file(scene: &Scene, mtl: &mut dyn Write) -> io::Result<()> {
+    write_mtl(scene, &material_names(scene), mtl)
+}
+
+/// Writes the `.obj` file alone (what [`write_obj`] writes to `obj`),
+/// streaming: memory stays at one mesh's normals whatever the model's size.
+pub fn write_obj_only(scene: &Scene, mtl_file_name: &str, obj: &mut dyn Write) -> io::Result<()> {
+    let names = material_names(scene);
     let mut out = BufWriter::with_capacity(1 << 16, obj);
     writeln!(out, "# lsys {}", env!("CARGO_PKG_VERSION"))?;
     writeln!(out, "mtllib {mtl_file_name}")?;

@@ -86,13 +86,19 @@ pub fn write_scene(
             let mtl_name = mtl_path
                 .file_name()
                 .map_or("model.mtl".into(), |n| n.to_string_lossy().into_owned());
+            // The .mtl is small and goes first: the .obj refers to it. The
+            // .obj is written straight into its file (no copy of the model).
             let mut mtl = Vec::new();
-            let mut obj = Vec::new();
-            obj::write_obj(scene, &mtl_name, &mut obj, &mut mtl)?;
-            bytes = (obj.len() + mtl.len()) as u64;
-            // The .mtl first: the .obj refers to it.
+            obj::write_mtl_file(scene, &mut mtl)?;
             files.write(&mtl_path, |w| w.write_all(&mtl))?;
-            files.write(out, |w| w.write_all(&obj))?;
+            let mut written = 0;
+            files.write(out, |w| -> Result<(), WriteError> {
+                let mut counted = Counted { inner: w, bytes: 0 };
+                obj::write_obj_only(scene, &mtl_name, &mut counted)?;
+                written = counted.bytes;
+                Ok(())
+            })?;
+            bytes = written + mtl.len() as u64;
         }
         Format::Png => {
             let image = render::render(scene, picture);
@@ -104,4 +110,22 @@ pub fn write_scene(
     }
     files.commit()?;
     Ok(bytes)
+}
+
+/// Counts the bytes that pass through to `inner`.
+struct Counted<'w> {
+    inner: &'w mut dyn io::Write,
+    bytes: u64,
+}
+
+impl io::Write for Counted<'_> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let n = self.inner.write(buf)?;
+        self.bytes += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
 }

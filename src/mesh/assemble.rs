@@ -6,17 +6,30 @@ use std::collections::HashMap;
 
 use super::components::ComponentSearch;
 use super::error::MeshError;
+use super::internodes;
 use super::palette::Palette;
 use super::scene::{Instance, Material, Scene, Stroke, TriMesh};
-use super::{shapes, tube};
+use super::shapes;
+use super::tubes::{Facets, Tubes};
 use crate::resolve::ir::{Program, SymId};
 use crate::turtle::Drawing;
 
 /// Meshing choices.
 #[derive(Clone, Debug)]
 pub struct MeshOptions {
-    /// Facets around tubes, spheres and discs.
+    /// Facets around spheres and discs, and the most around tubes.
     pub sides: u32,
+    /// Tubes thin against the whole drawing take fewer facets, down to 4
+    /// (3 at detail 0), as many as keep them round to half a pixel on a
+    /// view of the whole drawing 2048 pixels across (`detail` 1; 512 at 0,
+    /// 8192 at 2); off: every tube has `sides`.
+    pub adaptive: bool,
+    /// `--detail`: 0 a light preview, 1 the default, 2 finer.
+    pub detail: u8,
+    /// Tubes as placements of one unit cylinder, a placement per straight
+    /// segment, exported with `EXT_mesh_gpu_instancing` by glTF (see
+    /// [`super::internodes`]); off: baked tubes with shared rings.
+    pub instanced: bool,
     /// Refuse to build more triangles than this (as drawn, instances
     /// counted in full).
     pub max_triangles: usize,
@@ -26,6 +39,9 @@ impl Default for MeshOptions {
     fn default() -> Self {
         MeshOptions {
             sides: 8,
+            adaptive: true,
+            detail: 1,
+            instanced: false,
             max_triangles: 100_000_000,
         }
     }
@@ -60,15 +76,20 @@ impl Builder<'_> {
     }
 
     fn stroke_mesh(&mut self, colour: u32) -> &mut TriMesh {
+        let k = self.stroke(colour);
+        &mut self.scene.strokes[k].mesh
+    }
+
+    /// Index in `scene.strokes` of the mesh for `colour`.
+    fn stroke(&mut self, colour: u32) -> usize {
         let material = self.material(colour);
-        let k = *self.stroke_of.entry(material).or_insert_with(|| {
+        *self.stroke_of.entry(material).or_insert_with(|| {
             self.scene.strokes.push(Stroke {
                 material,
                 mesh: TriMesh::default(),
             });
             self.scene.strokes.len() - 1
-        });
-        &mut self.scene.strokes[k].mesh
+        })
     }
 }
 
@@ -100,12 +121,25 @@ pub fn assemble_scene(
             Ok(())
         }
     };
-    for c in &drawing.chains {
-        let mesh = b.stroke_mesh(c.colour);
-        let before = mesh.triangle_count();
-        tube::tube(c, opts.sides, mesh);
-        let added = mesh.triangle_count() - before;
-        check(added)?;
+    if opts.instanced {
+        internodes(&mut b, drawing, opts, &mut check)?;
+    } else {
+        let mut tubes = Tubes::new(&drawing.chains, opts);
+        // Chains come in long runs of one colour: two hash lookups per
+        // chain were a sixth of the meshing time.
+        let mut last: Option<(u32, usize)> = None;
+        for (i, c) in drawing.chains.iter().enumerate() {
+            let k = match last {
+                Some((colour, k)) if colour == c.colour => k,
+                _ => b.stroke(c.colour),
+            };
+            last = Some((c.colour, k));
+            let mesh = &mut b.scene.strokes[k].mesh;
+            let before = mesh.triangle_count();
+            tubes.add(i, c, mesh);
+            let added = mesh.triangle_count() - before;
+            check(added)?;
+        }
     }
     for s in &drawing.shapes {
         let mesh = b.stroke_mesh(s.colour);
@@ -169,6 +203,39 @@ pub fn assemble_scene(
         numbers[component] += 1;
     }
     Ok(b.scene)
+}
+
+/// The drawing's chains as placements of one unit cylinder.
+fn internodes(
+    b: &mut Builder,
+    drawing: &Drawing,
+    opts: &MeshOptions,
+    check: &mut dyn FnMut(usize) -> Result<(), MeshError>,
+) -> Result<(), MeshError> {
+    let facets = Facets::new(opts, &drawing.chains);
+    let sides = internodes::sides(&drawing.chains, &facets);
+    let cylinder = internodes::unit_cylinder(sides);
+    let triangles = cylinder.triangle_count();
+    let component = b.scene.components.len();
+    b.scene.components.push(cylinder);
+    b.scene.gpu_instancing = true;
+    let mut number = 0;
+    for c in &drawing.chains {
+        let material = b.material(c.colour);
+        let mut placed = Vec::new();
+        internodes::segments(c, |transform| placed.push(transform));
+        for transform in placed {
+            check(triangles)?;
+            b.scene.instances.push(Instance {
+                component,
+                transform,
+                material,
+                number,
+            });
+            number += 1;
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn missing(

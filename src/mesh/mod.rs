@@ -3,6 +3,7 @@
 pub mod assemble;
 pub mod components;
 pub mod error;
+pub mod internodes;
 pub mod palette;
 pub mod roof;
 pub mod scene;
@@ -11,6 +12,7 @@ pub mod structure;
 pub mod subgrammar;
 pub mod surface;
 pub mod tube;
+pub mod tubes;
 pub use assemble::{assemble_scene, MeshOptions};
 pub use components::ComponentSearch;
 pub use error::MeshError;

@@ -162,6 +162,10 @@ pub struct Scene {
     pub instances: Vec<Instance>,
     /// At most one entry per material, in order of first use.
     pub strokes: Vec<Stroke>,
+    /// Exporters that can (glTF) write all placements of one component
+    /// mesh as one node with `EXT_mesh_gpu_instancing` instead of a node
+    /// each (`lsys build --instanced`; see [`super::MeshOptions::instanced`]).
+    pub gpu_instancing: bool,
 }
 
 impl Scene {

@@ -1,6 +1,9 @@
-//! Tubes: a turtle [`Chain`] -> a capped generalized cylinder. Consecutive
+//! Tubes: a turtle [`Chain`] -> a generalized cylinder. Consecutive
 //! segments share one ring, oriented in the bisecting plane and carried
-//! along the curve by parallel transport so that tubes do not twist.
+//! along the curve by parallel transport so that tubes do not twist; a
+//! straight run (no turn, no change of width) is one segment with a ring at
+//! each end only. How tubes join each other and how they are capped is
+//! decided by [`super::tubes`], which calls [`piece`] per piece of a chain.
 
 use std::f32::consts::TAU;
 
@@ -11,40 +14,141 @@ use crate::turtle::drawing::{Chain, TubePoint};
 
 /// Turns sharper than this (cosine between segments) end one tube and
 /// start the next: a ring in the bisecting plane would pinch.
-const SPLIT_COS: f32 = -0.2;
+pub(super) const SPLIT_COS: f32 = -0.2;
 
-/// Appends the tube for `chain` with `sides` facets around to `mesh`.
+/// Two segments closer to parallel than this (cosine) are one straight run.
+const STRAIGHT_COS: f32 = 1.0 - 1e-6;
+
+/// A ring already in the mesh: `sides` vertices from `first` on, around
+/// `pos` in the plane normal to `tangent`, the first one along `axis`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ring {
+    pub first: u32,
+    pub sides: u32,
+    pub pos: Vec3,
+    pub radius: f32,
+    pub tangent: Vec3,
+    pub axis: Vec3,
+}
+
+/// How one end of a piece is closed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cap {
+    /// A flat disc with vertices of its own, so that the rim shades sharply.
+    Flat,
+    /// A fan over the ring's own vertices: no new vertices, for tubes too
+    /// thin for the shading of their ends to show.
+    Fan,
+    /// Open: another tube continues from this ring.
+    Open,
+}
+
+/// One piece of a chain: its points, where it starts and how its ends close.
+pub struct Piece<'a> {
+    pub points: &'a [TubePoint],
+    /// Index of `points[0]` in the whole chain (for [`Piece::keep`]).
+    pub offset: usize,
+    pub sides: u32,
+    /// A ring to start from instead of a new one (with its own orientation).
+    pub start: Option<Ring>,
+    pub caps: [Cap; 2],
+}
+
+/// Appends the tube for `chain` with `sides` facets around to `mesh`, with
+/// flat caps and no sharing: the tube of one chain on its own.
 pub fn tube(chain: &Chain, sides: u32, mesh: &mut TriMesh) {
-    let pts = &chain.points;
+    let mut scratch = Scratch::default();
+    for_each_piece(&chain.points, |range, _, _| {
+        piece(
+            &Piece {
+                points: &chain.points[range.clone()],
+                offset: range.start,
+                sides,
+                start: None,
+                caps: [Cap::Flat, Cap::Flat],
+            },
+            &|_| false,
+            &mut |_, _| {},
+            &mut scratch,
+            mesh,
+        );
+    });
+}
+
+/// Calls `f(range, is_first, is_last)` for each piece of `pts`: the chain
+/// split at every turn sharper than [`SPLIT_COS`] (the two pieces share
+/// the turning point).
+pub(super) fn for_each_piece(
+    pts: &[TubePoint],
+    mut f: impl FnMut(std::ops::Range<usize>, bool, bool),
+) {
     let mut start = 0;
     for i in 1..pts.len().saturating_sub(1) {
         let d0 = (pts[i].pos - pts[i - 1].pos).normalize_or_zero();
         let d1 = (pts[i + 1].pos - pts[i].pos).normalize_or_zero();
         if d0.dot(d1) < SPLIT_COS {
-            piece(&pts[start..=i], sides, mesh);
+            f(start..i + 1, start == 0, false);
             start = i;
         }
     }
-    piece(&pts[start..], sides, mesh);
+    f(start..pts.len(), start == 0, true);
 }
 
-fn any_perpendicular(t: Vec3) -> Vec3 {
-    t.any_orthonormal_vector()
+/// True when `b` lies on the straight line from `a` on to `c` with the
+/// same width at all three: its ring would add nothing.
+pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
+    if a.radius != b.radius || b.radius != c.radius {
+        return false;
+    }
+    let d0 = (b.pos - a.pos).normalize_or_zero();
+    let d1 = (c.pos - b.pos).normalize_or_zero();
+    d0.dot(d1) >= STRAIGHT_COS
 }
 
-fn piece(pts: &[TubePoint], sides: u32, mesh: &mut TriMesh) {
+/// Space [`piece`] reuses from one call to the next.
+#[derive(Default)]
+pub struct Scratch {
+    /// Indices of the points that get a ring.
+    kept: Vec<usize>,
+    /// (sin, cos) of each facet's angle.
+    around: Vec<(f32, f32)>,
+}
+
+/// Appends one piece to `mesh`. Points in a straight run are skipped
+/// unless `keep(chain index)` says another tube starts there; `visit(chain
+/// index, ring)` sees every ring of the piece.
+pub(super) fn piece(
+    p: &Piece,
+    keep: &dyn Fn(usize) -> bool,
+    visit: &mut dyn FnMut(usize, Ring),
+    scratch: &mut Scratch,
+    mesh: &mut TriMesh,
+) {
+    let Scratch { kept, around } = scratch;
+    let pts = p.points;
     if pts.len() < 2 {
         return;
     }
     let n = pts.len();
-    let dir = |i: usize| (pts[i + 1].pos - pts[i].pos).normalize_or_zero();
-    let tangent = |i: usize| {
-        let t = if i == 0 {
+    kept.clear();
+    kept.push(0);
+    for i in 1..n - 1 {
+        let last = kept[kept.len() - 1];
+        if !straight(&pts[last], &pts[i], &pts[i + 1]) || keep(p.offset + i) {
+            kept.push(i);
+        }
+    }
+    kept.push(n - 1);
+    let m = kept.len();
+    let at = |j: usize| &pts[kept[j]];
+    let dir = |j: usize| (at(j + 1).pos - at(j).pos).normalize_or_zero();
+    let tangent = |j: usize| {
+        let t = if j == 0 {
             dir(0)
-        } else if i == n - 1 {
-            dir(n - 2)
+        } else if j == m - 1 {
+            dir(m - 2)
         } else {
-            (dir(i - 1) + dir(i)).normalize_or_zero()
+            (dir(j - 1) + dir(j)).normalize_or_zero()
         };
         if t == Vec3::ZERO {
             Vec3::Y
@@ -52,70 +156,112 @@ fn piece(pts: &[TubePoint], sides: u32, mesh: &mut TriMesh) {
             t
         }
     };
-    let sides = sides.max(3);
-    let first_ring = mesh.positions.len() as u32;
-    let mut a = Vec3::ZERO;
-    for (i, p) in pts.iter().enumerate() {
-        let t = tangent(i);
-        // Start from the turtle's up vector, then transport the previous
-        // ring's axis: project it into this ring's plane.
-        let seed = if i == 0 { p.up } else { a };
-        a = (seed - t * seed.dot(t)).normalize_or_zero();
-        if a == Vec3::ZERO {
-            a = any_perpendicular(t);
-        }
-        let b = t.cross(a);
-        for k in 0..sides {
-            let (s, c) = (TAU * k as f32 / sides as f32).sin_cos();
-            let normal = a * c + b * s;
-            mesh.vertex(p.pos + normal * p.radius, normal);
-        }
+    let sides = p.sides.max(3);
+    // The same angles for every ring: sines and cosines once per facet count.
+    if around.len() != sides as usize {
+        around.clear();
+        around.extend((0..sides).map(|k| (TAU * k as f32 / sides as f32).sin_cos()));
     }
-    for i in 0..n as u32 - 1 {
-        let r0 = first_ring + i * sides;
-        let r1 = r0 + sides;
-        for k in 0..sides {
-            let k1 = (k + 1) % sides;
-            mesh.triangle(r0 + k, r0 + k1, r1 + k);
-            mesh.triangle(r0 + k1, r1 + k1, r1 + k);
-        }
-    }
-    // Flat caps, with their own vertices so that the rim shades sharply.
-    for (end, ring) in [
-        (0usize, first_ring),
-        (n - 1, first_ring + (n as u32 - 1) * sides),
-    ] {
-        if pts[end].radius <= 0.0 {
-            continue;
-        }
-        let normal = if end == 0 {
-            -tangent(0)
-        } else {
-            tangent(n - 1)
+    let mut rings = [None::<Ring>; 2];
+    let mut prev: Option<Ring> = None;
+    for (j, &point) in kept.iter().enumerate() {
+        let ring = match (j, p.start) {
+            (0, Some(start)) => start,
+            _ => {
+                let q = &pts[point];
+                let t = tangent(j);
+                // Start from the turtle's up vector, then transport the
+                // previous ring's axis: project it into this ring's plane.
+                let seed = prev.map_or(q.up, |r| r.axis);
+                let mut a = (seed - t * seed.dot(t)).normalize_or_zero();
+                if a == Vec3::ZERO {
+                    a = t.any_orthonormal_vector();
+                }
+                let b = t.cross(a);
+                let first = mesh.positions.len() as u32;
+                for &(s, c) in around.iter() {
+                    let normal = a * c + b * s;
+                    mesh.vertex(q.pos + normal * q.radius, normal);
+                }
+                Ring {
+                    first,
+                    sides,
+                    pos: q.pos,
+                    radius: q.radius,
+                    tangent: t,
+                    axis: a,
+                }
+            }
         };
-        let centre = mesh.vertex(pts[end].pos, normal);
-        let rim = mesh.positions.len() as u32;
-        for k in 0..sides {
-            let p = mesh.positions[(ring + k) as usize];
-            mesh.vertex(p, normal);
-        }
-        for k in 0..sides {
-            let k1 = (k + 1) % sides;
-            if end == 0 {
-                mesh.triangle(centre, rim + k1, rim + k);
-            } else {
-                mesh.triangle(centre, rim + k, rim + k1);
+        if let Some(r0) = prev {
+            for k in 0..sides {
+                let k1 = (k + 1) % sides;
+                let (a0, a1) = (r0.first + k, r0.first + k1);
+                let (b0, b1) = (ring.first + k, ring.first + k1);
+                mesh.triangle(a0, a1, b0);
+                mesh.triangle(a1, b1, b0);
             }
         }
+        visit(p.offset + point, ring);
+        if j == 0 {
+            rings[0] = Some(ring);
+        }
+        if j == m - 1 {
+            rings[1] = Some(ring);
+        }
+        prev = Some(ring);
+    }
+    for (end, ring) in rings.into_iter().enumerate() {
+        let Some(ring) = ring else { continue };
+        cap(ring, p.caps[end], end == 0, mesh);
+    }
+}
+
+/// Closes `ring`, facing back along the tube at its start (`start`) or on
+/// along it at its end.
+fn cap(ring: Ring, kind: Cap, start: bool, mesh: &mut TriMesh) {
+    if ring.radius <= 0.0 || kind == Cap::Open {
+        return;
+    }
+    let sides = ring.sides;
+    // Triangles (centre, k, k+1) wind so that their front faces out of
+    // the tube at this end.
+    let tri = |c: u32, a: u32, b: u32, mesh: &mut TriMesh| {
+        if start {
+            mesh.triangle(c, b, a);
+        } else {
+            mesh.triangle(c, a, b);
+        }
+    };
+    match kind {
+        Cap::Flat => {
+            let normal = if start { -ring.tangent } else { ring.tangent };
+            let centre = mesh.vertex(ring.pos, normal);
+            let rim = mesh.positions.len() as u32;
+            for k in 0..sides {
+                let p = mesh.positions[(ring.first + k) as usize];
+                mesh.vertex(p, normal);
+            }
+            for k in 0..sides {
+                tri(centre, rim + k, rim + (k + 1) % sides, mesh);
+            }
+        }
+        Cap::Fan => {
+            let f = ring.first;
+            for k in 1..sides - 1 {
+                tri(f, f + k, f + k + 1, mesh);
+            }
+        }
+        Cap::Open => {}
     }
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use std::collections::HashMap;
 
-    fn chain(points: &[Vec3], radius: f32) -> Chain {
+    pub(in crate::mesh) fn chain(points: &[Vec3], radius: f32) -> Chain {
         Chain {
             colour: 0,
             points: points
@@ -131,7 +277,7 @@ mod tests {
 
     /// Every edge of the welded mesh is shared by exactly two triangles with
     /// opposite directions: closed and consistently oriented.
-    fn assert_watertight(m: &TriMesh) {
+    pub(in crate::mesh) fn assert_watertight(m: &TriMesh) {
         let key = |v: Vec3| ((v * 1e4).round().as_ivec3()).to_array();
         let mut ids = HashMap::new();
         let weld: Vec<usize> = m
@@ -180,5 +326,38 @@ mod tests {
         tube(&c, 6, &mut m);
         // two pieces of two rings each, each capped twice
         assert_eq!(m.vertex_count(), 2 * (2 * 6 + 2 * 7));
+    }
+
+    #[test]
+    fn a_straight_run_is_one_segment() {
+        let mut m = TriMesh::default();
+        let pts: Vec<Vec3> = (0..5).map(|i| Vec3::new(0.0, i as f32, 0.0)).collect();
+        tube(&chain(&pts, 0.1), 6, &mut m);
+        // two rings + two caps, whatever the number of F
+        assert_eq!(m.vertex_count(), 2 * 6 + 2 * 7);
+        assert_watertight(&m);
+    }
+
+    #[test]
+    fn fan_caps_close_the_tube_without_new_vertices() {
+        let mut m = TriMesh::default();
+        let c = chain(&[Vec3::ZERO, Vec3::Y, Vec3::new(1.0, 2.0, 0.0)], 0.1);
+        let mut scratch = Scratch::default();
+        piece(
+            &Piece {
+                points: &c.points,
+                offset: 0,
+                sides: 5,
+                start: None,
+                caps: [Cap::Fan, Cap::Fan],
+            },
+            &|_| false,
+            &mut |_, _| {},
+            &mut scratch,
+            &mut m,
+        );
+        assert_eq!(m.vertex_count(), 3 * 5);
+        assert_eq!(m.triangle_count(), 2 * 5 * 2 + 2 * 3);
+        assert_watertight(&m);
     }
 }

@@ -16,6 +16,8 @@ use json::validation::Checked::Valid;
 use json::{Accessor, Index};
 
 use super::{padded, ExportError};
+
+mod instancing;
 use crate::mesh::{Instance, Scene, TriMesh};
 
 /// The document and its binary buffer (padded to 4 bytes; empty when the
@@ -46,7 +48,18 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError>
     };
     let mut nodes = Vec::new();
     nodes.extend(b.strokes()?);
-    for instance in &scene.instances {
+    let mut each = scene.instances.iter().collect::<Vec<_>>();
+    if scene.gpu_instancing {
+        let (instanced, rest) = b.instanced(&scene.instances)?;
+        if !instanced.is_empty() {
+            let name = instancing::EXTENSION.to_string();
+            b.root.extensions_used.push(name.clone());
+            b.root.extensions_required.push(name);
+        }
+        nodes.extend(instanced);
+        each = rest;
+    }
+    for instance in each {
         nodes.push(b.instance(instance)?);
     }
     let mut root = b.root;

@@ -1,0 +1,328 @@
+//! The tubes of a whole drawing: turtle [`Chain`]s -> tubes in the stroke
+//! meshes, joined where they meet. A chain that starts at a point of an
+//! earlier chain (a branch leaving its parent, or the parent going on after
+//! a branch) with the same colour and width, and in a direction close to
+//! the tube there, starts from the ring the earlier chain has at that point
+//! instead of a ring and a cap of its own; an end that a later chain goes on
+//! from is left open. How many facets a tube gets follows from its width
+//! against the size of the whole drawing and `--detail` ([`Facets`]).
+
+use std::collections::HashMap;
+use std::f32::consts::PI;
+use std::hash::{BuildHasherDefault, Hasher};
+
+use glam::Vec3;
+
+use super::assemble::MeshOptions;
+use super::scene::{bounds_of, TriMesh};
+use super::tube::{for_each_piece, piece, Cap, Piece, Ring, Scratch};
+use crate::turtle::drawing::{Chain, TubePoint};
+
+/// A tube starts from an earlier tube's ring only when its first segment
+/// leaves within about 45 degrees of that ring's axis: further round, the
+/// ring (normal to the earlier tube) would flatten the new tube's base.
+const SHARE_COS: f32 = 0.7;
+
+/// Chord error, in pixels, allowed between a round tube and its facets.
+const TOLERANCE_PX: f32 = 0.5;
+
+/// Facets of each tube: the most (`--facets`, 8 by default) unless the
+/// tube is so thin against the whole drawing that fewer facets look the
+/// same. "Look the same" means: with the whole drawing shown across a
+/// view of 512 (detail 0), 2048 (detail 1) or 8192 pixels (detail 2), the
+/// facets stay within [`TOLERANCE_PX`] of the round tube.
+#[derive(Clone, Copy, Debug)]
+pub struct Facets {
+    max: u32,
+    min: u32,
+    /// Pixels per unit of length; 0 when facets do not adapt.
+    px_per_unit: f32,
+}
+
+impl Facets {
+    pub fn new(opts: &MeshOptions, chains: &[Chain]) -> Facets {
+        let max = opts.sides.max(3);
+        let min = if opts.detail == 0 { 3 } else { 4 }.min(max);
+        let mut px_per_unit = 0.0;
+        if opts.adaptive {
+            let points = chains.iter().flat_map(|c| c.points.iter().map(|p| p.pos));
+            if let Some((lo, hi)) = bounds_of(points) {
+                let extent = (hi - lo).max_element();
+                let view = [512.0, 2048.0, 8192.0][usize::from(opts.detail.min(2))];
+                if extent.is_finite() && extent > 0.0 {
+                    px_per_unit = view / extent;
+                }
+            }
+        }
+        Facets {
+            max,
+            min,
+            px_per_unit,
+        }
+    }
+
+    /// The most facets a tube gets.
+    pub fn max(&self) -> u32 {
+        self.max
+    }
+
+    /// Facets for a tube of `radius`.
+    pub fn sides(&self, radius: f32) -> u32 {
+        if self.px_per_unit == 0.0 {
+            return self.max;
+        }
+        let r = radius * self.px_per_unit;
+        if r.is_nan() || r <= TOLERANCE_PX {
+            return self.min;
+        }
+        // A chord of a circle of radius r over angle 2π/n lies
+        // r·(1 − cos(π/n)) inside it.
+        let n = (PI / (1.0 - TOLERANCE_PX / r).acos()).ceil();
+        if n.is_finite() {
+            (n as u32).clamp(self.min, self.max)
+        } else {
+            self.max
+        }
+    }
+}
+
+/// Where rings can be shared: the colour, position and radius of a point,
+/// bit for bit (the turtle writes a branch's first point from the same
+/// value as its parent's).
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+struct Key {
+    colour: u32,
+    x: u32,
+    y: u32,
+    z: u32,
+    radius: u32,
+}
+
+fn key(colour: u32, p: &TubePoint) -> Key {
+    Key {
+        colour,
+        x: p.pos.x.to_bits(),
+        y: p.pos.y.to_bits(),
+        z: p.pos.z.to_bits(),
+        radius: p.radius.to_bits(),
+    }
+}
+
+/// A multiply-rotate hasher for [`Key`]s (a few u32s): SipHash's
+/// protection against chosen keys buys nothing here and costs a third of
+/// the meshing time.
+#[derive(Default)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u32(u32::from(b));
+        }
+    }
+
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+type KeyMap<V> = HashMap<Key, V, BuildHasherDefault<KeyHasher>>;
+
+/// The first chain that starts at a key.
+#[derive(Clone, Copy)]
+struct Start {
+    chain: usize,
+    dir: Vec3,
+    sides: u32,
+}
+
+/// Builds the tubes of one drawing's chains, in order.
+pub struct Tubes {
+    facets: Facets,
+    starts: KeyMap<Start>,
+    /// The ring at each point where some chain starts, once meshed.
+    rings: KeyMap<Ring>,
+    scratch: Scratch,
+}
+
+impl Tubes {
+    pub fn new(chains: &[Chain], opts: &MeshOptions) -> Tubes {
+        let facets = Facets::new(opts, chains);
+        let mut starts = KeyMap::default();
+        for (i, c) in chains.iter().enumerate() {
+            if let [a, b, ..] = c.points[..] {
+                starts.entry(key(c.colour, &a)).or_insert(Start {
+                    chain: i,
+                    dir: (b.pos - a.pos).normalize_or_zero(),
+                    sides: facets.sides(max_radius(c)),
+                });
+            }
+        }
+        Tubes {
+            facets,
+            starts,
+            rings: KeyMap::default(),
+            scratch: Scratch::default(),
+        }
+    }
+
+    /// Appends the tube of `chains[index]` to `mesh`, the stroke mesh of
+    /// its colour.
+    pub fn add(&mut self, index: usize, chain: &Chain, mesh: &mut TriMesh) {
+        let pts = &chain.points;
+        if pts.len() < 2 {
+            return;
+        }
+        let colour = chain.colour;
+        let sides = self.facets.sides(max_radius(chain));
+        // Thin tubes close their ends over the ring: their shading is
+        // not seen.
+        let closed = if sides < self.facets.max() {
+            Cap::Fan
+        } else {
+            Cap::Flat
+        };
+        let dir0 = (pts[1].pos - pts[0].pos).normalize_or_zero();
+        let start = self
+            .rings
+            .get(&key(colour, &pts[0]))
+            .filter(|r| r.sides == sides && r.tangent.dot(dir0) >= SHARE_COS)
+            .copied();
+        let n = pts.len();
+        let last_dir = (pts[n - 1].pos - pts[n - 2].pos).normalize_or_zero();
+        let goes_on = self.starts.get(&key(colour, &pts[n - 1])).is_some_and(|s| {
+            s.chain > index && s.sides == sides && s.dir.dot(last_dir) >= SHARE_COS
+        });
+        let Tubes {
+            starts,
+            rings,
+            scratch,
+            ..
+        } = self;
+        for_each_piece(pts, |range, first, last| {
+            let caps = [
+                if first && start.is_some() {
+                    Cap::Open
+                } else {
+                    closed
+                },
+                if last && goes_on { Cap::Open } else { closed },
+            ];
+            piece(
+                &Piece {
+                    points: &pts[range.clone()],
+                    offset: range.start,
+                    sides,
+                    start: if first { start } else { None },
+                    caps,
+                },
+                &|i| starts.contains_key(&key(colour, &pts[i])),
+                &mut |i, ring| {
+                    let k = key(colour, &pts[i]);
+                    if starts.contains_key(&k) {
+                        rings.insert(k, ring);
+                    }
+                },
+                scratch,
+                mesh,
+            );
+        });
+    }
+}
+
+fn max_radius(c: &Chain) -> f32 {
+    c.points.iter().map(|p| p.radius).fold(0.0, f32::max)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::tube::tests::{assert_watertight, chain};
+
+    fn mesh(chains: &[Chain], opts: &MeshOptions) -> TriMesh {
+        let mut m = TriMesh::default();
+        let mut tubes = Tubes::new(chains, opts);
+        for (i, c) in chains.iter().enumerate() {
+            tubes.add(i, c, &mut m);
+        }
+        m
+    }
+
+    fn turned(degrees: f32) -> Vec3 {
+        let a = degrees.to_radians();
+        Vec3::new(a.sin(), 1.0 + a.cos(), 0.0)
+    }
+
+    #[test]
+    fn a_branch_goes_on_from_its_parents_end_ring() {
+        let chains = [
+            chain(&[Vec3::ZERO, Vec3::Y], 0.1),
+            chain(&[Vec3::Y, turned(25.0)], 0.1),
+        ];
+        let m = mesh(&chains, &MeshOptions::default());
+        // parent: two rings and its start cap; branch: one ring and its
+        // end cap. Before: 2 x (2 rings + 2 caps).
+        assert_eq!(m.vertex_count(), 2 * 8 + 9 + 8 + 9);
+        assert_watertight(&m);
+    }
+
+    #[test]
+    fn a_second_branch_shares_the_ring_inside_its_parent() {
+        // The first branch carries on the parent's chain (as the turtle
+        // draws `F[+F][-F]`); the second starts at its middle point.
+        let chains = [
+            chain(&[Vec3::ZERO, Vec3::Y, turned(25.0)], 0.1),
+            chain(&[Vec3::Y, turned(-25.0)], 0.1),
+        ];
+        let m = mesh(&chains, &MeshOptions::default());
+        assert_eq!(m.vertex_count(), 3 * 8 + 2 * 9 + 8 + 9);
+    }
+
+    #[test]
+    fn a_wide_turn_or_another_width_starts_a_tube_of_its_own() {
+        for (second, radius) in [(turned(90.0), 0.1), (turned(25.0), 0.05)] {
+            let chains = [
+                chain(&[Vec3::ZERO, Vec3::Y], 0.1),
+                chain(&[Vec3::Y, second], radius),
+            ];
+            let m = mesh(&chains, &MeshOptions::default());
+            assert_eq!(m.vertex_count(), 2 * (2 * 8 + 2 * 9));
+        }
+    }
+
+    #[test]
+    fn thin_tubes_take_fewer_facets_unless_told_otherwise() {
+        // 0.01 wide on a drawing 100 long: 0.2 pixels at detail 1.
+        let chains = [chain(&[Vec3::ZERO, Vec3::Y * 100.0], 0.005)];
+        let m = mesh(&chains, &MeshOptions::default());
+        // 4 facets, fan caps over the rings
+        assert_eq!(
+            (m.vertex_count(), m.triangle_count()),
+            (2 * 4, 2 * 4 + 2 * 2)
+        );
+        assert_watertight(&m);
+        let fixed = MeshOptions {
+            adaptive: false,
+            ..MeshOptions::default()
+        };
+        let m = mesh(&chains, &fixed);
+        assert_eq!(m.vertex_count(), 2 * 8 + 2 * 9);
+        let f = |detail, radius| {
+            let opts = MeshOptions {
+                detail,
+                ..MeshOptions::default()
+            };
+            Facets::new(&opts, &chains).sides(radius)
+        };
+        assert_eq!(f(0, 0.005), 3);
+        // 2048 px over 100 units: radius 0.2 is 4.1 px, 7 facets keep
+        // within half a pixel; 8192 px: 16.4 px, 13 capped at 8.
+        assert_eq!(f(1, 0.2), 7);
+        assert_eq!(f(2, 0.2), 8);
+        assert_eq!(f(1, 5.0), 8);
+    }
+}
