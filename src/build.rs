@@ -156,8 +156,10 @@ pub fn build_observed(
     let derived = t0.elapsed();
     let mut built = match model(comp, &string, step, opts, observe) {
         Err(BuildError::Turtle(e @ TurtleError::UnbalancedBracket { .. })) => {
-            let origin = bracket_origin(comp, opts, steps);
-            return Err(e.with_bracket_origin(origin, program).into());
+            return Err(match bracket_origin(comp, opts, steps, None) {
+                Some(origin) => e.with_bracket_origin(origin, program).into(),
+                None => e.into(),
+            });
         }
         other => other?,
     };
@@ -169,24 +171,36 @@ pub fn build_observed(
 /// Which step first wrote a stray `]`: the turtle only sees the final
 /// string, so on that error the derivation is run again (it is seeded and
 /// deterministic) and each step's string is checked. Only a failed build
-/// pays for this.
-fn bracket_origin(comp: &Compilation, opts: &BuildOptions, steps: u32) -> BracketOrigin {
+/// pays for this. With `expect`, the answer is given only when the string
+/// of step `steps` is that string (a string built elsewhere, e.g. one the
+/// caller made up, has no step that wrote it).
+fn bracket_origin(
+    comp: &Compilation,
+    opts: &BuildOptions,
+    steps: u32,
+    expect: Option<&ModuleStore>,
+) -> Option<BracketOrigin> {
     let (program, compiled) = (&comp.program, &comp.compiled);
     let Ok(mut sim) = Simulation::new(program, compiled, opts.derive.clone(), steps) else {
-        return BracketOrigin::Homomorphism(steps);
+        return expect
+            .is_none()
+            .then_some(BracketOrigin::Homomorphism(steps));
     };
-    if has_stray_close(sim.current()) {
-        return BracketOrigin::Axiom;
-    }
-    while sim.step_number() < steps {
+    let mut first = has_stray_close(sim.current()).then_some(BracketOrigin::Axiom);
+    while sim.step_number() < steps && (first.is_none() || expect.is_some()) {
         if sim.step().is_err() {
             break;
         }
-        if has_stray_close(sim.current()) {
-            return BracketOrigin::Step(sim.step_number());
+        if first.is_none() && has_stray_close(sim.current()) {
+            first = Some(BracketOrigin::Step(sim.step_number()));
         }
     }
-    BracketOrigin::Homomorphism(sim.step_number())
+    if let Some(expect) = expect {
+        if sim.step_number() != steps || sim.current() != expect {
+            return None;
+        }
+    }
+    Some(first.unwrap_or(BracketOrigin::Homomorphism(sim.step_number())))
 }
 
 /// Whether a `]` in `string` closes no `[`.
@@ -217,7 +231,17 @@ pub fn build_string(
     opts: &BuildOptions,
     observe: &mut dyn FnMut(Stage),
 ) -> Result<Built, BuildError> {
-    model(comp, string, step, opts, observe)
+    match model(comp, string, step, opts, observe) {
+        // The REPL's string is step `step` of the derivation: find the
+        // step that wrote the `]`, as `build` does.
+        Err(BuildError::Turtle(e @ TurtleError::UnbalancedBracket { .. })) => {
+            Err(match bracket_origin(comp, opts, step, Some(string)) {
+                Some(origin) => e.with_bracket_origin(origin, &comp.program).into(),
+                None => e.into(),
+            })
+        }
+        other => other,
+    }
 }
 
 fn model(

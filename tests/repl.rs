@@ -237,6 +237,22 @@ F(x) : x > 1.2 --> F(x/(x-x))
 }
 
 #[test]
+fn a_stray_bracket_at_export_names_the_step_that_wrote_it() {
+    let dir = workdir();
+    std::fs::write(
+        dir.path().join("late.lsys"),
+        "derivation length: 4\nAxiom: A(0)\n\
+         A(n) : n < 2 --> F A(n+1)\nA(n) : n >= 2 --> F ] A(n+1)\n",
+    )
+    .unwrap();
+    // Step 4 has two stray `]`; the first was written by step 3.
+    let (out, code) = session(dir.path(), &["late.lsys"], ":goto 4\n:export late.glb\n");
+    assert!(out.contains("first written by derivation step 3"), "{out}");
+    assert_eq!(code, 65, "{out}");
+    assert!(!dir.path().join("late.glb").exists());
+}
+
+#[test]
 fn a_session_can_start_from_nothing() {
     let dir = workdir();
     let script = "\
