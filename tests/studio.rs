@@ -335,7 +335,12 @@ fn grammar_mode_keeps_the_last_good_model() {
     let (_, s) = post(&h, "/api/grammar", json!({"step": null}));
     let d = &s["diagnostics"][0];
     assert_eq!(d["severity"], "error");
-    assert!(d["file"].as_str().unwrap().ends_with("bush.lsys"), "{d}");
+    // Named relative to the opened folder, in the list and the rendering.
+    assert_eq!(d["file"], "bush.lsys", "{d}");
+    let rendered = d["rendered"].as_str().unwrap();
+    assert!(rendered.contains("[bush.lsys:4:"), "{rendered}");
+    let folder = dir.path().canonicalize().unwrap();
+    assert!(!rendered.contains(folder.to_str().unwrap()), "{rendered}");
     assert_eq!(d["line"], 4);
     assert!(d["code"].as_str().unwrap().starts_with("lsys::"), "{d}");
     assert_eq!(s["current"], false);

@@ -81,6 +81,26 @@ impl GrammarSession {
                 self.current = false;
             }
         }
+        self.relative_paths();
+    }
+
+    /// Diagnostics name files relative to the opened folder, as the page
+    /// lists them (the compiler was given the absolute path).
+    fn relative_paths(&mut self) {
+        let full = self.path.to_string_lossy();
+        let Some(folder) = full.strip_suffix(self.file.as_str()) else {
+            return;
+        };
+        if folder.is_empty() {
+            return;
+        }
+        for d in &mut self.diagnostics {
+            for key in ["file", "rendered"] {
+                if let Some(text) = d[key].as_str() {
+                    d[key] = Value::String(text.replace(folder, ""));
+                }
+            }
+        }
     }
 
     /// Takes the page's overrides and step, and rebuilds.
