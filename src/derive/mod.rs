@@ -60,6 +60,7 @@ pub mod count;
 mod engine;
 pub mod error;
 mod fast;
+mod faults;
 mod matching;
 pub mod number;
 mod parallel;

@@ -1,32 +1,23 @@
 //! One rewriting pass: a table of productions (with their code) and an
 //! input string in, the rewritten string appended to an output store out.
 //! Holds the dispatch loop, condition / probability evaluation, the
-//! stochastic choice, the recursion of decomposition and homomorphism, and
-//! the conversion of VM faults and limit overruns into [`DeriveError`]s.
+//! stochastic choice and the recursion of decomposition and homomorphism.
+//! Faults and limit overruns become [`DeriveError`]s in `faults.rs`.
 
 use std::mem;
-use std::sync::Arc;
 
 use super::engine::DeriveOptions;
-use super::error::{DepthWarning, DeriveError, Src};
+use super::error::{DepthWarning, DeriveError};
+pub(crate) use super::faults::{check_limits, fault_error, Fail, Site};
+use super::faults::{site_context, src};
 use super::matching::{match_at, Bound, Input, Rules};
 use super::run::run_successor;
 use super::store::{head_arity, head_sym, rest_of_branch, ContextIndex, ModuleStore, MAX_SYMBOLS};
 use super::sublsystem::switch_lsystem;
 use crate::bytecode::vm::{self, Machine, NoSink};
-use crate::bytecode::{Chunk, Compiled, CondCode, Fault, FaultKind};
+use crate::bytecode::{Chunk, Compiled, CondCode};
 use crate::lang::rng::Rand48;
 use crate::resolve::{Program, Table, CLOSE_BRACKET, OPEN_BRACKET};
-use crate::source::Span;
-
-/// Internal error: boxed so that the `Result`s passed per module stay small.
-pub(crate) type Fail = Box<DeriveError>;
-
-impl From<Box<DeriveError>> for DeriveError {
-    fn from(b: Box<DeriveError>) -> DeriveError {
-        *b
-    }
-}
 
 const TABLES: [Table; 3] = [Table::Main, Table::Decomposition, Table::Homomorphism];
 
@@ -191,140 +182,6 @@ impl State {
             fired: Vec::new(),
         }
     }
-}
-
-fn src(tab: &Tables, span: Span) -> Src {
-    Arc::new(tab.program.sources.named_source(span))
-}
-
-/// Where code ran, for error messages.
-#[derive(Clone, Copy)]
-pub(crate) enum Site {
-    Axiom,
-    Prod(Table, usize),
-    /// A statement block of the L-system (`Start`, `StartEach`, ...).
-    Hook(&'static str),
-}
-
-fn site_context(tab: &Tables, site: Site) -> (String, Option<Span>) {
-    match site {
-        Site::Axiom => ("in the axiom".to_string(), None),
-        Site::Hook(name) => (format!("in the `{name}:` block"), None),
-        Site::Prod(t, i) => {
-            let p = &tab.program.table(t)[i];
-            let mut text = crate::bytecode::one_line(tab.program.sources.slice(p.span));
-            if text.chars().count() > 80 {
-                text = text.chars().take(77).collect::<String>() + "...";
-            }
-            (format!("in {} `{text}`", table_name(t)), Some(p.head_span))
-        }
-    }
-}
-
-pub(crate) fn fault_error(tab: &Tables, fault: Fault, site: Site, step: u32) -> Fail {
-    let (context, prod) = site_context(tab, site);
-    let production = prod.filter(|p| p.file == fault.span.file).map(Into::into);
-    let src = src(tab, fault.span);
-    let span = fault.span.into();
-    Box::new(match fault.kind {
-        FaultKind::DivisionByZero | FaultKind::RemainderByZero => DeriveError::DivisionByZero {
-            what: if fault.kind == FaultKind::DivisionByZero {
-                "division"
-            } else {
-                "remainder"
-            },
-            context,
-            step,
-            src,
-            span,
-            production,
-        },
-        FaultKind::TableIndex { table, dim, value } => {
-            let t = &tab.program.tables[table as usize];
-            let (lo, hi) = t.dims[dim as usize];
-            DeriveError::TableIndex {
-                what: format!("index {value} of table `{}` is outside {lo}..{hi}", t.name),
-                context,
-                step,
-                src,
-                span,
-                production,
-            }
-        }
-        FaultKind::ArrayIndex { array, dim, value } => {
-            let a = &tab.program.arrays[array as usize];
-            DeriveError::TableIndex {
-                what: format!(
-                    "index {value} of array `{}` is outside 0..{}",
-                    a.name,
-                    a.dims[dim as usize] - 1
-                ),
-                context,
-                step,
-                src,
-                span,
-                production,
-            }
-        }
-        FaultKind::LoopLimit => DeriveError::EndlessLoop {
-            limit: crate::bytecode::vm::MAX_LOOP_ITERATIONS,
-            context,
-            step,
-            src,
-            span,
-            production,
-        },
-        FaultKind::NotFinite(value) => DeriveError::NotFinite {
-            value,
-            context,
-            step,
-            src,
-            span,
-            production,
-        },
-    })
-}
-
-#[inline(always)]
-pub(crate) fn check_limits(
-    tab: &Tables,
-    out: &ModuleStore,
-    site: Option<Site>,
-    step: u32,
-) -> Result<(), Fail> {
-    if out.len() > tab.max_modules || out.param_count() > tab.max_params {
-        return Err(limit_error(tab, out, site, step));
-    }
-    Ok(())
-}
-
-#[cold]
-fn limit_error(tab: &Tables, out: &ModuleStore, site: Option<Site>, step: u32) -> Fail {
-    let over_modules = out.len() > tab.max_modules;
-    let (src, production) = match site {
-        Some(Site::Prod(t, i)) => {
-            let p = &tab.program.table(t)[i];
-            (Some(src(tab, p.head_span)), Some(p.head_span.into()))
-        }
-        _ => (None, None),
-    };
-    Box::new(if over_modules {
-        DeriveError::ModuleLimit {
-            step,
-            limit: tab.max_modules,
-            reached: out.len(),
-            src,
-            production,
-        }
-    } else {
-        DeriveError::ParamLimit {
-            step,
-            limit: tab.max_params,
-            reached: out.param_count(),
-            src,
-            production,
-        }
-    })
 }
 
 /// Run an expression chunk (condition or probability).

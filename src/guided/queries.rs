@@ -80,7 +80,7 @@ pub struct World<'s> {
     pub sent: Vec<Message>,
     /// Per guide: the segments `?X` asked about with a non-zero `id_in`,
     /// and that id. A drawn element that starts where one starts and ends
-    /// on it answers with its id (see [`World::element_id`]).
+    /// on it answers with its id (see `World::element_id`).
     pub tags: Vec<Vec<(DVec2, DVec2, i64)>>,
 }
 

@@ -3,7 +3,7 @@
 //! along the curve by parallel transport so that tubes do not twist; a
 //! straight run (no turn, no change of width) is one segment with a ring at
 //! each end only. How tubes join each other and how they are capped is
-//! decided by [`super::tubes`], which calls [`piece`] per piece of a chain.
+//! decided by [`super::tubes`], which calls `piece` per piece of a chain.
 
 use std::f32::consts::TAU;
 
@@ -46,7 +46,7 @@ pub enum Cap {
 /// One piece of a chain: its points, where it starts and how its ends close.
 pub struct Piece<'a> {
     pub points: &'a [TubePoint],
-    /// Index of `points[0]` in the whole chain (for [`Piece::keep`]).
+    /// Index of `points[0]` in the whole chain (for `Piece::keep`).
     pub offset: usize,
     pub sides: u32,
     /// A ring to start from instead of a new one (with its own orientation).
@@ -105,7 +105,7 @@ pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
     d0.dot(d1) >= STRAIGHT_COS
 }
 
-/// Space [`piece`] reuses from one call to the next.
+/// Space `piece` reuses from one call to the next.
 #[derive(Default)]
 pub struct Scratch {
     /// Indices of the points that get a ring.

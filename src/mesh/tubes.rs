@@ -30,7 +30,7 @@ const TOLERANCE_PX: f32 = 0.5;
 /// tube is so thin against the whole drawing that fewer facets look the
 /// same. "Look the same" means: with the whole drawing shown across a
 /// view of 512 (detail 0), 2048 (detail 1) or 8192 pixels (detail 2), the
-/// facets stay within [`TOLERANCE_PX`] of the round tube.
+/// facets stay within `TOLERANCE_PX` of the round tube.
 #[derive(Clone, Copy, Debug)]
 pub struct Facets {
     max: u32,
