@@ -12,6 +12,7 @@ mod error;
 mod expr;
 mod headers;
 mod lower;
+mod print;
 
 use pest::Parser;
 use pest_derive::Parser;
