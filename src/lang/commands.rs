@@ -96,7 +96,7 @@ impl Command {
     }
 }
 
-const fn cmd(
+pub(super) const fn cmd(
     symbol: &'static str,
     args: (u8, u8),
     default: &'static str,

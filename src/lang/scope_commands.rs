@@ -4,7 +4,7 @@
 //! the classic commands, so resolve checks their parameter counts and
 //! `lsys commands` lists them like any other command.
 
-use super::commands::{Action, Command};
+use super::commands::{cmd, Action, Command};
 
 /// A scope axis: x = H × U, y = H, z = U (the start frame's x, y, z).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +72,7 @@ pub enum ScopeCmd {
     Snap,
 }
 
+/// A scope command's row: the same action in both dialects.
 const fn row(
     symbol: &'static str,
     args: (u8, u8),
@@ -79,15 +80,7 @@ const fn row(
     c: ScopeCmd,
     doc: &'static str,
 ) -> Command {
-    Command {
-        symbol,
-        min_args: args.0,
-        max_args: args.1,
-        default,
-        paper: Action::Scope(c),
-        cpfg: Action::Scope(c),
-        doc,
-    }
+    cmd(symbol, args, default, Action::Scope(c), doc)
 }
 
 use Axis::{X, Y, Z};
