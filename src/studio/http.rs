@@ -256,7 +256,6 @@ fn save(sh: &Shared, body: Option<Value>) -> Reply {
 /// A download of the model (.glb, .obj, .png) or the emitted grammar
 /// (.lsys) or graph (.toml).
 fn export(sh: &Shared, format: &str) -> Reply {
-    use crate::export::output::Format;
     let s = lock(&sh.session);
     let (model, lsys, toml) = match &*s {
         Session::Pailou(p) => (
@@ -277,25 +276,35 @@ fn export(sh: &Shared, format: &str) -> Reply {
             let Some(m) = model else {
                 return text(404, "no model yet");
             };
-            let Ok(dir) = tempfile::tempdir() else {
-                return text(500, "cannot make a temporary folder");
+            // The GLB is the one the page already shows; OBJ and PNG are
+            // encoded in memory (the download has no room for an `.mtl`).
+            let encoded = match format {
+                "glb" => Ok(m.glb.clone()),
+                "obj" => {
+                    let mut b = Vec::new();
+                    crate::export::obj::write_obj_only(m.scene.mesh(), "studio.mtl", &mut b)
+                        .map(|_| b)
+                        .map_err(|e| e.to_string())
+                }
+                _ => {
+                    use crate::export::render;
+                    let pic = render::render(m.scene.mesh(), &render::RenderOptions::default());
+                    let mut b = Vec::new();
+                    render::write_png(&pic, &mut b)
+                        .map(|_| b)
+                        .map_err(|e| e.to_string())
+                }
             };
-            let out = dir.path().join(format!("studio.{format}"));
-            let fmt = Format::of(&out).unwrap_or(Format::Glb);
-            let pic = crate::export::render::RenderOptions::default();
-            match crate::export::output::write_scene(m.scene.mesh(), &out, fmt, &pic) {
-                Ok(_) => match std::fs::read(&out) {
-                    Ok(b) => {
-                        let mime = match format {
-                            "png" => "image/png",
-                            "obj" => "text/plain",
-                            _ => "model/gltf-binary",
-                        };
-                        bytes(b, mime).with_header(hdr("Content-Disposition", &file(format)))
-                    }
-                    Err(e) => text(500, &format!("cannot read the export back: {e}")),
-                },
-                Err(e) => text(500, &format!("cannot export: {e:?}")),
+            match encoded {
+                Ok(b) => {
+                    let mime = match format {
+                        "png" => "image/png",
+                        "obj" => "text/plain",
+                        _ => "model/gltf-binary",
+                    };
+                    bytes(b, mime).with_header(hdr("Content-Disposition", &file(format)))
+                }
+                Err(e) => text(500, &format!("cannot export: {e}")),
             }
         }
         _ => text(400, "export formats: glb, obj, png, lsys, toml"),

@@ -21,8 +21,7 @@ pub struct Model {
 }
 
 /// Compiles `text` (named `name`) or, with `text = None`, the file at
-/// `name`, with `defines`; then builds `steps` steps (`None`: the
-/// grammar's derivation length).
+/// `name`, with `defines`.
 pub fn compile(
     name: &str,
     text: Option<&str>,
@@ -38,14 +37,22 @@ pub fn compile(
     }
 }
 
+/// The library's symbols and relation matrix, read once per process
+/// (every Pailou build and every palette reads them).
+pub fn rules() -> &'static structure::Rules {
+    static RULES: std::sync::OnceLock<structure::Rules> = std::sync::OnceLock::new();
+    RULES.get_or_init(|| {
+        structure::Rules::pailou(crate::pailou::graph::RELATIONS)
+            .expect("the library's relation matrix reads")
+    })
+}
+
 /// Builds `g` at `steps` and runs the structural check when `check`.
 pub fn build(g: &Grammar, steps: u32, check: bool) -> Result<Model, Diagnostics> {
     let scene = g.build(steps)?;
     let glb = crate::export::gltf::to_glb(scene.mesh()).map_err(Diagnostics::one)?;
     let problems = if check {
-        let rules = structure::Rules::pailou(crate::pailou::graph::RELATIONS)
-            .expect("the library's relation matrix reads");
-        structure::check(scene.mesh(), &rules)
+        structure::check(scene.mesh(), rules())
             .iter()
             .map(|p| json!({"message": p.to_string(), "parts": parts_of(p)}))
             .collect()

@@ -62,10 +62,10 @@ impl PailouSession {
         let source = pailou::source(&g.layout, &title);
         let mut defines = g.defines.clone();
         pailou::toukung_levels(&mut defines);
-        let grammar =
-            model::compile("pailou-graph.lsys", Some(&source), &defines).map_err(|d| first(&d))?;
-        let built =
-            model::build(&grammar, grammar.derivation_length(), true).map_err(|d| first(&d))?;
+        let grammar = model::compile("pailou-graph.lsys", Some(&source), &defines)
+            .map_err(|d| first_diagnostic(&d))?;
+        let built = model::build(&grammar, grammar.derivation_length(), true)
+            .map_err(|d| first_diagnostic(&d))?;
         self.model = Some(built);
         self.unplaced = g.unplaced;
         self.chart = g.layout.chart();
@@ -109,8 +109,8 @@ impl PailouSession {
                     g.attach.push(("NEW".into(), vec![id.clone()]));
                 } else {
                     let added = g.add(&id, kind).map_err(refuse)?;
-                    if let Some(first) = added.last() {
-                        self.active = first.clone();
+                    if let Some(newest) = added.last() {
+                        self.active = newest.clone();
                     }
                 }
             }
@@ -200,7 +200,7 @@ impl PailouSession {
     }
 }
 
-fn first(d: &crate::diag::Diagnostics) -> Value {
+fn first_diagnostic(d: &crate::diag::Diagnostics) -> Value {
     model::diagnostics_json(d)
         .into_iter()
         .next()
@@ -209,10 +209,9 @@ fn first(d: &crate::diag::Diagnostics) -> Value {
 
 /// The kinds the relation matrix lets attach to `id` (graph kinds only).
 pub fn palette(g: &EditGraph, id: &str) -> Vec<String> {
-    let matrix: BTreeMap<String, Vec<String>> =
-        toml::from_str(graph::RELATIONS).unwrap_or_default();
     let kind = g.kind_of(id).unwrap_or("");
-    matrix
+    model::rules()
+        .accepts
         .get(kind)
         .map(|v| {
             v.iter()
