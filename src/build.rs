@@ -154,15 +154,13 @@ pub fn build_observed(
     let step = d.step_number();
     let string = d.into_current();
     let derived = t0.elapsed();
-    let mut built = match model(comp, &string, step, opts, observe) {
-        Err(BuildError::Turtle(e @ TurtleError::UnbalancedBracket { .. })) => {
-            return Err(match bracket_origin(comp, opts, steps, None) {
-                Some(origin) => e.with_bracket_origin(origin, program).into(),
-                None => e.into(),
-            });
-        }
-        other => other?,
-    };
+    let mut built = locate_bracket(
+        model(comp, &string, step, opts, observe),
+        comp,
+        opts,
+        steps,
+        None,
+    )?;
     built.timings.derive += derived;
     built.warnings.splice(0..0, warnings);
     Ok(built)
@@ -231,11 +229,24 @@ pub fn build_string(
     opts: &BuildOptions,
     observe: &mut dyn FnMut(Stage),
 ) -> Result<Built, BuildError> {
-    match model(comp, string, step, opts, observe) {
-        // The REPL's string is step `step` of the derivation: find the
-        // step that wrote the `]`, as `build` does.
+    // The REPL's string is step `step` of the derivation: find the step
+    // that wrote a stray `]`, as `build` does.
+    let built = model(comp, string, step, opts, observe);
+    locate_bracket(built, comp, opts, step, Some(string))
+}
+
+/// A stray-`]` error of `built` names the step that first wrote it (see
+/// [`bracket_origin`]); every other result is returned as it is.
+fn locate_bracket(
+    built: Result<Built, BuildError>,
+    comp: &Compilation,
+    opts: &BuildOptions,
+    steps: u32,
+    expect: Option<&ModuleStore>,
+) -> Result<Built, BuildError> {
+    match built {
         Err(BuildError::Turtle(e @ TurtleError::UnbalancedBracket { .. })) => {
-            Err(match bracket_origin(comp, opts, step, Some(string)) {
+            Err(match bracket_origin(comp, opts, steps, expect) {
                 Some(origin) => e.with_bracket_origin(origin, &comp.program).into(),
                 None => e.into(),
             })

@@ -7,11 +7,10 @@ use std::time::Instant;
 
 use super::args::{ModelArgs, PictureArgs};
 use super::commands::report;
-use super::model::{ms, picture, write_failed};
+use super::model::{component_search, mesh_options, ms, picture, write_failed};
 use super::{EX_DATAERR, EX_OK};
 use crate::export::output::{write_scene, Format};
 use crate::guided;
-use crate::mesh::{ComponentSearch, MeshOptions};
 
 /// Runs, meshes and writes a guided scene; the exit code.
 pub fn build_scene(
@@ -46,19 +45,8 @@ pub fn build_scene(
         }
     };
     let t2 = Instant::now();
-    let search = ComponentSearch {
-        grammar_dir: path.parent().map(Path::to_path_buf),
-        dirs: m.look.components.clone(),
-        within: Vec::new(),
-        detail: m.look.detail,
-    };
-    let mopts = MeshOptions {
-        sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
-        adaptive: m.look.facets.is_none(),
-        detail: m.look.detail,
-        instanced: m.look.instanced,
-        max_triangles: m.look.max_triangles,
-    };
+    let search = component_search(&m.look, path.parent().map(Path::to_path_buf));
+    let mopts = mesh_options(&m.look);
     let scene = match guided::build::scene(&loaded, &outcome, m.look.guides, &search, &mopts) {
         Ok(s) => s,
         Err(e) => {

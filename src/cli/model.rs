@@ -271,19 +271,33 @@ fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
         angle: m.look.angle,
         step: m.look.step,
         width: m.look.width,
-        components: ComponentSearch {
-            grammar_dir,
-            dirs: m.look.components.clone(),
-            within: Vec::new(),
-            detail: m.look.detail,
-        },
-        mesh: MeshOptions {
-            sides: m.look.facets.unwrap_or(MeshOptions::default().sides),
-            adaptive: m.look.facets.is_none(),
-            detail: m.look.detail,
-            instanced: m.look.instanced,
-            max_triangles: m.look.max_triangles,
-        },
+        components: component_search(m.look, grammar_dir),
+        mesh: mesh_options(m.look),
+    }
+}
+
+/// Where components are searched: `grammar_dir`'s `components/`, then the
+/// `--components` folders.
+pub(super) fn component_search(
+    look: &LookArgs,
+    grammar_dir: Option<std::path::PathBuf>,
+) -> ComponentSearch {
+    ComponentSearch {
+        grammar_dir,
+        dirs: look.components.clone(),
+        within: Vec::new(),
+        detail: look.detail,
+    }
+}
+
+/// The mesher's options from the command line's look flags.
+pub(super) fn mesh_options(look: &LookArgs) -> MeshOptions {
+    MeshOptions {
+        sides: look.facets.unwrap_or(MeshOptions::default().sides),
+        adaptive: look.facets.is_none(),
+        detail: look.detail,
+        instanced: look.instanced,
+        max_triangles: look.max_triangles,
     }
 }
 
