@@ -130,9 +130,9 @@ impl Curve {
     fn at_parameter(&self, t: f64) -> [f64; 3] {
         let p = &self.points;
         let n = p.len();
-        let mix = |ws: &[(usize, f64)]| {
+        let mix = |ws: &mut dyn Iterator<Item = (usize, f64)>| {
             let mut out = [0.0; 3];
-            for &(k, w) in ws {
+            for (k, w) in ws {
                 for (o, c) in out.iter_mut().zip(p[k]) {
                     *o += c * w;
                 }
@@ -143,20 +143,17 @@ impl Curve {
             Kind::BSpline => {
                 let i = 3 + (t * (n as f64 - 3.000001)) as usize;
                 let u = 3.0 + t * (n as f64 - 3.000001);
-                let ws: Vec<(usize, f64)> = (i - 3..=i).map(|k| (k, uniform(k, u))).collect();
-                mix(&ws)
+                mix(&mut (i - 3..=i).map(|k| (k, uniform(k, u))))
             }
             Kind::EndPoints => {
                 let u = t * (n as f64 - 3.000001);
-                let ws: Vec<(usize, f64)> = (0..n).map(|k| (k, clamped(k, u, n))).collect();
-                mix(&ws)
+                mix(&mut (0..n).map(|k| (k, clamped(k, u, n))))
             }
             Kind::Bezier => {
                 let segs = 1 + (n - 4) / 3;
                 let c = ((t / (1.000001 / segs as f64)) as usize).min(segs - 1);
                 let u = (t - c as f64 / segs as f64) * segs as f64 / 1.000001;
-                let ws: Vec<(usize, f64)> = (0..4).map(|k| (c * 3 + k, clamped(k, u, 4))).collect();
-                mix(&ws)
+                mix(&mut (0..4).map(|k| (c * 3 + k, clamped(k, u, 4))))
             }
         }
     }
@@ -174,37 +171,11 @@ fn uniform(i: usize, t: f64) -> f64 {
     b(i as f64, t, 4)
 }
 
-/// The cubic B-spline basis with end knots repeated (cpfg's `Nk4`, knots
-/// `uk`): interpolates the first and last points.
+/// The cubic B-spline basis with end knots repeated (cpfg's `Nk4`) over
+/// `n` points: interpolates the first and last points. The same basis as
+/// the function files' splines.
 fn clamped(k: usize, u: f64, n: usize) -> f64 {
-    let uk = |k: usize| -> f64 {
-        if k < 4 {
-            0.0
-        } else if k > n - 1 {
-            n as f64 - 3.0
-        } else {
-            k as f64 - 3.0
-        }
-    };
-    fn rec(k: usize, u: f64, order: usize, uk: &dyn Fn(usize) -> f64) -> f64 {
-        if order == 1 {
-            return if uk(k) <= u && u < uk(k + 1) {
-                1.0
-            } else {
-                0.0
-            };
-        }
-        let o = order - 1;
-        let mut r = 0.0;
-        if uk(k + o) - uk(k) != 0.0 {
-            r += (u - uk(k)) / (uk(k + o) - uk(k)) * rec(k, u, order - 1, uk);
-        }
-        if uk(k + o + 1) - uk(k + 1) != 0.0 {
-            r += (uk(k + o + 1) - u) / (uk(k + o + 1) - uk(k + 1)) * rec(k + 1, u, order - 1, uk);
-        }
-        r
-    }
-    rec(k, u, 4, &uk)
+    super::spline::basis(k as i64, 4, u, n as i64 - 1)
 }
 
 #[cfg(test)]

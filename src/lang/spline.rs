@@ -280,7 +280,9 @@ fn knot(j: i64, n: i64) -> i64 {
     }
 }
 
-fn basis(k: i64, t: i64, u: f64, n: i64) -> f64 {
+/// The B-spline basis of order `t` with end knots repeated ([`knot`]),
+/// over the points 0..=n.
+pub(super) fn basis(k: i64, t: i64, u: f64, n: i64) -> f64 {
     if t == 1 {
         return if knot(k, n) as f64 <= u && u < knot(k + 1, n) as f64 {
             1.0
