@@ -220,11 +220,13 @@ fn internodes(
     b.scene.components.push(cylinder);
     b.scene.gpu_instancing = true;
     let mut number = 0;
+    // One buffer for every chain's segments (`segments` takes a closure,
+    // and `check` cannot be called from inside it).
+    let mut placed = Vec::new();
     for c in &drawing.chains {
         let material = b.material(c.colour);
-        let mut placed = Vec::new();
         internodes::segments(c, |transform| placed.push(transform));
-        for transform in placed {
+        for transform in placed.drain(..) {
             check(triangles)?;
             b.scene.instances.push(Instance {
                 component,

@@ -143,6 +143,8 @@ struct Start {
 /// Builds the tubes of one drawing's chains, in order.
 pub struct Tubes {
     facets: Facets,
+    /// Each chain's facet count (by its widest point).
+    sides: Vec<u32>,
     starts: KeyMap<Start>,
     /// The ring at each point where some chain starts, once meshed.
     rings: KeyMap<Ring>,
@@ -152,18 +154,20 @@ pub struct Tubes {
 impl Tubes {
     pub fn new(chains: &[Chain], opts: &MeshOptions) -> Tubes {
         let facets = Facets::new(opts, chains);
+        let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
         let mut starts = KeyMap::default();
         for (i, c) in chains.iter().enumerate() {
             if let [a, b, ..] = c.points[..] {
                 starts.entry(key(c.colour, &a)).or_insert(Start {
                     chain: i,
                     dir: (b.pos - a.pos).normalize_or_zero(),
-                    sides: facets.sides(max_radius(c)),
+                    sides: sides[i],
                 });
             }
         }
         Tubes {
             facets,
+            sides,
             starts,
             rings: KeyMap::default(),
             scratch: Scratch::default(),
@@ -178,7 +182,7 @@ impl Tubes {
             return;
         }
         let colour = chain.colour;
-        let sides = self.facets.sides(max_radius(chain));
+        let sides = self.sides[index];
         // Thin tubes close their ends over the ring: their shading is
         // not seen.
         let closed = if sides < self.facets.max() {
