@@ -35,10 +35,10 @@ impl Switch {
 }
 
 pub(crate) fn switch_lsystem(tab: &Tables, head: u32, params: &[f64]) -> Switch {
-    let sym = Some(head_sym(head));
-    if sym.is_none() || (tab.sub_open.is_none() && tab.sub_close.is_none()) {
+    if tab.sub_open.is_none() && tab.sub_close.is_none() {
         return Switch::None;
     }
+    let sym = Some(head_sym(head));
     if sym == tab.sub_open && head_arity(head) >= 1 {
         // `?(n, ...)`: n as cpfg reads it, truncated.
         return Switch::Enter(params[0].max(0.0) as u32);

@@ -22,11 +22,11 @@ struct Sections {
     lsystem: Option<Span>,
     /// `ring lsystem` was given.
     ring: bool,
-    /// The label of the L-system being read (`Lsystem: 2`), and whether it
-    /// is a sub-L-system (not the file's first): a sub-L-system's axiom,
-    /// derivation length and other headers are for running it alone.
+    /// The label of the L-system being read (`Lsystem: 2`). Once a
+    /// sub-L-system (not the file's first) has started (`sub_labels` not
+    /// empty), its axiom, derivation length and other headers are for
+    /// running it alone.
     label: u32,
-    in_sub: bool,
     main_label: u32,
     sub_labels: Vec<u32>,
     axiom: Option<(Vec<SuccModule>, Span)>,
@@ -228,7 +228,6 @@ impl Resolver {
                         });
                     }
                     s.sub_labels.push(label);
-                    s.in_sub = true;
                     s.ended = None;
                     s.table = None;
                     s.seen.clear();
@@ -244,7 +243,7 @@ impl Resolver {
             | HeaderKind::Ignore(_)
             | HeaderKind::Consider(_)
             | HeaderKind::MaximumDepth(_)
-                if s.in_sub => {}
+                if !s.sub_labels.is_empty() => {}
             HeaderKind::DerivationLength(e) => {
                 if let Some((_, first)) = s.dlength {
                     self.duplicate(
