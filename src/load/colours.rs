@@ -27,47 +27,41 @@ enum Kind {
     Materials,
 }
 
-/// The colour files the `cpfg` line of `specifications` beside `model`
-/// names: each with its kind and the first colour index it sets.
-fn named_files(model: &Path, finder: &IncludeFinder) -> Vec<(Kind, usize, String)> {
-    let dir = model.parent().unwrap_or(Path::new("."));
-    let Ok(spec) = finder.read(&dir.join("specifications")) else {
-        return Vec::new();
-    };
+/// The colour files the first `cpfg` line of the model's `specifications`
+/// text names: each with its kind and the first colour index it sets.
+fn named_files(spec: &str) -> Vec<(Kind, usize, String)> {
     let mut out = Vec::new();
-    for line in spec.lines() {
-        let words: Vec<&str> = line.split_whitespace().collect();
-        if !words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")) {
-            continue;
-        }
-        let mut i = 0;
-        while i < words.len() {
-            let flag = match words[i] {
-                "-m" | "-m1" => Some((Kind::Map, 0)),
-                "-m2" => Some((Kind::Map, 256)),
-                "-M" | "-M1" => Some((Kind::Materials, 0)),
-                _ => None,
-            };
-            if let (Some((kind, first)), Some(file)) = (flag, words.get(i + 1)) {
-                out.push((kind, first, file.to_string()));
-                i += 1;
-            }
+    let Some(words) = super::view::cpfg_lines(spec).next() else {
+        return out;
+    };
+    let mut i = 0;
+    while i < words.len() {
+        let flag = match words[i] {
+            "-m" | "-m1" => Some((Kind::Map, 0)),
+            "-m2" => Some((Kind::Map, 256)),
+            "-M" | "-M1" => Some((Kind::Materials, 0)),
+            _ => None,
+        };
+        if let (Some((kind, first)), Some(file)) = (flag, words.get(i + 1)) {
+            out.push((kind, first, file.to_string()));
             i += 1;
         }
-        break;
+        i += 1;
     }
     out
 }
 
 /// The colours of the colour map and material files of the model at
-/// `model` (index, sRGB), materials after maps so that they win; a file
+/// `model` (index, sRGB), as the model's `specifications` (read into
+/// `sources` with the view file) names them, materials after maps so that they win; a file
 /// that cannot be used is a warning and gives no colours.
 pub(super) fn read_colour_files(
     model: &Path,
     finder: &IncludeFinder,
+    sources: &crate::source::SourceMap,
 ) -> (Vec<(usize, [f32; 3])>, Vec<Report>) {
     let dir = model.parent().unwrap_or(Path::new("."));
-    let mut files = named_files(model, finder);
+    let mut files = super::view::specifications(model, sources).map_or(Vec::new(), named_files);
     files.sort_by_key(|f| f.0 == Kind::Materials);
     let mut colours = Vec::new();
     let mut warnings = Vec::new();

@@ -36,26 +36,13 @@ pub(super) fn read_environment_files(
     sources: &mut SourceMap,
 ) -> (Option<EnvironmentFiles>, Vec<Report>) {
     let dir = model.parent().unwrap_or(Path::new("."));
-    let spec_path = dir.join("specifications");
-    let Some(spec_id) = sources
-        .files()
-        .iter()
-        .position(|f| f.origin == Origin::Disk(spec_path.clone()))
-    else {
+    let Some(spec) = super::view::specifications(model, sources) else {
         return (None, Vec::new());
     };
-    let e_name = sources
-        .get(spec_id as FileId)
-        .text
-        .lines()
-        .find_map(|line| {
-            let words: Vec<&str> = line.split_whitespace().collect();
-            if !words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")) {
-                return None;
-            }
-            let at = words.iter().position(|w| *w == "-e")?;
-            words.get(at + 1).map(|w| w.to_string())
-        });
+    let e_name = super::view::cpfg_lines(spec).find_map(|words| {
+        let at = words.iter().position(|w| *w == "-e")?;
+        words.get(at + 1).map(|w| w.to_string())
+    });
     let Some(e_name) = e_name else {
         return (None, Vec::new());
     };

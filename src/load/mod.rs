@@ -175,7 +175,7 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
                 environment::read_environment_files(&model, &finder, &mut loaded.sources);
             loaded.environment = env;
             loaded.errors.extend(errors);
-            let (colours, warnings) = colours::read_colour_files(&model, &finder);
+            let (colours, warnings) = colours::read_colour_files(&model, &finder, &loaded.sources);
             loaded.side.colours = colours;
             loaded.warnings.extend(warnings);
         }

@@ -184,6 +184,26 @@ fn surfaces(
     out
 }
 
+/// The words of each line of a `specifications` text that runs cpfg
+/// (`cpfg -m plant.map plant.l plant.v`), in file order.
+pub(super) fn cpfg_lines(text: &str) -> impl Iterator<Item = Vec<&str>> {
+    text.lines()
+        .map(|line| line.split_whitespace().collect::<Vec<&str>>())
+        .filter(|words| words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")))
+}
+
+/// The text of the `specifications` file beside `model`, when
+/// [`find_view_file`] read it into `sources`.
+pub(super) fn specifications<'s>(model: &Path, sources: &'s SourceMap) -> Option<&'s str> {
+    let dir = model.parent().unwrap_or(Path::new("."));
+    let spec_path = dir.join("specifications");
+    sources
+        .files()
+        .iter()
+        .find(|f| f.origin == Origin::Disk(spec_path.clone()))
+        .map(|f| f.text.as_str())
+}
+
 /// The view file cpfg would read for `model`, if there is one. A
 /// `specifications` file that was read is added to `sources`.
 fn find_view_file(
@@ -200,11 +220,7 @@ fn find_view_file(
                 Origin::Disk(spec_path.clone()),
                 spec,
             ));
-            for line in sources.get(id).text.lines() {
-                let words: Vec<&str> = line.split_whitespace().collect();
-                if !words.iter().any(|w| *w == "cpfg" || w.ends_with("/cpfg")) {
-                    continue;
-                }
+            for words in cpfg_lines(&sources.get(id).text) {
                 if let Some(v) = words.iter().find(|w| w.ends_with(".v")) {
                     let p = dir.join(v);
                     if p.is_file() {
