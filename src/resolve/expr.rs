@@ -361,7 +361,7 @@ impl Resolver {
             return e;
         }
         if name.name == "func" && !self.defines.contains_key("func") {
-            return self.spline_call(args, span, scope, exp);
+            return self.spline_call(name, args, span, scope, exp);
         }
         let resolved: Vec<Option<Expr>> =
             args.iter().map(|a| self.expr_in(a, scope, exp)).collect();

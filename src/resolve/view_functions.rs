@@ -19,27 +19,19 @@ impl Resolver {
     /// first time.
     pub(super) fn spline_call(
         &mut self,
+        name: &ast::Ident,
         args: &[ast::Expr],
         span: crate::source::Span,
         scope: &Scope,
         exp: &Expansion,
     ) -> Option<Expr> {
-        if args.len() != 2 {
-            self.error(ResolveError::CallArity {
-                name: "func".to_string(),
-                expected: 2,
-                found: args.len(),
-                src: self.sources.named_source(span),
-                span: span.into(),
-                help: Some(
-                    "`func(id, x)`: function `id` of the view file at `x` in [0, 1]".to_string(),
-                ),
-            });
+        let help = "`func(id, x)`: function `id` of the view file at `x` in [0, 1]";
+        if !self.call_arity(name, args.len(), 2, span, Some(help.to_string())) {
             return None;
         }
-        let functions = self.view_functions(span)?;
+        let functions = self.view_function_names(span)?;
         let by_name = match &args[0].kind {
-            ast::ExprKind::Name(n) => functions.iter().position(|f| f.name == *n),
+            ast::ExprKind::Name(n) => functions.iter().position(|f| f == n),
             _ => None,
         };
         let index = match by_name {
@@ -57,7 +49,7 @@ impl Resolver {
                         let names: Vec<String> = functions
                             .iter()
                             .enumerate()
-                            .map(|(i, f)| format!("{} = {}", i + 1, f.name))
+                            .map(|(i, f)| format!("{} = {f}", i + 1))
                             .collect();
                         self.error(ResolveError::BadValue {
                             what: "the function of `func`".to_string(),
@@ -83,22 +75,23 @@ impl Resolver {
         })
     }
 
-    /// The view file's functions (read while loading); `None` after
-    /// reporting why there are none.
-    pub(super) fn view_functions(
-        &mut self,
-        span: crate::source::Span,
-    ) -> Option<Vec<crate::lang::spline::SplineFn>> {
-        use crate::load::ViewFunctions;
-        match &mut self.view_functions {
-            ViewFunctions::Read(fs) => {
-                let fs = fs.clone();
-                // Contour curves may already follow the view's functions.
-                if self.vars.functions.is_none() {
-                    self.vars.functions = Some(fs.clone());
-                }
-                Some(fs)
+    /// The functions the VM evaluates start with the view file's (read
+    /// while loading), once, so that `func`'s numbers are theirs.
+    fn seed_functions(&mut self) {
+        if self.vars.functions.is_none() {
+            if let crate::load::ViewFunctions::Read(fs) = &self.view_functions {
+                self.vars.functions = Some(fs.clone());
             }
+        }
+    }
+
+    /// The names of the view file's functions, in `func` order; `None`
+    /// after reporting why there are none.
+    fn view_function_names(&mut self, span: crate::source::Span) -> Option<Vec<String>> {
+        use crate::load::ViewFunctions;
+        self.seed_functions();
+        match &mut self.view_functions {
+            ViewFunctions::Read(fs) => Some(fs.iter().map(|f| f.name.clone()).collect()),
             ViewFunctions::NoViewFile => {
                 self.error(ResolveError::Unsupported {
                     what: "`func` without a view file".to_string(),
@@ -154,11 +147,7 @@ impl Resolver {
         };
         let s = self.expr_in(&args[1], scope, exp)?;
         // After the view file's functions, so that `func`'s numbers stay.
-        if self.vars.functions.is_none() {
-            if let crate::load::ViewFunctions::Read(fs) = &self.view_functions {
-                self.vars.functions = Some(fs.clone());
-            }
-        }
+        self.seed_functions();
         let functions = self.vars.functions.get_or_insert_with(Vec::new);
         functions.push(SplineFn {
             name: format!("{}:{}", name.name, curve.name),
