@@ -7,9 +7,10 @@
 //!
 //! The text is compiled as if it were the file at its path
 //! ([`Input::Edited`]), so `#include "x"` resolves beside it. Included
-//! files are read from disk (an unsaved edit in an included file is seen
-//! once it is saved). Standard library files have no path: they are
-//! written once to a cache folder so that an editor can open them.
+//! files that are open in the editor are read from their unsaved text (the
+//! server passes them in the options), the others from disk. Standard
+//! library files have no path: they are written once to a cache folder so
+//! that an editor can open them.
 
 use std::path::{Path, PathBuf};
 
@@ -160,7 +161,16 @@ fn absolute(p: &Path) -> PathBuf {
 
 /// The standard library file `name` as a file on disk, written to a cache
 /// folder (per lsys version) the first time it is asked for.
+/// Checked and written once per process: every analysis (every keystroke)
+/// asks for the URIs of the library files the model reads.
 pub fn std_file(name: &str) -> Option<PathBuf> {
+    use std::collections::HashMap;
+    use std::sync::{Mutex, OnceLock};
+    static WRITTEN: OnceLock<Mutex<HashMap<String, PathBuf>>> = OnceLock::new();
+    let written = WRITTEN.get_or_init(Default::default);
+    if let Some(p) = written.lock().ok()?.get(name) {
+        return Some(p.clone());
+    }
     let text = crate::stdlib::get(name)?;
     let dir = std::env::temp_dir().join(format!("lsys-std-{}", env!("CARGO_PKG_VERSION")));
     let path = dir.join(format!("{}.lsys", name.trim_end_matches(".lsys")));
@@ -168,5 +178,6 @@ pub fn std_file(name: &str) -> Option<PathBuf> {
         std::fs::create_dir_all(&dir).ok()?;
         std::fs::write(&path, text).ok()?;
     }
+    written.lock().ok()?.insert(name.to_string(), path.clone());
     Some(path)
 }
