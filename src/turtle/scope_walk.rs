@@ -106,11 +106,8 @@ impl Turtle<'_> {
                     .map_err(|m| self.misfit(m, sym, args, index))?;
                 let branches =
                     self.branches(w, sym, args, index, next, pieces.len(), pieces.len())?;
-                let mut at = 0.0;
-                for (b, len) in branches.iter().zip(&pieces) {
-                    self.sub(w, q, *b, scope::piece(&frame, size, axis, at, *len))?;
-                    at += len;
-                }
+                let laid = branches.iter().copied().map(Some).zip(pieces);
+                self.lay_out(w, q, (&frame, size), axis, laid)?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Repeat(axis) => {
@@ -118,16 +115,8 @@ impl Turtle<'_> {
                 let pieces = scope::repeat(total, arg(0), axis)
                     .map_err(|m| self.misfit(m, sym, args, index))?;
                 let branches = self.branches(w, sym, args, index, next, 1, 1)?;
-                let mut at = 0.0;
-                for len in &pieces {
-                    self.sub(
-                        w,
-                        q,
-                        branches[0],
-                        scope::piece(&frame, size, axis, at, *len),
-                    )?;
-                    at += len;
-                }
+                let laid = pieces.into_iter().map(|len| (Some(branches[0]), len));
+                self.lay_out(w, q, (&frame, size), axis, laid)?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Symmetric(axis) => {
@@ -135,18 +124,16 @@ impl Turtle<'_> {
                 let pieces = scope::symmetric(total, arg(0), arg(1), arg(2), axis)
                     .map_err(|m| self.misfit(m, sym, args, index))?;
                 let branches = self.branches(w, sym, args, index, next, 3, 3)?;
-                let mut at = 0.0;
-                for (role, len) in &pieces {
+                // A missing centre (length 0) draws nothing.
+                let laid = pieces.into_iter().map(|(role, len)| {
                     let b = match role {
                         Role::End => branches[0],
                         Role::Bay => branches[1],
                         Role::Centre => branches[2],
                     };
-                    if *len > 0.0 {
-                        self.sub(w, q, b, scope::piece(&frame, size, axis, at, *len))?;
-                    }
-                    at += len;
-                }
+                    ((len > 0.0).then_some(b), len)
+                });
+                self.lay_out(w, q, (&frame, size), axis, laid)?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Faces => {
@@ -173,6 +160,27 @@ impl Turtle<'_> {
     }
 
     /// Draws branch `b` as `[ ... ]` would, in the sub-scope `(frame, size)`.
+    /// Draws each branch in its piece of the scope `(frame, size)`, the
+    /// pieces laid end to end along `axis`; a piece without a branch keeps
+    /// its place and draws nothing.
+    fn lay_out(
+        &mut self,
+        w: &Walk,
+        q: &mut QueryFn,
+        (frame, size): (&Frame, DVec3),
+        axis: crate::lang::scope_commands::Axis,
+        pieces: impl IntoIterator<Item = (Option<Branch>, f64)>,
+    ) -> Result<(), TurtleError> {
+        let mut at = 0.0;
+        for (b, len) in pieces {
+            if let Some(b) = b {
+                self.sub(w, q, b, scope::piece(frame, size, axis, at, len))?;
+            }
+            at += len;
+        }
+        Ok(())
+    }
+
     fn sub(
         &mut self,
         w: &Walk,
