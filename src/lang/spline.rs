@@ -262,44 +262,12 @@ impl SplineFn {
         let u = d * (n - 2) as f64;
         let mut sum = (0.0, 0.0);
         for (k, p) in self.points.iter().enumerate() {
-            let w = basis(k as i64, 4, u, n);
+            let w = super::curve::basis(k as i64, 4, u, n);
             sum.0 += p.0 * w;
             sum.1 += p.1 * w;
         }
         sum
     }
-}
-
-fn knot(j: i64, n: i64) -> i64 {
-    if j < 4 {
-        0
-    } else if j > n {
-        n - 2
-    } else {
-        j - 3
-    }
-}
-
-/// The B-spline basis of order `t` with end knots repeated ([`knot`]),
-/// over the points 0..=n.
-pub(super) fn basis(k: i64, t: i64, u: f64, n: i64) -> f64 {
-    if t == 1 {
-        return if knot(k, n) as f64 <= u && u < knot(k + 1, n) as f64 {
-            1.0
-        } else {
-            0.0
-        };
-    }
-    let mut sum = 0.0;
-    let div = knot(k + t - 1, n) - knot(k, n);
-    if div != 0 {
-        sum = (u - knot(k, n) as f64) / div as f64 * basis(k, t - 1, u, n);
-    }
-    let div = knot(k + t, n) - knot(k + 1, n);
-    if div != 0 {
-        sum += (knot(k + t, n) as f64 - u) / div as f64 * basis(k + 1, t - 1, u, n);
-    }
-    sum
 }
 
 #[cfg(test)]
