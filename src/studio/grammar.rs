@@ -9,6 +9,7 @@ use std::path::PathBuf;
 use serde_json::{json, Value};
 
 use super::model::{self, Model};
+use super::watch::Snapshot;
 
 /// A `#define` of the root file, as the page shows it.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +22,10 @@ pub struct Define {
 }
 
 pub struct GrammarSession {
+    /// The opened folder, which the watcher watches.
+    pub folder: PathBuf,
+    /// The folder as it was just before the last build read it.
+    pub seen: Snapshot,
     /// The root file, absolute.
     pub path: PathBuf,
     /// The same, relative to the opened folder (for the page).
@@ -37,8 +42,10 @@ pub struct GrammarSession {
 }
 
 impl GrammarSession {
-    pub fn open(path: PathBuf, file: String) -> GrammarSession {
+    pub fn open(folder: PathBuf, path: PathBuf, file: String) -> GrammarSession {
         let mut s = GrammarSession {
+            folder,
+            seen: Snapshot::default(),
             path,
             file,
             defines: Vec::new(),
@@ -55,6 +62,7 @@ impl GrammarSession {
 
     /// Compiles and builds again (after a save, or a change on the page).
     pub fn rebuild(&mut self) {
+        self.seen = Snapshot::take(&self.folder, &self.path);
         if let Ok(text) = std::fs::read_to_string(&self.path) {
             self.defines = defines_of(&text);
         }

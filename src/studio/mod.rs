@@ -15,11 +15,12 @@ mod http;
 mod model;
 mod pailou;
 mod safety;
+mod watch;
 
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
-use std::time::{Duration, SystemTime};
+use std::time::Duration;
 
 pub use edit::EditGraph;
 pub use grammar::{defines_of, Define, GrammarSession};
@@ -212,6 +213,7 @@ pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
         )))
     } else if full.is_file() {
         Ok(Session::Grammar(grammar::GrammarSession::open(
+            root.to_path_buf(),
             full,
             rel.to_string(),
         )))
@@ -222,58 +224,28 @@ pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
     }
 }
 
-/// Grammar mode's watcher: polls the modification times of the grammar
-/// files in the opened folder (includes and cpfg side files among them)
-/// and rebuilds when one changes. Polling, not notify: editors save by
-/// rename, and a folder of grammars is small.
+/// Grammar mode's watcher thread: rebuilds when the folder no longer
+/// matches the snapshot the session took before its last read.
 fn watch(shared: &Shared) {
-    let mut last: Vec<(PathBuf, SystemTime)> = Vec::new();
     loop {
         std::thread::sleep(Duration::from_millis(150));
         if *lock(&shared.stopped) {
             return;
         }
-        if !matches!(*lock(&shared.session), Session::Grammar(_)) {
-            last.clear();
-            continue;
-        }
-        let now = stamps(&shared.root);
-        if now != last {
-            let first = last.is_empty();
-            last = now;
-            if first {
-                continue;
-            }
-            if let Session::Grammar(g) = &mut *lock(&shared.session) {
+        let root_file = match &*lock(&shared.session) {
+            Session::Grammar(g) => g.path.clone(),
+            _ => continue,
+        };
+        let now = watch::Snapshot::take(&shared.root, &root_file);
+        let rebuilt = match &mut *lock(&shared.session) {
+            Session::Grammar(g) if g.path == root_file && g.seen != now => {
                 g.rebuild();
+                true
             }
+            _ => false,
+        };
+        if rebuilt {
             shared.bump();
         }
     }
-}
-
-/// (file, modified) of the folder's files, two levels deep, at most 2000.
-fn stamps(root: &Path) -> Vec<(PathBuf, SystemTime)> {
-    let mut out = Vec::new();
-    let mut dirs = vec![(root.to_path_buf(), 0)];
-    while let Some((dir, depth)) = dirs.pop() {
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        for e in entries.flatten() {
-            let p = e.path();
-            let Ok(meta) = e.metadata() else { continue };
-            if meta.is_dir() {
-                let name = e.file_name();
-                let hidden = name.to_string_lossy().starts_with('.');
-                if depth < 2 && !hidden && name != "node_modules" && name != "target" {
-                    dirs.push((p, depth + 1));
-                }
-            } else if out.len() < 2000 {
-                out.push((p, meta.modified().unwrap_or(SystemTime::UNIX_EPOCH)));
-            }
-        }
-    }
-    out.sort();
-    out
 }
