@@ -79,6 +79,9 @@ def normalize(a):
 
 
 _uid = [0]
+# Segments per curve are multiplied by D: 1 for the preview set
+# (`--detail 0`), 3 for the default set (see main).
+D = 1
 
 
 def new_group(label=""):
@@ -470,7 +473,7 @@ def dou(w_along, w_across, height, slot, taper=0.75, hollow=0.06, slot_along=Tru
     qi, ping = 0.4 * height, 0.2 * height
     ha, hc = w_across / 2, w_along / 2
     rings = []
-    steps = 6
+    steps = 6 * D
     for s in range(steps + 1):
         t = s / steps
         k = taper + (1 - taper) * t - hollow * math.sin(math.pi * t)
@@ -504,9 +507,10 @@ def sheng_row(mesh, ys, ztop, w_along=16.0, w_across=14.0, height=10.0):
             mesh.merge(shell)
 
 
-def gong_profile(length, height, end_h, roll_len, segs=8):
+def gong_profile(length, height, end_h, roll_len, segs=None):
     """Side view (y, z) of a bracket arm: flat top, vertical end faces down to
     end_h, then the rounded 'juansha' underside rising to the ends."""
+    segs = segs or 8 * D
     L2 = length / 2
     pts = [(-L2 + roll_len, 0.0), (L2 - roll_len, 0.0)]
     groups = [None]
@@ -575,7 +579,7 @@ def make_MAn():
     h_tip, w_tip = 1.2, 6.0
     rings = []
     groups = []
-    samples = [0.0, 0.35, sb] + [sb + (1 - sb) * k / 12 for k in range(1, 13)]
+    samples = [0.0, 0.35, sb] + [sb + (1 - sb) * k / (12 * D) for k in range(1, 12 * D + 1)]
     for s in samples:
         y = L * s
         w = w0 + (w_tip - w0) * s ** 1.5
@@ -604,7 +608,7 @@ def make_MNo():
     groups = [None]
     # lower lobe: a round bulging forward, from the bottom up to the mouth
     c, r = (40.0, 7.0), 7.0
-    segs = 10
+    segs = 10 * D
     a0, a1 = -math.pi / 2, math.radians(112)
     for s in range(1, segs + 1):
         a = a0 + (a1 - a0) * s / segs
@@ -649,7 +653,7 @@ def make_MP():
     groups.append("neck")
     prof.append((0.0, 1.0))
     groups.append(None)
-    return lathe(prof, 24, groups)
+    return lathe(prof, 24 * min(D, 2), groups)
 
 
 def make_MPB():
@@ -661,7 +665,7 @@ def make_MPB():
     prof = [(0.0, 0.40), (0.80, 0.40), (0.84, 0.47), (0.865, 0.56), (0.86, 0.65), (0.83, 0.74),
             (0.77, 0.82), (0.69, 0.88), (0.62, 0.92), (0.60, 0.93), (0.60, 0.97), (0.0, 0.97)]
     groups = [None, "drum", "drum", "drum", "drum", "drum", "drum", "drum", None, "mirror", None]
-    m.merge(lathe(prof, 32, groups))
+    m.merge(lathe(prof, 32 * min(D, 2), groups))
     return m
 
 
@@ -738,7 +742,7 @@ def make_MQ():
     amp = 0.035
     pts = [(0.0, amp)]
     groups = []
-    lobes, per = 5, 6
+    lobes, per = 5, 6 * D
     y_at = lambda x: amp + (y_end - amp) * (x / x_end) ** 1.9
     for k in range(lobes):
         for s in range(1, per + 1):
@@ -748,7 +752,7 @@ def make_MQ():
             pts.append((x, y))
             groups.append("lobe%d" % k)
     # scroll tip: round nose from the lower-left of the circle up to its top
-    steps = 10
+    steps = 10 * D
     for s in range(1, steps + 1):
         a = tip_a0 + (math.radians(90) - tip_a0) * s / steps
         pts.append((cxt + rt * math.cos(a), cyt + rt * math.sin(a)))
@@ -760,7 +764,7 @@ def make_MQ():
     m.merge(extrude(pts, -T / 2, T / 2, "xy", groups))
     # a raised scroll boss on both faces near the tip
     for zsign in (-1, 1):
-        boss = lathe([(0.0, 0.0), (0.045, 0.0), (0.05, 0.006), (0.045, 0.012), (0.0, 0.014)], 16,
+        boss = lathe([(0.0, 0.0), (0.045, 0.0), (0.05, 0.006), (0.045, 0.012), (0.0, 0.014)], 16 * D,
                      [None, "b", "b", "b"])
         # lathe axis y -> face normal z
         if zsign < 0:
@@ -942,8 +946,21 @@ MODELS = [
 
 
 def main(argv):
+    """make_components.py [OUT] [--detail N]: the components with every
+    curve's segments multiplied by N (default 3, the set lsys builds with;
+    1 is the preview set in OUT/preview)."""
+    global D
+    args = list(argv[1:])
+    if "--detail" in args:
+        i = args.index("--detail")
+        D = int(args[i + 1])
+        del args[i:i + 2]
+    else:
+        D = 3
     here = os.path.dirname(os.path.abspath(__file__))
-    out = argv[1] if len(argv) > 1 else os.path.join(here, "..", "grammar", "std", "components")
+    out = args[0] if args else os.path.join(here, "..", "grammar", "std", "components")
+    if not args and D == 1:
+        out = os.path.join(out, "preview")
     out = os.path.normpath(out)
     os.makedirs(out, exist_ok=True)
     for name, make, note in MODELS:

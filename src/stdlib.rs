@@ -26,7 +26,8 @@ pub fn names() -> Vec<&'static str> {
 }
 
 /// (name, OBJ text) of every built-in component model, from
-/// `grammar/std/components/` (written by `scripts/make_components.py`).
+/// `grammar/std/components/` (written by `scripts/make_components.py`):
+/// the set built at the default `--detail` and above.
 pub const COMPONENTS: &[(&str, &str)] = &[
     ("MAL", include_str!("../grammar/std/components/MAL.obj")),
     ("MAO", include_str!("../grammar/std/components/MAO.obj")),
@@ -43,9 +44,78 @@ pub const COMPONENTS: &[(&str, &str)] = &[
     ("MY", include_str!("../grammar/std/components/MY.obj")),
 ];
 
-/// The OBJ text of the built-in component `name` (without `~`).
+/// The same components with a third of the segments on every curve, for
+/// previews (`--detail 0`), from `grammar/std/components/preview/`.
+pub const PREVIEW_COMPONENTS: &[(&str, &str)] = &[
+    (
+        "MAL",
+        include_str!("../grammar/std/components/preview/MAL.obj"),
+    ),
+    (
+        "MAO",
+        include_str!("../grammar/std/components/preview/MAO.obj"),
+    ),
+    (
+        "MAn",
+        include_str!("../grammar/std/components/preview/MAn.obj"),
+    ),
+    (
+        "MBP",
+        include_str!("../grammar/std/components/preview/MBP.obj"),
+    ),
+    (
+        "MCa",
+        include_str!("../grammar/std/components/preview/MCa.obj"),
+    ),
+    (
+        "MFB",
+        include_str!("../grammar/std/components/preview/MFB.obj"),
+    ),
+    (
+        "MIB",
+        include_str!("../grammar/std/components/preview/MIB.obj"),
+    ),
+    (
+        "ML",
+        include_str!("../grammar/std/components/preview/ML.obj"),
+    ),
+    (
+        "MNo",
+        include_str!("../grammar/std/components/preview/MNo.obj"),
+    ),
+    (
+        "MP",
+        include_str!("../grammar/std/components/preview/MP.obj"),
+    ),
+    (
+        "MPB",
+        include_str!("../grammar/std/components/preview/MPB.obj"),
+    ),
+    (
+        "MQ",
+        include_str!("../grammar/std/components/preview/MQ.obj"),
+    ),
+    (
+        "MY",
+        include_str!("../grammar/std/components/preview/MY.obj"),
+    ),
+];
+
+/// The OBJ text of the built-in component `name` (without `~`) at the
+/// default level of detail.
 pub fn component(name: &str) -> Option<&'static str> {
-    COMPONENTS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+    component_at(name, 1)
+}
+
+/// The OBJ text of the built-in component `name` at level of `detail`
+/// (0: the preview set).
+pub fn component_at(name: &str, detail: u8) -> Option<&'static str> {
+    let set = if detail == 0 {
+        PREVIEW_COMPONENTS
+    } else {
+        COMPONENTS
+    };
+    set.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
 
 /// Components that are standard library grammars: `~TM(s)` places the

@@ -207,7 +207,7 @@ fn grammar_components_build_once_and_refuse_cycles() {
     assert!(stderr(&o).contains("~Loop -> ~Loop"), "{}", stderr(&o));
     assert!(!out.exists());
     // The standard library's Toukungs are components too: two middle
-    // Toukungs share one mesh of the whole bracket set.
+    // Toukungs are two nodes placing the same block and arm meshes.
     std::fs::write(&grammar, "Axiom: ~TM(1) f(2) ~TM(2) ~TS\n").unwrap();
     let o = lsys(&["build", path_str(&grammar), "-o", path_str(&out), "--stats"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -215,13 +215,29 @@ fn grammar_components_build_once_and_refuse_cycles() {
     assert_eq!(stats["instances"]["TM"], 2);
     assert_eq!(stats["instances"]["TS"], 1);
     let doc = gltf::Gltf::from_slice(&std::fs::read(&out).unwrap()).unwrap();
-    let meshes: Vec<_> = doc
-        .nodes()
-        .filter(|n| n.name().is_some_and(|m| m.starts_with("TM#")))
-        .map(|n| n.mesh().unwrap().index())
-        .collect();
-    assert_eq!(meshes.len(), 2);
-    assert_eq!(meshes[0], meshes[1]);
+    let inner = |placement: &str| -> Vec<(String, usize)> {
+        let mut v: Vec<(String, usize)> = doc
+            .nodes()
+            .filter_map(|n| {
+                let rest = n.name()?.strip_prefix(placement)?.to_string();
+                Some((rest, n.mesh()?.index()))
+            })
+            .collect();
+        v.sort();
+        v
+    };
+    let (first, second) = (inner("TM#0/"), inner("TM#1/"));
+    assert!(first.len() > 10, "{first:?}");
+    assert_eq!(first, second);
+    // The side Toukung's caps are the middle ones' mesh: stored once.
+    let cap = |p: &str| {
+        inner(p)
+            .into_iter()
+            .find(|(n, _)| n.starts_with("MCa#"))
+            .unwrap()
+            .1
+    };
+    assert_eq!(cap("TM#0/"), cap("TS#0/"));
 }
 
 /// The 15 Pailous of the paper's Table 3 (`examples/pailou/*.toml`, named

@@ -58,6 +58,7 @@ fn sample() -> Scene {
             material: None,
         }],
         origin: "test".into(),
+        nested: None,
     });
     s.components.push(Component {
         name: "L".into(),
@@ -72,6 +73,7 @@ fn sample() -> Scene {
             },
         ],
         origin: "test".into(),
+        nested: None,
     });
     place(
         &mut s,
@@ -113,6 +115,7 @@ fn skewed() -> Scene {
             material: None,
         }],
         origin: "test".into(),
+        nested: None,
     });
     place(&mut s, 0, Mat4::from_scale(Vec3::new(-1.0, 2.0, 1.0)), 0);
     let shear = Mat4::from_translation(Vec3::X * 4.0)
@@ -149,6 +152,7 @@ fn repaired() -> Scene {
             material: None,
         }],
         origin: "test".into(),
+        nested: None,
     });
     place(&mut s, 0, Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0)), 0);
     s
@@ -572,6 +576,7 @@ fn khronos_validator_accepts_the_exports() {
         ("bush", built("examples/abop/fig1_24d.lsys")),
         ("leaves", built("examples/plants/bush_3d.lsys")),
         ("toukung", built("std:toukung_side")),
+        ("pailou", built("std:pailou")),
         (
             "instanced",
             built_with("examples/plants/bush_3d.lsys", &instanced()),
@@ -605,4 +610,96 @@ fn khronos_validator_accepts_the_exports() {
         .filter(|l| l.ends_with(": 0 errors, 0 warnings"))
         .collect();
     assert_eq!(reported.len(), files.len(), "{stdout}");
+}
+
+/// Every triangle of `doc` in world space (node hierarchy composed), as
+/// (centroid, area).
+fn world_triangles(doc: &gltf::Gltf, bin: &[u8]) -> Vec<(Vec3, f32)> {
+    fn walk(n: gltf::Node, parent: Mat4, bin: &[u8], out: &mut Vec<(Vec3, f32)>) {
+        let m = parent * Mat4::from_cols_array_2d(&n.transform().matrix());
+        for prim in n.mesh().iter().flat_map(|mesh| mesh.primitives()) {
+            let reader = prim.reader(|b| (b.index() == 0).then_some(bin));
+            let p: Vec<Vec3> = reader
+                .read_positions()
+                .unwrap()
+                .map(|v| m.transform_point3(Vec3::from(v)))
+                .collect();
+            let indices: Vec<u32> = reader.read_indices().unwrap().into_u32().collect();
+            for t in indices.chunks_exact(3) {
+                let [a, b, c] = [0, 1, 2].map(|k| p[t[k] as usize]);
+                out.push(((a + b + c) / 3.0, (b - a).cross(c - a).length() / 2.0));
+            }
+        }
+        for c in n.children() {
+            walk(c, m, bin, out);
+        }
+    }
+    let mut out = Vec::new();
+    for s in doc.scenes() {
+        for n in s.nodes() {
+            walk(n, Mat4::IDENTITY, bin, &mut out);
+        }
+    }
+    out
+}
+
+/// Grammar components (the Toukungs) and clipped roofs are written as a
+/// hierarchy of nodes placing their smaller components (each stored once):
+/// composed, the file draws exactly the scene's triangles, and it is far
+/// smaller than the same model with the Toukungs written as single meshes.
+#[test]
+fn glb_nests_grammar_components_and_draws_the_same_triangles() {
+    let scene = built("std:pailou");
+    assert!(
+        scene
+            .components
+            .iter()
+            .any(|c| c.name == "RC" && c.nested.is_some())
+            && scene
+                .components
+                .iter()
+                .any(|c| c.name == "TS" && c.nested.is_some()),
+        "std:pailou places a clipped roof and side Toukungs"
+    );
+    let glb = to_glb(&scene).unwrap();
+    let doc = gltf::Gltf::from_slice(&glb).unwrap();
+    let bin = doc.blob.clone().unwrap();
+    let mut file = world_triangles(&doc, &bin);
+    let mut drawn = Vec::new();
+    scene.for_each_triangle(|[a, b, c], _, _| {
+        drawn.push(((a + b + c) / 3.0, (b - a).cross(c - a).length() / 2.0));
+    });
+    assert_eq!(file.len(), drawn.len());
+    assert_eq!(file.len(), scene.triangle_count());
+    let (lo, hi) = scene.bounds().unwrap();
+    let tolerance = (hi - lo).max_element() * 1e-4;
+    // Each axis of the centroids, and the areas, sorted, agree pairwise.
+    for key in 0..4 {
+        let pick = |t: &(Vec3, f32)| if key < 3 { t.0[key] } else { t.1 };
+        file.sort_by(|a, b| pick(a).total_cmp(&pick(b)));
+        drawn.sort_by(|a, b| pick(a).total_cmp(&pick(b)));
+        let worst = file
+            .iter()
+            .zip(&drawn)
+            .map(|(a, b)| (pick(a) - pick(b)).abs())
+            .fold(0.0, f32::max);
+        let limit = if key < 3 {
+            tolerance
+        } else {
+            tolerance * tolerance * 1e4
+        };
+        assert!(worst < limit, "axis {key}: off by {worst}");
+    }
+    // Nested, the Toukungs' and tiles' meshes are stored once each.
+    let mut flat = scene.clone();
+    for c in &mut flat.components {
+        c.nested = None;
+    }
+    let flat = to_glb(&flat).unwrap();
+    assert!(
+        glb.len() * 2 < flat.len(),
+        "nested {} bytes, flat {}",
+        glb.len(),
+        flat.len()
+    );
 }

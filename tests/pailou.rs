@@ -23,7 +23,9 @@ fn examples() -> Vec<PathBuf> {
     graphs
 }
 
-/// Builds `args` to a GLB and returns its nodes: (name, world transform).
+/// Builds `args` to a GLB and returns its placements: (name, world
+/// transform). The nodes inside a nested component (`TS#1/MCa#0`, see
+/// docs/pailou.md) follow their placement and are left out.
 fn nodes(args: &[&str]) -> Vec<(String, Mat4)> {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("p.glb");
@@ -36,7 +38,7 @@ fn nodes(args: &[&str]) -> Vec<(String, Mat4)> {
     let mut found = Vec::new();
     fn walk(n: gltf::Node, parent: Mat4, found: &mut Vec<(String, Mat4)>) {
         let m = parent * Mat4::from_cols_array_2d(&n.transform().matrix());
-        if let Some(name) = n.name() {
+        if let Some(name) = n.name().filter(|name| !name.contains('/')) {
             found.push((name.to_string(), m));
         }
         for c in n.children() {

@@ -237,7 +237,7 @@ pub struct LookArgs {
     /// Also look for components (NAME.obj or NAME.lsys) in this directory (repeatable; after `components/` beside the grammar).
     #[arg(long = "components", value_name = "DIR")]
     pub components: Vec<PathBuf>,
-    /// Level of detail: 0 a light preview (bare roofs, fewer facets on thin tubes), 1 roofs with rows of round tiles, 2 twice the tiles and rounder thin tubes.
+    /// Level of detail: 0 a light preview (bare roofs, built-in components with a third of the segments on their curves, fewer facets on thin tubes), 1 roofs with rows of round tiles, 2 twice the tiles and rounder thin tubes.
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u8).range(0..=2))]
     pub detail: u8,
     /// Facets around tubes, spheres and discs (3 to 64). Without it spheres and discs get 8, and each tube up to 8: fewer when it is thin against the whole model (see --detail).

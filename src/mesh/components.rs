@@ -6,7 +6,7 @@
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 
 use super::error::MeshError;
 use super::scene::{Component, Material, Part, TriMesh};
@@ -22,8 +22,9 @@ pub struct ComponentSearch {
     /// The grammar components being built around this search, outermost
     /// first (to refuse cycles).
     pub within: Vec<String>,
-    /// Level of detail of procedural components (roofs): 0 preview, 1 the
-    /// default, 2 fine (`--detail`).
+    /// Level of detail (`--detail`) of procedural components (roofs: 0
+    /// preview, 1 the default, 2 fine) and of the built-in models (0: the
+    /// preview set with a third of the segments on every curve).
     pub detail: u8,
 }
 
@@ -80,7 +81,7 @@ impl ComponentSearch {
         if let Some(kind) = super::roof::RoofKind::from_name(name) {
             return Ok(Found::Roof(kind));
         }
-        if let Some(text) = stdlib::component(name) {
+        if let Some(text) = stdlib::component_at(name, self.detail) {
             return Ok(Found::BuiltIn(text));
         }
         stdlib::grammar_component(name)
@@ -153,14 +154,18 @@ impl ComponentSearch {
                 }),
             },
             Found::BuiltIn(text) => parse_obj(name, text.as_bytes(), "built-in", None, materials),
-            Found::Roof(kind) => Ok(Component {
-                name: name.to_string(),
-                parts: vec![Part {
-                    mesh: super::roof::roof(kind, self.detail),
-                    material: None,
-                }],
-                origin: "built-in (procedural)".to_string(),
-            }),
+            Found::Roof(kind) => {
+                let (mesh, nested) = super::roof::roof_component(kind, self.detail);
+                Ok(Component {
+                    name: name.to_string(),
+                    parts: vec![Part {
+                        mesh,
+                        material: None,
+                    }],
+                    origin: "built-in (procedural)".to_string(),
+                    nested: nested.map(Box::new),
+                })
+            }
             Found::Grammar(input) => {
                 super::subgrammar::grammar_component(name, &input, self, materials, grammars)
             }
@@ -260,16 +265,17 @@ pub fn parse_obj(
         name: name.to_string(),
         parts,
         origin: origin.to_string(),
+        nested: None,
     })
 }
 
 /// Centres the parts at the origin and scales each axis to extent 1. An
 /// axis with no extent (a flat model) stays flat.
-pub(super) fn normalise(parts: &mut [Part]) {
+pub(super) fn normalise(parts: &mut [Part]) -> Mat4 {
     let Some((lo, hi)) =
         super::scene::bounds_of(parts.iter().flat_map(|p| p.mesh.positions.iter().copied()))
     else {
-        return;
+        return Mat4::IDENTITY;
     };
     let extent = hi - lo;
     let centre = (lo + hi) * 0.5;
@@ -284,6 +290,7 @@ pub(super) fn normalise(parts: &mut [Part]) {
             *n = (*n * inv).normalize_or(*n);
         }
     }
+    Mat4::from_scale(scale) * Mat4::from_translation(-centre)
 }
 
 /// tobj's errors carry no position; find the offending line ourselves for

@@ -37,6 +37,7 @@ pub fn unit_cylinder(sides: u32) -> Component {
             material: None,
         }],
         origin: "built-in".into(),
+        nested: None,
     }
 }
 

@@ -7,9 +7,9 @@
 //! default) adds rows of round tiles (tongwa) down the front and back
 //! slopes with a disc (wadang) at each eave end; detail 2 doubles them.
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 
-use super::scene::TriMesh;
+use super::scene::{Component, Instance, Nested, Part, TriMesh};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RoofKind {
@@ -69,33 +69,143 @@ fn surface(kind: RoofKind, x: f32, z: f32) -> f32 {
 /// The roof's mesh at a level of detail (0 to [`MAX_DETAIL`]), normalised
 /// to the unit box.
 pub fn roof(kind: RoofKind, detail: u8) -> TriMesh {
+    roof_component(kind, detail).0
+}
+
+/// The roof's mesh (as [`roof`]) and, for a clipped roof with tiles, the
+/// same geometry as a shell and placements of one row of tiles: a clipped
+/// roof's profile does not change along the ridge, so every row is the
+/// same mesh moved (and mirrored for the back slope), and a file that
+/// keeps placements (glTF) stores it once.
+pub fn roof_component(kind: RoofKind, detail: u8) -> (TriMesh, Option<Nested>) {
+    let shell = shell(kind, detail);
+    let mut m = shell.clone();
+    let mut rows = Vec::new();
+    if detail > 0 {
+        let n = 28 * usize::from(detail);
+        for side in [-1.0f32, 1.0] {
+            for t in 0..n {
+                let x = -0.5 + (t as f32 + 0.5) / n as f32;
+                if let Some(row) = tile_row(kind, detail, x, side) {
+                    m.append(&row);
+                    rows.push((x, side));
+                }
+            }
+        }
+    }
+    let frame = normalise(&mut m);
+    let nested = (kind == RoofKind::Clipped && !rows.is_empty()).then(|| {
+        let row = tile_row(kind, detail, 0.0, 1.0).unwrap_or_default();
+        Nested {
+            frame,
+            parts: vec![Part {
+                mesh: shell,
+                material: None,
+            }],
+            components: vec![Component {
+                name: "tiles".into(),
+                parts: vec![Part {
+                    mesh: row,
+                    material: None,
+                }],
+                origin: "built-in (procedural)".into(),
+                nested: None,
+            }],
+            instances: rows
+                .iter()
+                .enumerate()
+                .map(|(number, &(x, side))| Instance {
+                    component: 0,
+                    transform: Mat4::from_translation(Vec3::X * x)
+                        * Mat4::from_scale(Vec3::new(1.0, 1.0, side)),
+                    material: 0,
+                    number: number as u32,
+                })
+                .collect(),
+            placement_colour: true,
+        }
+    });
+    (m, nested)
+}
+
+/// The shell (a smooth top and underside, walls all around) and the ridge.
+fn shell(kind: RoofKind, detail: u8) -> TriMesh {
     let mut m = TriMesh::default();
     let (nx, nz) = if detail == 0 {
         (NX / 2, NZ / 2)
     } else {
         (NX, NZ)
     };
-    let at = |i: usize, k: usize| {
-        let x = -0.5 + i as f32 / nx as f32;
-        let z = -0.5 + k as f32 / nz as f32;
-        let y = if detail == 0 {
+    let y = |x: f32, z: f32| {
+        if detail == 0 {
             surface(kind, x, z)
         } else {
             height(kind, x, z)
-        };
-        Vec3::new(x, y, z)
+        }
     };
-    // Top and underside of the shell.
+    let at = |i: usize, k: usize| {
+        let x = -0.5 + i as f32 / nx as f32;
+        let z = -0.5 + k as f32 / nz as f32;
+        Vec3::new(x, y(x, z), z)
+    };
+    // Top and underside of the shell. A clipped roof's surface is smooth:
+    // grids of shared vertices, each with the area-weighted normal of the
+    // faces around it, so the curve is shaded smooth and each vertex is
+    // stored once. An eaves roof's has creases (the hips, the upswept
+    // corners) where one normal per vertex would face away from some of
+    // its faces: flat faces there, three vertices each.
+    let down = Vec3::Y * -THICK;
+    let index = |i: usize, k: usize| i * (nz + 1) + k;
+    let points: Vec<Vec3> = (0..=nx)
+        .flat_map(|i| (0..=nz).map(move |k| (i, k)))
+        .map(|(i, k)| at(i, k))
+        .collect();
+    let mut normals = vec![Vec3::ZERO; points.len()];
+    let mut cells = Vec::with_capacity(nx * nz * 2);
     for i in 0..nx {
         for k in 0..nz {
-            let [a, b, c, d] = [at(i, k), at(i + 1, k), at(i + 1, k + 1), at(i, k + 1)];
-            quad(&mut m, a, d, c, b);
-            let down = Vec3::Y * -THICK;
-            quad(&mut m, a + down, b + down, c + down, d + down);
+            let [a, b, c, d] = [
+                index(i, k),
+                index(i + 1, k),
+                index(i + 1, k + 1),
+                index(i, k + 1),
+            ];
+            for t in [[a, d, c], [a, c, b]] {
+                let [p, q, r] = t.map(|v| points[v]);
+                let face = (q - p).cross(r - p);
+                for v in t {
+                    normals[v] += face;
+                }
+                cells.push(t);
+            }
+        }
+    }
+    for (offset, sign) in [(Vec3::ZERO, 1.0f32), (down, -1.0)] {
+        if kind == RoofKind::Eaves {
+            for t in &cells {
+                let [a, b, c] = t.map(|v| points[v] + offset);
+                if sign > 0.0 {
+                    flat(&mut m, a, b, c);
+                } else {
+                    flat(&mut m, a, c, b);
+                }
+            }
+            continue;
+        }
+        let base = m.vertex_count() as u32;
+        for (p, n) in points.iter().zip(&normals) {
+            m.vertex(*p + offset, n.normalize_or(Vec3::Y) * sign);
+        }
+        for t in &cells {
+            let [a, b, c] = t.map(|v| base + v as u32);
+            if sign > 0.0 {
+                m.triangle(a, b, c);
+            } else {
+                m.triangle(a, c, b);
+            }
         }
     }
     // The rim: walls between the two surfaces all around.
-    let down = Vec3::Y * -THICK;
     for i in 0..nx {
         let (a, b) = (at(i, 0), at(i + 1, 0));
         quad(&mut m, a, b, b + down, a + down);
@@ -107,9 +217,6 @@ pub fn roof(kind: RoofKind, detail: u8) -> TriMesh {
         quad(&mut m, b, a, a + down, b + down);
         let (a, b) = (at(nx, k), at(nx, k + 1));
         quad(&mut m, a, b, b + down, a + down);
-    }
-    if detail > 0 {
-        tiles(&mut m, kind, detail);
     }
     // The ridge along the top, with end blocks no higher than it (what
     // stands on a roof stands on its ridge, the top of its box).
@@ -131,104 +238,108 @@ pub fn roof(kind: RoofKind, detail: u8) -> TriMesh {
             Vec3::new(x + RIDGE * 0.6, top + RIDGE, RIDGE * 0.6),
         );
     }
-    normalise(&mut m);
     m
 }
 
-/// Rows of round tiles down the front and back slopes: half tubes lying on
-/// the surface from just below the ridge to the eave, each closed at the
-/// eave by a disc. 28 rows a side at detail 1, 56 at detail 2; on an eaves
-/// roof only where the slope, not the hip, is under them.
-fn tiles(m: &mut TriMesh, kind: RoofKind, detail: u8) {
+/// One row of round tiles on the `side` slope (+1 front, -1 back) at `x`:
+/// a half tube lying on the surface from just below the ridge to the eave,
+/// closed at the eave by a disc. 28 rows a side at detail 1, 56 at detail
+/// 2; on an eaves roof only where the slope, not the hip, is under them
+/// (`None` elsewhere).
+fn tile_row(kind: RoofKind, detail: u8, x: f32, side: f32) -> Option<TriMesh> {
     let rows = 28 * usize::from(detail);
     let (segments, facets) = (12 * usize::from(detail), 6);
     let r = 0.35 / rows as f32;
-    for side in [-1.0f32, 1.0] {
-        for t in 0..rows {
-            let x = -0.5 + (t as f32 + 0.5) / rows as f32;
-            // the slope's extent at this x: past the hip line on RE
-            let hip = match kind {
-                RoofKind::Clipped => 0.0,
-                RoofKind::Eaves => ((x.abs() - 0.25) / 0.25).max(0.0),
-            };
-            let z0 = 0.5 * hip.max(0.06);
-            if z0 >= 0.46 {
-                continue;
-            }
-            let ring = |k: usize| {
-                let z = side * (z0 + (0.5 - z0) * k as f32 / segments as f32);
-                let c = Vec3::new(x, surface(kind, x, z), z);
-                (0..=facets)
-                    .map(|f| {
-                        let a = std::f32::consts::PI * f as f32 / facets as f32;
-                        let n = Vec3::new(a.cos(), a.sin(), 0.0);
-                        (c + n * r, n)
-                    })
-                    .collect::<Vec<_>>()
-            };
-            // Rings of shared vertices (smooth round tiles), quads between.
-            let mut prev = ring(0);
-            let mut prev_at = m.vertex_count() as u32;
-            for (p, n) in &prev {
-                m.vertex(*p, *n);
-            }
-            for k in 1..=segments {
-                let next = ring(k);
-                let next_at = m.vertex_count() as u32;
-                for (p, n) in &next {
-                    m.vertex(*p, *n);
-                }
-                for f in 0..facets as u32 {
-                    let (a, b) = (prev_at + f, prev_at + f + 1);
-                    let (c, d) = (next_at + f, next_at + f + 1);
-                    // outward for either slope
-                    if side > 0.0 {
-                        m.triangle(a, b, d);
-                        m.triangle(a, d, c);
-                    } else {
-                        m.triangle(b, a, c);
-                        m.triangle(b, c, d);
-                    }
-                }
-                prev = next;
-                prev_at = next_at;
-            }
-            // the disc at the eave end, facing out
-            let n = Vec3::Z * side;
-            let centre = Vec3::new(x, surface(kind, x, side * 0.5), side * 0.5);
-            let c = m.vertex(centre, n);
-            let first = m.vertex_count() as u32;
-            for (p, _) in &prev {
-                m.vertex(*p, n);
-            }
-            for f in 0..facets as u32 {
-                if side > 0.0 {
-                    m.triangle(c, first + f, first + f + 1);
-                } else {
-                    m.triangle(c, first + f + 1, first + f);
-                }
+    let mut m = TriMesh::default();
+    // the slope's extent at this x: past the hip line on RE
+    let hip = match kind {
+        RoofKind::Clipped => 0.0,
+        RoofKind::Eaves => ((x.abs() - 0.25) / 0.25).max(0.0),
+    };
+    let z0 = 0.5 * hip.max(0.06);
+    if z0 >= 0.46 {
+        return None;
+    }
+    let ring = |k: usize| {
+        let z = side * (z0 + (0.5 - z0) * k as f32 / segments as f32);
+        let c = Vec3::new(x, surface(kind, x, z), z);
+        (0..=facets)
+            .map(|f| {
+                let a = std::f32::consts::PI * f as f32 / facets as f32;
+                let n = Vec3::new(a.cos(), a.sin(), 0.0);
+                (c + n * r, n)
+            })
+            .collect::<Vec<_>>()
+    };
+    // Rings of shared vertices (smooth round tiles), quads between.
+    let mut prev = ring(0);
+    let mut prev_at = 0;
+    for (p, n) in &prev {
+        m.vertex(*p, *n);
+    }
+    for k in 1..=segments {
+        let next = ring(k);
+        let next_at = m.vertex_count() as u32;
+        for (p, n) in &next {
+            m.vertex(*p, *n);
+        }
+        for f in 0..facets as u32 {
+            let (a, b) = (prev_at + f, prev_at + f + 1);
+            let (c, d) = (next_at + f, next_at + f + 1);
+            // outward for either slope
+            if side > 0.0 {
+                m.triangle(a, b, d);
+                m.triangle(a, d, c);
+            } else {
+                m.triangle(b, a, c);
+                m.triangle(b, c, d);
             }
         }
+        prev = next;
+        prev_at = next_at;
     }
+    // the disc at the eave end, facing out
+    let n = Vec3::Z * side;
+    let centre = Vec3::new(x, surface(kind, x, side * 0.5), side * 0.5);
+    let c = m.vertex(centre, n);
+    let first = m.vertex_count() as u32;
+    for (p, _) in &prev {
+        m.vertex(*p, n);
+    }
+    for f in 0..facets as u32 {
+        if side > 0.0 {
+            m.triangle(c, first + f, first + f + 1);
+        } else {
+            m.triangle(c, first + f + 1, first + f);
+        }
+    }
+    Some(m)
 }
 
 /// A flat-shaded quad a-b-c-d, counter-clockwise seen from outside.
 fn quad(m: &mut TriMesh, a: Vec3, b: Vec3, c: Vec3, d: Vec3) {
-    for t in [[a, b, c], [a, c, d]] {
-        let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize_or(Vec3::Y);
-        let i = m.vertex(t[0], n);
-        m.vertex(t[1], n);
-        m.vertex(t[2], n);
-        m.triangle(i, i + 1, i + 2);
-    }
+    flat(m, a, b, c);
+    flat(m, a, c, d);
+}
+
+/// A flat-shaded triangle a-b-c, counter-clockwise seen from outside.
+fn flat(m: &mut TriMesh, a: Vec3, b: Vec3, c: Vec3) {
+    let n = (b - a).cross(c - a).normalize_or(Vec3::Y);
+    let i = m.vertex(a, n);
+    m.vertex(b, n);
+    m.vertex(c, n);
+    m.triangle(i, i + 1, i + 2);
 }
 
 fn cuboid(m: &mut TriMesh, lo: Vec3, hi: Vec3) {
     m.append(&TriMesh::cuboid(lo, hi));
 }
 
-fn normalise(m: &mut TriMesh) {
-    let Some((lo, hi)) = m.bounds() else { return };
+/// Maps `m` into the unit box and returns the map.
+fn normalise(m: &mut TriMesh) -> Mat4 {
+    let Some((lo, hi)) = m.bounds() else {
+        return Mat4::IDENTITY;
+    };
     let ext = hi - lo;
     let centre = (lo + hi) * 0.5;
     for p in &mut m.positions {
@@ -237,6 +348,7 @@ fn normalise(m: &mut TriMesh) {
     for n in &mut m.normals {
         *n = (*n * ext).normalize_or(*n);
     }
+    Mat4::from_scale(ext.recip()) * Mat4::from_translation(-centre)
 }
 
 #[cfg(test)]
@@ -264,7 +376,11 @@ mod tests {
                 let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
                 let n = (b - a).cross(c - a);
                 if n.length() > 1e-9 {
-                    assert!(n.dot(m.normals[t[0] as usize]) > 0.0, "{kind:?} {detail}");
+                    assert!(
+                        n.dot(m.normals[t[0] as usize]) > 0.0,
+                        "{kind:?} {detail} {a} {b} {c} {n} {}",
+                        m.normals[t[0] as usize]
+                    );
                 }
             }
             // Signed volume of the closed pieces: positive when outward.

@@ -116,6 +116,29 @@ pub struct Component {
     pub parts: Vec<Part>,
     /// Where it came from: a file path or `built-in`.
     pub origin: String,
+    /// The same geometry as `parts`, kept as placements of smaller
+    /// components, when it was built from them (a grammar component, a
+    /// tiled roof). Everything that draws or measures reads `parts`;
+    /// exporters that keep a node hierarchy (glTF) write this instead, so
+    /// each smaller component is stored once in the file.
+    pub nested: Option<Box<Nested>>,
+}
+
+/// A component as a small scene of its own (see [`Component::nested`]).
+/// Material indices are the outer scene's.
+#[derive(Clone, Debug)]
+pub struct Nested {
+    /// Inner space -> the component's unit box (its normalisation).
+    pub frame: Mat4,
+    /// Geometry drawn directly, in inner space, each part with its material.
+    pub parts: Vec<Part>,
+    pub components: Vec<Component>,
+    /// Placements of `components`, in inner space.
+    pub instances: Vec<Instance>,
+    /// Whether parts without a material of their own take the colour of
+    /// the outer placement (a roof's tiles) instead of the inner
+    /// placement's (a grammar's own colours).
+    pub placement_colour: bool,
 }
 
 impl Component {
@@ -361,6 +384,7 @@ mod tests {
                 material: None,
             }],
             origin: "test".into(),
+            nested: None,
         });
         for x in [0.0, 10.0] {
             s.instances.push(Instance {

@@ -406,6 +406,7 @@ mod tests {
                             material: None,
                         }],
                         origin: "test".into(),
+                        nested: None,
                     });
                     s.components.len() - 1
                 }

@@ -7,11 +7,11 @@
 
 use std::collections::BTreeMap;
 
-use glam::Mat3;
+use glam::{Mat3, Mat4};
 
 use super::components::{normalise, ComponentSearch};
 use super::error::MeshError;
-use super::scene::{Component, Material, Part, Scene, TriMesh};
+use super::scene::{Component, Instance, Material, Nested, Part, Scene, TriMesh};
 use crate::load::Input;
 
 /// Compiles, derives and builds a grammar used as a component. Mesh only
@@ -138,10 +138,64 @@ pub fn grammar_component(
             "it draws nothing (no drawing command in its string)".to_string(),
         ));
     }
-    normalise(&mut parts);
+    let frame = normalise(&mut parts);
+    let nested = nest(scene, &map, frame);
     Ok(Component {
         name: name.to_string(),
         parts,
         origin,
+        nested: Some(Box::new(nested)),
     })
+}
+
+/// The inner scene kept as it was built (strokes merged per material,
+/// components and their placements), in the outer scene's materials.
+fn nest(scene: Scene, map: &[usize], frame: Mat4) -> Nested {
+    let mut strokes: BTreeMap<usize, TriMesh> = BTreeMap::new();
+    for s in scene.strokes {
+        strokes.entry(map[s.material]).or_default().append(&s.mesh);
+    }
+    Nested {
+        frame,
+        parts: strokes
+            .into_iter()
+            .filter(|(_, m)| !m.is_empty())
+            .map(|(material, mesh)| Part {
+                mesh,
+                material: Some(material),
+            })
+            .collect(),
+        components: scene
+            .components
+            .into_iter()
+            .map(|c| remap(c, map))
+            .collect(),
+        instances: scene
+            .instances
+            .into_iter()
+            .map(|i| Instance {
+                material: map[i.material],
+                ..i
+            })
+            .collect(),
+        placement_colour: false,
+    }
+}
+
+/// `c` with its material indices (own parts and nested ones) mapped.
+fn remap(mut c: Component, map: &[usize]) -> Component {
+    for p in &mut c.parts {
+        p.material = p.material.map(|m| map[m]);
+    }
+    if let Some(n) = &mut c.nested {
+        for p in &mut n.parts {
+            p.material = p.material.map(|m| map[m]);
+        }
+        let inner = std::mem::take(&mut n.components);
+        n.components = inner.into_iter().map(|c| remap(c, map)).collect();
+        for i in &mut n.instances {
+            i.material = map[i.material];
+        }
+    }
+    c
 }

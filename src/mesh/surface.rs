@@ -26,6 +26,7 @@ pub fn surface_component(surface: &CpfgSurface, patches: &[SurfacePatch]) -> Com
             material: None,
         }],
         origin: format!("cpfg surface {}", surface.file),
+        nested: None,
     }
 }
 

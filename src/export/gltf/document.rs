@@ -18,7 +18,8 @@ use json::{Accessor, Index};
 use super::{padded, ExportError};
 
 mod instancing;
-use crate::mesh::{Instance, Scene, TriMesh};
+use crate::mesh::scene::Nested;
+use crate::mesh::{Component, Instance, Scene, TriMesh};
 
 /// The document and its binary buffer (padded to 4 bytes; empty when the
 /// scene draws nothing, and then the document has no buffer).
@@ -45,6 +46,9 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError>
         materials: vec![None; scene.materials.len()],
         parts: HashMap::new(),
         meshes: HashMap::new(),
+        ids: HashMap::new(),
+        distinct: Vec::new(),
+        nested_parts: HashMap::new(),
     };
     let mut nodes = Vec::new();
     nodes.extend(b.strokes()?);
@@ -112,15 +116,20 @@ struct Builder<'s> {
     /// glTF material per scene material, created on first use so that unused
     /// colours do not clutter the file.
     materials: Vec<Option<Index<json::Material>>>,
-    /// Per (component, part), its geometry (None: empty part), written once
-    /// however many meshes and placements use it.
+    /// Per (component id, part), its geometry (None: empty part), written
+    /// once however many meshes and placements use it.
     parts: HashMap<(usize, usize), Option<Geometry>>,
-    /// Per (component, placement material when some part takes it), the
+    /// Per (component id, placement material when some part takes it), the
     /// shared mesh (None: the component draws nothing).
     meshes: HashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
+    /// Component ids (see [`Builder::id`]) by address, and each id's component.
+    ids: HashMap<usize, usize>,
+    distinct: Vec<&'s Component>,
+    /// Per (nested component's address, part), its own parts' geometry.
+    nested_parts: HashMap<(usize, usize), Option<Geometry>>,
 }
 
-impl Builder<'_> {
+impl<'s> Builder<'s> {
     fn strokes(&mut self) -> Result<Option<Index<json::Node>>, ExportError> {
         let scene = self.scene;
         let mut primitives = Vec::new();
@@ -141,14 +150,31 @@ impl Builder<'_> {
     }
 
     fn instance(&mut self, instance: &Instance) -> Result<Index<json::Node>, ExportError> {
-        let component = &self.scene.components[instance.component];
+        let scene = self.scene;
+        let component = &scene.components[instance.component];
         let name = format!("{}#{}", component.name, instance.number);
-        let (mesh, matrix) = match placement(instance.transform) {
-            Placement::Matrix(matrix) => (self.shared_mesh(instance)?, matrix),
+        self.placed(component, instance.transform, instance.material, name)
+    }
+
+    /// The node of one placement of `component`: its matrix and the shared
+    /// mesh, or, for a component built of smaller ones, a child node per
+    /// smaller placement (each smaller mesh stored once in the file).
+    fn placed(
+        &mut self,
+        component: &'s Component,
+        transform: Mat4,
+        material: usize,
+        name: String,
+    ) -> Result<Index<json::Node>, ExportError> {
+        let (mesh, matrix, children) = match placement(transform) {
+            Placement::Matrix(matrix) => match &component.nested {
+                Some(nested) => (None, matrix, Some(self.nested(nested, material, &name)?)),
+                None => (self.shared_mesh(component, material)?, matrix, None),
+            },
             Placement::Bake => {
-                let primitives = self.primitives(instance, Some(&name))?;
+                let primitives = self.primitives(component, material, Some((&name, transform)))?;
                 let mesh = (!primitives.is_empty()).then(|| self.mesh(name.clone(), primitives));
-                (mesh, None)
+                (mesh, None, None)
             }
             Placement::Invalid => {
                 return Err(ExportError::InvalidGeometry {
@@ -161,26 +187,110 @@ impl Builder<'_> {
             matrix,
             mesh,
             name: Some(name),
+            children,
             ..Default::default()
         }))
+    }
+
+    /// The children of a placement of a nested component: one node for its
+    /// normalisation, holding its own parts and a node per inner placement,
+    /// named `<outer>/<inner symbol>#<n>`.
+    fn nested(
+        &mut self,
+        nested: &'s Nested,
+        material: usize,
+        outer: &str,
+    ) -> Result<Vec<Index<json::Node>>, ExportError> {
+        let mut children = Vec::new();
+        let mut primitives = Vec::new();
+        for (i, part) in nested.parts.iter().enumerate() {
+            let key = (nested as *const Nested as usize, i);
+            let geometry = match self.nested_parts.get(&key) {
+                Some(&done) => done,
+                None => {
+                    let g = self.geometry(outer, &part.mesh, None)?;
+                    self.nested_parts.insert(key, g);
+                    g
+                }
+            };
+            if let Some(g) = geometry {
+                primitives.push(self.primitive(g, part.material.unwrap_or(material))?);
+            }
+        }
+        if !primitives.is_empty() {
+            let name = format!("{outer}/strokes");
+            let mesh = self.mesh(name.clone(), primitives);
+            children.push(self.root.push(json::Node {
+                mesh: Some(mesh),
+                name: Some(name),
+                ..Default::default()
+            }));
+        }
+        for inner in &nested.instances {
+            let component = &nested.components[inner.component];
+            let name = format!("{outer}/{}#{}", component.name, inner.number);
+            let colour = if nested.placement_colour {
+                material
+            } else {
+                inner.material
+            };
+            children.push(self.placed(component, inner.transform, colour, name)?);
+        }
+        let Placement::Matrix(matrix) = placement(nested.frame) else {
+            return Err(ExportError::InvalidGeometry {
+                name: outer.into(),
+                detail: "its normalisation is not a scale and a translation".into(),
+            });
+        };
+        Ok(vec![self.root.push(json::Node {
+            matrix,
+            name: Some(format!("{outer}/frame")),
+            children: Some(children),
+            ..Default::default()
+        })])
+    }
+
+    /// The canonical id of `component`: components loaded twice (the same
+    /// model inside two grammar components) share one, so their meshes are
+    /// written once.
+    fn id(&mut self, component: &'s Component) -> usize {
+        let address = component as *const Component as usize;
+        if let Some(&id) = self.ids.get(&address) {
+            return id;
+        }
+        let same = |a: &Component, b: &Component| {
+            a.name == b.name
+                && a.origin == b.origin
+                && a.parts.len() == b.parts.len()
+                && a.parts
+                    .iter()
+                    .zip(&b.parts)
+                    .all(|(p, q)| p.material == q.material && p.mesh == q.mesh)
+        };
+        let id = match self.distinct.iter().position(|&c| same(c, component)) {
+            Some(id) => id,
+            None => {
+                self.distinct.push(component);
+                self.distinct.len() - 1
+            }
+        };
+        self.ids.insert(address, id);
+        id
     }
 
     /// The mesh every placement of the component with this material shares.
     fn shared_mesh(
         &mut self,
-        instance: &Instance,
+        component: &'s Component,
+        material: usize,
     ) -> Result<Option<Index<json::Mesh>>, ExportError> {
-        // A copy of the reference, so that borrows of the scene do not hold `self`.
         let scene = self.scene;
-        let component = &scene.components[instance.component];
-        let colour = component
-            .uses_placement_colour()
-            .then_some(instance.material);
-        let key = (instance.component, colour);
+        let colour = component.uses_placement_colour().then_some(material);
+        let key = (self.id(component), colour);
         if let Some(&mesh) = self.meshes.get(&key) {
             return Ok(mesh);
         }
-        let primitives = self.primitives(instance, None)?;
+        let primitives = self.primitives(component, material, None)?;
         let mesh = (!primitives.is_empty()).then(|| {
             let name = match colour {
                 Some(m) => {
@@ -196,32 +306,31 @@ impl Builder<'_> {
     }
 
     /// One primitive per non-empty part of the placed component: with the
-    /// component's shared geometry, or, for a placement named `baked`, with
-    /// geometry of its own transformed here (glTF cannot hold its transform
-    /// as a node matrix).
+    /// component's shared geometry, or, for a placement to bake (named, with
+    /// its transform), with geometry of its own transformed here (glTF
+    /// cannot hold its transform as a node matrix).
     fn primitives(
         &mut self,
-        instance: &Instance,
-        baked: Option<&str>,
+        component: &'s Component,
+        material: usize,
+        baked: Option<(&str, Mat4)>,
     ) -> Result<Vec<Primitive>, ExportError> {
-        let scene = self.scene;
-        let component = &scene.components[instance.component];
+        let id = self.id(component);
         let mut primitives = Vec::new();
         for (i, part) in component.parts.iter().enumerate() {
             let geometry = match baked {
-                Some(name) => self.geometry(name, &part.mesh, Some(instance.transform))?,
-                None => match self.parts.get(&(instance.component, i)) {
+                Some((name, transform)) => self.geometry(name, &part.mesh, Some(transform))?,
+                None => match self.parts.get(&(id, i)) {
                     Some(&done) => done,
                     None => {
                         let g = self.geometry(&component.name, &part.mesh, None)?;
-                        self.parts.insert((instance.component, i), g);
+                        self.parts.insert((id, i), g);
                         g
                     }
                 },
             };
             if let Some(g) = geometry {
-                let material = part.material.unwrap_or(instance.material);
-                primitives.push(self.primitive(g, material)?);
+                primitives.push(self.primitive(g, part.material.unwrap_or(material))?);
             }
         }
         Ok(primitives)
@@ -473,7 +582,15 @@ fn placement(m: Mat4) -> Placement {
         let snapped = Mat4::from_scale_rotation_translation(s, r.normalize(), t);
         Placement::Matrix(Some(snapped.to_cols_array()))
     } else {
-        Placement::Matrix(Some(m.to_cols_array()))
+        // cos(90°) and the like leave 1e-17s where zeros are meant; zeros
+        // are shorter in the JSON and exact.
+        Placement::Matrix(Some(m.to_cols_array().map(|x| {
+            if x.abs() < 1e-12 {
+                0.0
+            } else {
+                x
+            }
+        })))
     }
 }
 

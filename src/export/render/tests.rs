@@ -33,6 +33,7 @@ fn cube_scene(rgb: [f32; 3], transform: Mat4) -> Scene {
             material: None,
         }],
         origin: "test".into(),
+        nested: None,
     });
     scene.instances.push(Instance {
         component: 0,
@@ -515,6 +516,7 @@ fn bench_render_1m_triangles() {
             material: None,
         }],
         origin: "test".into(),
+        nested: None,
     });
     let mut seed = 12345u32;
     let mut rnd = || {

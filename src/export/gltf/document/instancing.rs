@@ -36,10 +36,13 @@ impl Builder<'_> {
         // in placement order.
         let mut groups: BTreeMap<u32, Vec<Trs>> = BTreeMap::new();
         let mut rest = Vec::new();
+        let scene = self.scene;
         for instance in instances {
             match placement(instance.transform) {
                 Placement::Matrix(_) => {
-                    let Some(mesh) = self.shared_mesh(instance)? else {
+                    let Some(mesh) =
+                        self.shared_mesh(&scene.components[instance.component], instance.material)?
+                    else {
                         continue;
                     };
                     let (s, r, t) = instance.transform.to_scale_rotation_translation();
