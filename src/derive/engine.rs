@@ -333,6 +333,38 @@ impl<'p> Derivation<'p> {
         .with_fast_plan())
     }
 
+    /// The homomorphism of the current string drawing its random numbers
+    /// from this derivation's generator and reading and writing its
+    /// variables, as cpfg's turtle does each time it interprets the string
+    /// ([`Profile::shared_random_stream`]): the derivation's next draws
+    /// come after the interpretation's. Its depth-limit warnings are the
+    /// result's, not the derivation's.
+    ///
+    /// [`Profile::shared_random_stream`]: crate::lang::Profile::shared_random_stream
+    pub fn interpret(&mut self) -> Result<Interpreted, DeriveError> {
+        if self.tab.program.homomorphism.is_empty() {
+            return Ok(Interpreted {
+                modules: self.cur.clone(),
+                warnings: Vec::new(),
+            });
+        }
+        self.st.step = self.steps;
+        let before = self.st.warnings.len();
+        let mut out = ModuleStore::new();
+        rewrite_recursive(
+            &self.tab,
+            &mut self.st,
+            Table::Homomorphism,
+            &self.cur,
+            &mut self.index,
+            &mut out,
+        )?;
+        Ok(Interpreted {
+            modules: out,
+            warnings: self.st.warnings.split_off(before),
+        })
+    }
+
     /// The homomorphism of the current string (see [`homomorphism`]).
     pub fn homomorphism(&self) -> Result<Interpreted, DeriveError> {
         let opts = DeriveOptions {

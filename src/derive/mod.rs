@@ -50,7 +50,9 @@
 //!   ([`Derivation::warnings`]). It uses the derivation's generator.
 //! * **Homomorphism.** [`homomorphism`] applies the homomorphism table the
 //!   same way to produce the string the turtle interprets, never fed back,
-//!   with a fresh generator seeded like the derivation's.
+//!   with a fresh generator seeded like the derivation's; in a cpfg model
+//!   file ([`crate::lang::Profile::shared_random_stream`]) with the
+//!   derivation's own ([`Derivation::interpret`]).
 //! * **Limits.** A step stops as soon as its output passes
 //!   [`DeriveOptions::max_modules`] modules or
 //!   [`DeriveOptions::max_params`] parameter values.

@@ -83,6 +83,15 @@ pub struct Profile {
     /// environment pass sees `?E` modules of the axiom, not those its
     /// decomposition would write.
     pub decompose_axiom: bool,
+    /// The homomorphism draws its random numbers (`ran`, `nran`, ...) from
+    /// the derivation's own generator, as cpfg's turtle does (one
+    /// `main_xsubi` for productions and interpretation): every time cpfg
+    /// interprets the string (after the axiom and each step when the file
+    /// has query modules, and once more for the view before the string is
+    /// drawn or printed) it goes on drawing where the last draw left off.
+    /// Off, each homomorphism starts a generator of its own, seeded as the
+    /// derivation's, so the drawn string depends only on the string.
+    pub shared_random_stream: bool,
 }
 
 impl Profile {
@@ -99,6 +108,7 @@ impl Profile {
             fast_path: !cpfg,
             cpfg_turtle: cpfg,
             decompose_axiom: !cpfg,
+            shared_random_stream: false,
         }
     }
 
@@ -117,6 +127,10 @@ impl Profile {
             });
         Profile {
             cpfg_model_file: model_file,
+            // A cpfg model file is derived as cpfg runs it; a `.lsys` file
+            // in the cpfg dialect keeps homomorphisms that depend only on
+            // the string.
+            shared_random_stream: model_file,
             ..Profile::of(dialect)
         }
     }
