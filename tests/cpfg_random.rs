@@ -79,3 +79,29 @@ fn the_drawn_string_follows_one_interpretation_for_the_view() {
     let h = derive("unqueried.l", &["--homomorphism"]);
     assert_close(&firsts(&h, "f"), &[d[4], d[5]], &h);
 }
+
+/// A `seed:` makes a cpfg L-system stochastic as cpfg's is: the choices
+/// come from a generator of their own (`seed48({7, 0, 155})`), one draw
+/// for every module of a step whether a production matches it or not
+/// (the brackets and `B`s here), and `ran` is not seeded by `seed:`, so
+/// the `B`s take the first numbers of `srand48(0)`. The expected string
+/// was worked out by hand from those rules (C floats for the
+/// probabilities): drawing only where a production matches ends in `C`
+/// after one branch, seeding the choices with `srand48(7)` grows six.
+#[test]
+fn a_seed_makes_cpfg_choices_from_their_own_generator() {
+    let s = derive("moss.l", &["--cpfg-format"]);
+    assert_eq!(
+        s.trim(),
+        "[ B(0.170828) ] [ B(0.749902) ] [ B(0.0963717) ] [ B(0.870465) ] [ B(0.577304) ] A"
+    );
+    let d = draws(5);
+    assert_close(&firsts(&s, "B"), &d, &s);
+}
+
+/// Without `seed:` a cpfg L-system is deterministic: the probabilities
+/// are not used and the first production that matches applies.
+#[test]
+fn without_a_seed_cpfg_ignores_probabilities() {
+    assert_eq!(derive("unseeded.l", &[]).trim(), "B B B A");
+}

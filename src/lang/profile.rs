@@ -92,6 +92,16 @@ pub struct Profile {
     /// Off, each homomorphism starts a generator of its own, seeded as the
     /// derivation's, so the drawn string depends only on the string.
     pub shared_random_stream: bool,
+    /// Stochastic productions as cpfg chooses them. A `seed:` makes the
+    /// L-system stochastic: at every module of a step, every production
+    /// that matches (condition included) takes part, weighted by its
+    /// probability or 1 without one, and one number is drawn from a
+    /// generator of its own ([`crate::lang::rng::Rand48::cpfg_choice`]),
+    /// even where nothing matches. `seed:` seeds only that generator:
+    /// `ran` starts from 0 whatever it says. Without `seed:`, and in the
+    /// decomposition and homomorphism, probabilities are not used (the
+    /// first match applies). Off: the paper's choice (see `derive`).
+    pub cpfg_stochastic: bool,
 }
 
 impl Profile {
@@ -109,6 +119,7 @@ impl Profile {
             cpfg_turtle: cpfg,
             decompose_axiom: !cpfg,
             shared_random_stream: false,
+            cpfg_stochastic: false,
         }
     }
 
@@ -129,8 +140,11 @@ impl Profile {
             cpfg_model_file: model_file,
             // A cpfg model file is derived as cpfg runs it; a `.lsys` file
             // in the cpfg dialect keeps homomorphisms that depend only on
-            // the string.
+            // the string and the paper's stochastic choice (and a model
+            // file read in the paper's dialect takes the fast path, which
+            // knows only the paper's).
             shared_random_stream: model_file,
+            cpfg_stochastic: model_file && matches!(dialect, Dialect::Cpfg),
             ..Profile::of(dialect)
         }
     }
