@@ -172,3 +172,14 @@ fn a_cpfg_polygon_starts_without_a_vertex() {
         scene.mesh().bounds()
     ));
 }
+
+/// cpfg's scanner reads `@o(1)` as `@` then `o(1)`: the production for
+/// `o` also grows the `@o` sphere, and `ignore: ;!@o` lists four single
+/// modules, so a plain `o` is passed over in context too.
+#[test]
+fn an_at_command_is_its_letter_to_productions_and_context() {
+    let s = derive("commands", &["derive", "--every", "grow.l"]);
+    let lines: Vec<&str> = s.lines().collect();
+    assert_eq!(lines[1], "S ; ! @o(2) o(2) X", "{s}");
+    assert_eq!(lines[3], "S ; ! @o(4) o(4) X", "{s}");
+}

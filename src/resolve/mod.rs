@@ -6,6 +6,7 @@
 
 pub mod alphabet;
 mod brackets;
+mod cpfg_commands;
 mod cstmt;
 pub mod error;
 mod expr;

@@ -70,6 +70,12 @@ impl Resolver {
                 Item::Define(_) | Item::Include(_) => {}
             }
         }
+        if self.profile.cpfg_model_file {
+            self.command_twins(&mut tables);
+            if let Some((filter, _)) = &mut s.context {
+                self.cpfg_context_letters(filter);
+            }
+        }
         // Before the program takes the sources.
         self.report_missing_names();
         let root = Span::new(0, 0, 0);
