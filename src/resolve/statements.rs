@@ -149,6 +149,7 @@ impl Resolver {
             turtle.width_increment = Some(lines.increment);
             turtle.pixel_lines = lines.pixels;
         }
+        turtle.contours = std::mem::take(&mut self.view_contours);
         // Its colours are in its colour map and material files; the
         // file's own `colour i:` headers come after, and win.
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {
