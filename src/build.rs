@@ -149,13 +149,21 @@ pub fn build_observed(
     let steps = opts.steps.unwrap_or(program.derivation_length);
     let mut sim = Simulation::new(program, compiled, opts.derive.clone(), steps)?;
     sim.run(&mut |done, of| observe(Stage::Derive { done, of }))?;
+    // A cpfg model file's drawn string continues the derivation's
+    // generator (`Simulation::drawn`), so it is made here; others in `model`.
+    let drawn = if program.profile.shared_random_stream && !program.homomorphism.is_empty() {
+        observe(Stage::Homomorphism);
+        Some(sim.drawn()?)
+    } else {
+        None
+    };
     let d = sim.into_derivation();
     let warnings = d.warnings().to_vec();
     let step = d.step_number();
     let string = d.into_current();
     let derived = t0.elapsed();
     let mut built = locate_bracket(
-        model(comp, &string, step, opts, observe),
+        model(comp, &string, step, drawn, opts, observe),
         comp,
         opts,
         steps,
@@ -231,7 +239,7 @@ pub fn build_string(
 ) -> Result<Built, BuildError> {
     // The REPL's string is step `step` of the derivation: find the step
     // that wrote a stray `]`, as `build` does.
-    let built = model(comp, string, step, opts, observe);
+    let built = model(comp, string, step, None, opts, observe);
     locate_bracket(built, comp, opts, step, Some(string))
 }
 
@@ -255,17 +263,22 @@ fn locate_bracket(
     }
 }
 
+/// `drawn`: the homomorphism's output when the caller made it already.
 fn model(
     comp: &Compilation,
     string: &ModuleStore,
     step: u32,
+    drawn: Option<derive::Interpreted>,
     opts: &BuildOptions,
     observe: &mut dyn FnMut(Stage),
 ) -> Result<Built, BuildError> {
     let program = &comp.program;
     let t0 = Instant::now();
     let mut warnings = Vec::new();
-    let interpreted: Option<ModuleStore> = if program.homomorphism.is_empty() {
+    let interpreted: Option<ModuleStore> = if let Some(h) = drawn {
+        warnings.extend(h.warnings);
+        Some(h.modules)
+    } else if program.homomorphism.is_empty() {
         None
     } else {
         observe(Stage::Homomorphism);

@@ -172,3 +172,31 @@ fn a_cpfg_polygon_starts_without_a_vertex() {
         scene.mesh().bounds()
     ));
 }
+
+/// cpfg's scanner reads `@o(1)` as `@` then `o(1)`: the production for
+/// `o` also grows the `@o` sphere, and `ignore: ;!@o` lists four single
+/// modules, so a plain `o` is passed over in context too.
+#[test]
+fn an_at_command_is_its_letter_to_productions_and_context() {
+    let s = derive("commands", &["derive", "--every", "grow.l"]);
+    let lines: Vec<&str> = s.lines().collect();
+    assert_eq!(lines[1], "S ; ! @o(2) o(2) X", "{s}");
+    assert_eq!(lines[3], "S ; ! @o(4) o(4) X", "{s}");
+}
+
+/// `@#(1)` sweeps the view file's `contour: 1 flat.con` along the
+/// generalized cylinder: a flat curve 4 units across at half the line
+/// width per unit is a ribbon 2 wide and no thicker; `@#` alone is round
+/// again (1 across both ways).
+#[test]
+fn a_contour_is_the_cross_section_of_a_generalized_cylinder() {
+    let blade = extent("contour", "blade.l", 0);
+    let round = extent("contour", "round.l", 0);
+    assert!((blade[1] - 2.0).abs() < 1e-3, "{blade:?}");
+    let (wide, thin) = (blade[0].max(blade[2]), blade[0].min(blade[2]));
+    assert!((wide - 2.0).abs() < 0.01 && thin < 1e-3, "{blade:?}");
+    assert!(
+        (round[0] - 1.0).abs() < 0.05 && (round[2] - 1.0).abs() < 0.05,
+        "{round:?}"
+    );
+}

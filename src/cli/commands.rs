@@ -8,7 +8,7 @@ use miette::Diagnostic;
 
 use super::args::{CheckArgs, Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
-use crate::derive::{self, DeriveOptions, ModuleStore, NumberFormat, NumberStyle};
+use crate::derive::{self, DeriveOptions, NumberFormat, NumberStyle};
 use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::progress::Progress;
@@ -165,16 +165,18 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
     };
     let fmt = NumberFormat::for_program(program).with_style(style);
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {
-        let line = |s: &ModuleStore, step: u32, mut out: &mut dyn Write| -> Result<(), Outcome> {
+        let line = |sim: &mut Simulation, mut out: &mut dyn Write| -> Result<(), Outcome> {
             let shown = if d.homomorphism {
-                let h = derive::homomorphism(program, compiled, s, &opts, step)
-                    .map_err(Outcome::Derive)?;
+                // cpfg model files: the drawn string continues the
+                // derivation's generator, as each of cpfg's interpretations
+                // does (see `Simulation::drawn`).
+                let h = sim.drawn().map_err(Outcome::Derive)?;
                 for w in &h.warnings {
                     report(w, color);
                 }
                 Cow::Owned(h.modules)
             } else {
-                Cow::Borrowed(s)
+                Cow::Borrowed(sim.current())
             };
             shown
                 .write_string_with(&program.symbols, fmt, &mut out)
@@ -184,14 +186,14 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         let mut deriv =
             Simulation::new(program, compiled, opts.clone(), steps).map_err(Outcome::Derive)?;
         if d.every {
-            line(deriv.current(), 0, out)?;
+            line(&mut deriv, out)?;
         }
         let progress = Progress::new(true);
         for done in 0..steps {
             progress.step(done, steps);
             deriv.step().map_err(Outcome::Derive)?;
             if d.every {
-                line(deriv.current(), deriv.step_number(), out)?;
+                line(&mut deriv, out)?;
             }
         }
         deriv.finish().map_err(Outcome::Derive)?;
@@ -200,7 +202,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
             report(w, color);
         }
         if !d.every {
-            line(deriv.current(), deriv.step_number(), out)?;
+            line(&mut deriv, out)?;
         }
         Ok(())
     };

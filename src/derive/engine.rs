@@ -39,9 +39,21 @@ impl Default for DeriveOptions {
 }
 
 impl DeriveOptions {
-    /// The seed in effect for `program`: `--seed`, else `seed:`, else 0.
+    /// The seed of `ran` and the paper's choices for `program`:
+    /// `--seed`, else `seed:`, else 0. In a cpfg model file `seed:` seeds
+    /// only the stochastic choices ([`DeriveOptions::choice_generator`]),
+    /// so `ran` starts from `--seed` or 0.
     pub fn effective_seed(&self, program: &Program) -> u64 {
-        self.seed.or(program.seed).unwrap_or(DEFAULT_SEED)
+        let file = program.seed.filter(|_| !program.profile.cpfg_stochastic);
+        self.seed.or(file).unwrap_or(DEFAULT_SEED)
+    }
+
+    /// cpfg's separate generator of stochastic choices, for a cpfg model
+    /// file with a `seed:` (`--seed` stands for its value); `None`
+    /// otherwise.
+    pub fn choice_generator(&self, program: &Program) -> Option<Rand48> {
+        let seed = program.seed.filter(|_| program.profile.cpfg_stochastic)?;
+        Some(Rand48::cpfg_choice(self.seed.unwrap_or(seed)))
     }
 }
 
@@ -73,6 +85,7 @@ impl<'p> Derivation<'p> {
         let tab = Tables::new(program, compiled, &opts)?;
         let seed = opts.effective_seed(program);
         let mut st = State::new(&tab, seed);
+        st.choice = opts.choice_generator(program);
         let mut next = ModuleStore::new();
         run_hook(&tab, &mut st, "Start", compiled.hooks.start.as_ref())?;
         vm::run(&compiled.axiom, &[], st.machine(compiled), &mut next)
@@ -297,6 +310,7 @@ impl<'p> Derivation<'p> {
             string: self.cur.clone(),
             step: self.steps,
             rng: self.st.rng.clone(),
+            choice: self.st.choice.clone(),
             vars: self.st.vars.clone(),
             warnings: self.st.warnings.clone(),
         }
@@ -315,6 +329,7 @@ impl<'p> Derivation<'p> {
         let seed = opts.effective_seed(program);
         let mut st = State::new(&tab, seed);
         st.rng = cp.rng.clone();
+        st.choice = cp.choice.clone();
         st.vars = cp.vars.clone();
         st.warnings = cp.warnings.clone();
         st.step = cp.step;
@@ -331,6 +346,38 @@ impl<'p> Derivation<'p> {
             prev_len: 0,
         }
         .with_fast_plan())
+    }
+
+    /// The homomorphism of the current string drawing its random numbers
+    /// from this derivation's generator and reading and writing its
+    /// variables, as cpfg's turtle does each time it interprets the string
+    /// ([`Profile::shared_random_stream`]): the derivation's next draws
+    /// come after the interpretation's. Its depth-limit warnings are the
+    /// result's, not the derivation's.
+    ///
+    /// [`Profile::shared_random_stream`]: crate::lang::Profile::shared_random_stream
+    pub fn interpret(&mut self) -> Result<Interpreted, DeriveError> {
+        if self.tab.program.homomorphism.is_empty() {
+            return Ok(Interpreted {
+                modules: self.cur.clone(),
+                warnings: Vec::new(),
+            });
+        }
+        self.st.step = self.steps;
+        let before = self.st.warnings.len();
+        let mut out = ModuleStore::new();
+        rewrite_recursive(
+            &self.tab,
+            &mut self.st,
+            Table::Homomorphism,
+            &self.cur,
+            &mut self.index,
+            &mut out,
+        )?;
+        Ok(Interpreted {
+            modules: out,
+            warnings: self.st.warnings.split_off(before),
+        })
     }
 
     /// The homomorphism of the current string (see [`homomorphism`]).
@@ -358,6 +405,7 @@ pub struct Checkpoint {
     pub string: ModuleStore,
     pub step: u32,
     rng: Rand48,
+    choice: Option<Rand48>,
     vars: Vec<f64>,
     warnings: Vec<DepthWarning>,
 }

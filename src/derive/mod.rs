@@ -29,7 +29,8 @@
 //!   such decision draws exactly one number `u` from the generator (after
 //!   evaluating the weights); the production chosen is the first whose
 //!   running sum of weights exceeds `u * total`. All weights zero: the
-//!   module is copied unchanged (the draw still happens).
+//!   module is copied unchanged (the draw still happens). A cpfg model
+//!   file chooses as cpfg does instead (`stochastic.rs`).
 //! * **Context** (cpfg/lpfg). Symbols the `ignore:` / `consider:` filter
 //!   removes are passed over. The left context is matched right to left
 //!   from just left of the strict predecessor: a `]` skips the whole branch
@@ -40,7 +41,8 @@
 //!   `]` in the pattern skips the rest of the current branch past its `]`.
 //!   Unbalanced brackets fail the match.
 //! * **Generator.** POSIX `drand48` ([`crate::lang::rng`]), seeded by `--seed`, else the
-//!   program's `seed:`, else 0; one per derivation, consumed in string order
+//!   program's `seed:` (not in a cpfg model file, where it seeds only the
+//!   choices), else 0; one per derivation, consumed in string order
 //!   (conditions, weights, the draw, then the successor's `ran` calls).
 //! * **Decomposition.** After the axiom and after every step, each module
 //!   is rewritten by the decomposition productions (first match,
@@ -50,7 +52,9 @@
 //!   ([`Derivation::warnings`]). It uses the derivation's generator.
 //! * **Homomorphism.** [`homomorphism`] applies the homomorphism table the
 //!   same way to produce the string the turtle interprets, never fed back,
-//!   with a fresh generator seeded like the derivation's.
+//!   with a fresh generator seeded like the derivation's; in a cpfg model
+//!   file ([`crate::lang::Profile::shared_random_stream`]) with the
+//!   derivation's own ([`Derivation::interpret`]).
 //! * **Limits.** A step stops as soon as its output passes
 //!   [`DeriveOptions::max_modules`] modules or
 //!   [`DeriveOptions::max_params`] parameter values.
@@ -66,6 +70,7 @@ pub mod number;
 mod parallel;
 mod rewrite;
 mod run;
+mod stochastic;
 pub mod store;
 mod sublsystem;
 mod template;

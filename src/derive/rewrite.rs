@@ -58,6 +58,8 @@ pub(crate) struct Tables<'p> {
     /// number) and `$` that start and end one in the string.
     pub(crate) sub_open: Option<u32>,
     pub(crate) sub_close: Option<u32>,
+    /// A cpfg model file: probabilities are cpfg's (`stochastic.rs`).
+    pub(crate) cpfg_choice: bool,
 }
 
 impl<'p> Tables<'p> {
@@ -121,6 +123,7 @@ impl<'p> Tables<'p> {
             }),
             sub_open,
             sub_close,
+            cpfg_choice: profile.cpfg_stochastic,
         })
     }
 
@@ -144,6 +147,9 @@ struct Level {
 /// Everything that changes.
 pub(crate) struct State {
     pub(crate) rng: Rand48,
+    /// cpfg's generator of stochastic choices, in a stochastic cpfg model
+    /// file (`stochastic.rs`).
+    pub(crate) choice: Option<Rand48>,
     pub(crate) stack: Vec<f64>,
     pub(crate) binds: Vec<f64>,
     /// Variables of cpfg's statement blocks.
@@ -172,6 +178,7 @@ impl State {
     pub(crate) fn new(tab: &Tables, seed: u64) -> State {
         State {
             rng: Rand48::new(seed),
+            choice: None,
             stack: vec![0.0; tab.compiled.max_stack.max(1)],
             binds: vec![0.0; tab.nbinds().max(1)],
             vars: tab.program.var_init.clone(),
@@ -215,7 +222,7 @@ fn bindings<'a>(
 /// Whether production `p` of table `t` applies at `i` (pattern and
 /// condition); leaves its bindings in place.
 #[inline(always)]
-fn applies(
+pub(crate) fn applies(
     tab: &Tables,
     st: &mut State,
     t: Table,
@@ -250,6 +257,9 @@ fn choose(
     i: usize,
     off: usize,
 ) -> Result<Option<(usize, Bound)>, Fail> {
+    if tab.cpfg_choice {
+        return super::stochastic::choose(tab, st, t, (inp, i, off));
+    }
     let rules = &tab.rules[table_index(t)];
     let cands = rules.candidates(head_sym(inp.heads[i]));
     for (ci, &p) in cands.iter().enumerate() {
@@ -309,7 +319,7 @@ fn choose(
     Ok(None)
 }
 
-fn weight(
+pub(crate) fn weight(
     tab: &Tables,
     st: &mut State,
     t: Table,
@@ -413,11 +423,13 @@ pub(crate) fn rewrite(
             }
             out.extend_raw(&heads[i0..i], &params[off0..off]);
             check_limits(tab, out, None, st.step)?;
+            super::stochastic::pass_over(st, t, i - i0);
             continue;
         }
         if t == Table::Main && tab.cut == Some(head_sym(h)) && head_arity(h) == 0 {
             // cpfg's cut: drop `%` and the rest of its branch, up to (not
             // including) the `]` that closes it.
+            super::stochastic::pass_over(st, t, 1);
             let (end, skipped) = rest_of_branch(heads, i);
             i = end;
             off += skipped;

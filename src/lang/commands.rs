@@ -57,6 +57,9 @@ pub enum Action {
     CylStart,
     CylPoint,
     CylEnd,
+    /// cpfg's `@#(id)`: generalized cylinders take the view file's
+    /// contour `id` as their cross-section (`@#` alone: round).
+    CylContour,
     ScaleSet,
     ScaleMul,
     ScaleDiv,
@@ -362,6 +365,13 @@ pub const COMMANDS: &[Command] = &[
         "8 segments",
         CylEnd,
         "add the last control point and draw the generalized cylinder: @Ge(n)",
+    ),
+    cmd(
+        "@#",
+        (0, 1),
+        "round",
+        CylContour,
+        "cpfg: the cross-section of generalized cylinders: @#(id) the view file's `contour: id FILE`",
     ),
     cmd(
         "@Gr",

@@ -83,6 +83,25 @@ pub struct Profile {
     /// environment pass sees `?E` modules of the axiom, not those its
     /// decomposition would write.
     pub decompose_axiom: bool,
+    /// The homomorphism draws its random numbers (`ran`, `nran`, ...) from
+    /// the derivation's own generator, as cpfg's turtle does (one
+    /// `main_xsubi` for productions and interpretation): every time cpfg
+    /// interprets the string (after the axiom and each step when the file
+    /// has query modules, and once more for the view before the string is
+    /// drawn or printed) it goes on drawing where the last draw left off.
+    /// Off, each homomorphism starts a generator of its own, seeded as the
+    /// derivation's, so the drawn string depends only on the string.
+    pub shared_random_stream: bool,
+    /// Stochastic productions as cpfg chooses them. A `seed:` makes the
+    /// L-system stochastic: at every module of a step, every production
+    /// that matches (condition included) takes part, weighted by its
+    /// probability or 1 without one, and one number is drawn from a
+    /// generator of its own ([`crate::lang::rng::Rand48::cpfg_choice`]),
+    /// even where nothing matches. `seed:` seeds only that generator:
+    /// `ran` starts from 0 whatever it says. Without `seed:`, and in the
+    /// decomposition and homomorphism, probabilities are not used (the
+    /// first match applies). Off: the paper's choice (see `derive`).
+    pub cpfg_stochastic: bool,
 }
 
 impl Profile {
@@ -99,6 +118,8 @@ impl Profile {
             fast_path: !cpfg,
             cpfg_turtle: cpfg,
             decompose_axiom: !cpfg,
+            shared_random_stream: false,
+            cpfg_stochastic: false,
         }
     }
 
@@ -117,6 +138,13 @@ impl Profile {
             });
         Profile {
             cpfg_model_file: model_file,
+            // A cpfg model file is derived as cpfg runs it; a `.lsys` file
+            // in the cpfg dialect keeps homomorphisms that depend only on
+            // the string and the paper's stochastic choice (and a model
+            // file read in the paper's dialect takes the fast path, which
+            // knows only the paper's).
+            shared_random_stream: model_file,
+            cpfg_stochastic: model_file && matches!(dialect, Dialect::Cpfg),
             ..Profile::of(dialect)
         }
     }

@@ -35,6 +35,20 @@ impl Rand48 {
         }
     }
 
+    /// The generator cpfg draws its stochastic productions' choices from:
+    /// C's own `drand48` state, apart from the `ran` one, which
+    /// `seed: n` sets with `seed48({n, 0, 155})` (only n's low 16 bits
+    /// count) when n is not 0. With `seed: 0` cpfg leaves it unseeded,
+    /// which in the C library of Linux (glibc) is the state 0.
+    pub fn cpfg_choice(seed: u64) -> Rand48 {
+        let state = if seed == 0 {
+            0
+        } else {
+            (155 << 32) | (seed & 0xFFFF)
+        };
+        Rand48 { state, spare: None }
+    }
+
     /// The 48-bit state, as `erand48`'s `xsubi` holds it.
     pub fn state(&self) -> u64 {
         self.state

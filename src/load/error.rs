@@ -153,6 +153,15 @@ pub enum LoadError {
     )]
     ColourFile { path: String, why: String },
 
+    /// A view file's `contour:` line whose cross-section cannot be used.
+    #[error("cannot use a contour of the view file {view}: {why}")]
+    #[diagnostic(
+        code(lsys::load::contour_file),
+        severity(Warning),
+        help("generalized cylinders that select it (`@#`) are drawn round")
+    )]
+    ContourFile { view: String, why: String },
+
     #[error("cannot use the view file {path}")]
     #[diagnostic(code(lsys::load::view_file))]
     ViewUnreadable {

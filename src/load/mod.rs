@@ -9,6 +9,7 @@
 //! grammar.
 
 mod colours;
+mod contours;
 mod cpfg;
 mod curves;
 mod environment;
@@ -22,6 +23,7 @@ use std::path::{Path, PathBuf};
 
 use miette::Report;
 
+pub use contours::Contour;
 pub use environment::{EnvironmentFiles, HeaderImage};
 pub use error::{InputError, LoadError};
 pub use include::MAX_SOURCE_BYTES;
@@ -170,6 +172,17 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
     );
     if let Some(model) = model {
         loaded.side = view::read_side_files(&model, &profile, &finder, &mut loaded.sources);
+        let view = loaded
+            .side
+            .view
+            .map(|v| loaded.sources.get(v).name.clone())
+            .unwrap_or_default();
+        for why in std::mem::take(&mut loaded.side.contour_problems) {
+            let view = view.clone();
+            loaded
+                .warnings
+                .push(Report::new(LoadError::ContourFile { view, why }));
+        }
         if profile.cpfg_model_file {
             let (env, errors) =
                 environment::read_environment_files(&model, &finder, &mut loaded.sources);

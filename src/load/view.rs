@@ -43,6 +43,10 @@ pub struct SideFiles {
     pub lines: Option<ViewLines>,
     /// The contour curves of its `curve:` lines, in `curveX` order.
     pub curves: Vec<Result<crate::lang::curve::Curve, String>>,
+    /// The cross-sections of its `contour:` lines (`@#(id)`).
+    pub contours: Vec<super::contours::Contour>,
+    /// Why `contour:` lines were left out.
+    pub contour_problems: Vec<String>,
 }
 
 /// A cpfg view file's `initial line width: w [p]`, `line width
@@ -111,6 +115,8 @@ pub(super) fn read_side_files(
                 initial_colour: None,
                 lines: profile.cpfg_model_file.then(ViewLines::default),
                 curves: Vec::new(),
+                contours: Vec::new(),
+                contour_problems: Vec::new(),
             };
         }
     };
@@ -126,8 +132,15 @@ pub(super) fn read_side_files(
     };
     let surfaces = surfaces(id, &view, finder, sources);
     let curves = super::curves::curves(id, &view, finder, sources);
+    let (contours, contour_problems) = if profile.cpfg_model_file {
+        super::contours::contours(id, &view, finder, sources)
+    } else {
+        Default::default()
+    };
     SideFiles {
         curves,
+        contours,
+        contour_problems,
         view: Some(id),
         angle,
         functions: functions(id, &view, finder, sources),

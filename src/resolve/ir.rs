@@ -387,6 +387,9 @@ pub struct TurtleSettings {
     /// Line widths are cpfg screen pixels, not model units (a cpfg view
     /// file without `initial line width:`, or with `p` after it).
     pub pixel_lines: bool,
+    /// The cross-sections of a cpfg view file's `contour:` lines, which
+    /// `@#(id)` selects for generalized cylinders.
+    pub contours: Vec<crate::load::Contour>,
 }
 
 impl Program {

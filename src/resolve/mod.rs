@@ -6,6 +6,7 @@
 
 pub mod alphabet;
 mod brackets;
+mod cpfg_commands;
 mod cstmt;
 pub mod error;
 mod expr;
@@ -75,6 +76,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_initial_colour: loaded.side.initial_colour,
         view_lines: loaded.side.lines,
         view_curves: loaded.side.curves,
+        view_contours: loaded.side.contours,
         cpfg_surfaces: loaded.side.surfaces,
         environment_files: loaded.environment,
         environment_images: loaded.environment_images,
@@ -153,6 +155,8 @@ pub(crate) struct Resolver {
     pub view_lines: Option<crate::load::ViewLines>,
     /// A cpfg model's contour curves (`curve:` lines of its view file).
     pub view_curves: Vec<Result<crate::lang::curve::Curve, String>>,
+    /// A cpfg model's cross-sections (`contour:` lines of its view file).
+    pub view_contours: Vec<crate::load::Contour>,
     /// The cpfg surfaces the view file names (`~NAME`).
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// A cpfg model's environment files (`-e FILE.e`).

@@ -70,6 +70,12 @@ impl Resolver {
                 Item::Define(_) | Item::Include(_) => {}
             }
         }
+        if self.profile.cpfg_model_file {
+            self.command_twins(&mut tables);
+            if let Some((filter, _)) = &mut s.context {
+                self.cpfg_context_letters(filter);
+            }
+        }
         // Before the program takes the sources.
         self.report_missing_names();
         let root = Span::new(0, 0, 0);
@@ -143,6 +149,7 @@ impl Resolver {
             turtle.width_increment = Some(lines.increment);
             turtle.pixel_lines = lines.pixels;
         }
+        turtle.contours = std::mem::take(&mut self.view_contours);
         // Its colours are in its colour map and material files; the
         // file's own `colour i:` headers come after, and win.
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {

@@ -14,6 +14,14 @@ pub struct StepContext<'a> {
     pub opts: &'a DeriveOptions,
     /// The step whose string is answered (0: the axiom).
     pub step: u32,
+    /// The string as the turtle draws it, when the loop has interpreted it
+    /// already (a cpfg model file, whose interpretation draws from the
+    /// derivation's generator and so must happen once per string, see
+    /// [`Profile::shared_random_stream`]); `None`: apply the homomorphism
+    /// afresh.
+    ///
+    /// [`Profile::shared_random_stream`]: crate::lang::Profile::shared_random_stream
+    pub drawn: Option<&'a ModuleStore>,
 }
 
 /// Something that answers query modules: it reads the string and
@@ -23,8 +31,8 @@ pub struct StepContext<'a> {
 /// cpfg's order: an environment pass over string k−1 ([`before_step`],
 /// before `StartEach:` of step k; none over the final string), while the
 /// turtle's own queries (`?P`, ...) are filled by every interpretation
-/// ([`after_step`]: after the axiom and after each step, before
-/// `EndEach:`).
+/// ([`after_step`]: after the axiom and after each step, after
+/// `EndEach:`, where cpfg's next derivation step interprets the string).
 ///
 /// [`before_step`]: Environment::before_step
 /// [`after_step`]: Environment::after_step

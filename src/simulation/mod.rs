@@ -4,9 +4,19 @@
 //! ```text
 //! Start:, axiom, decomposition -> environments answer queries
 //! for each step up to the target:
-//!     StartEach:, productions, decomposition -> environments answer -> EndEach:
+//!     environments' pass before the step
+//!     StartEach:, productions, decomposition -> EndEach: -> environments answer
 //! End: once, after the last step run
 //! ```
+//!
+//! In a cpfg model file ([`Profile::shared_random_stream`]) the turtle's
+//! interpretation draws from the derivation's generator, as cpfg's does:
+//! when the file has query modules the loop interprets each string once
+//! (after the axiom and after each step's `EndEach:`, where cpfg's next
+//! step interprets it) and every environment reads that one
+//! interpretation; [`Simulation::drawn`] continues the same generator.
+//!
+//! [`Profile::shared_random_stream`]: crate::lang::Profile::shared_random_stream
 //!
 //! Derive knows nothing of the turtle and the turtle nothing of derive:
 //! what answers query modules between steps is an [`Environment`] plugged
@@ -23,8 +33,10 @@ pub use pass::EnvironmentPass;
 pub use queries::{drawn_sites, TurtleQueries};
 
 use crate::bytecode::Compiled;
-use crate::derive::{Checkpoint, Derivation, DeriveError, DeriveOptions, ModuleStore};
-use crate::resolve::Program;
+use crate::derive::{
+    self, Checkpoint, Derivation, DeriveError, DeriveOptions, Interpreted, ModuleStore,
+};
+use crate::resolve::{Program, SymbolKind};
 
 /// A derivation driven to a target step count, with the environments that
 /// answer its query modules.
@@ -36,6 +48,11 @@ pub struct Simulation<'p> {
     target: u32,
     environments: Vec<Box<dyn Environment + 'p>>,
     ended: bool,
+    /// cpfg interprets every string (its query modules make it check the
+    /// environment), drawing from the derivation's generator.
+    interprets_each: bool,
+    /// That interpretation of the current string.
+    drawn: Option<ModuleStore>,
 }
 
 impl<'p> Simulation<'p> {
@@ -83,6 +100,14 @@ impl<'p> Simulation<'p> {
         if let Some(env) = &program.environment {
             environments.push(Box::new(EnvironmentPass::new(env)));
         }
+        // cpfg's `checkEnvironment`: a query module anywhere in the file
+        // (`?(n,s)`, which opens a sub-L-system, is not one).
+        let interprets_each = program.profile.shared_random_stream
+            && program
+                .symbols
+                .list
+                .iter()
+                .any(|s| s.kind == SymbolKind::Query && s.name != "?");
         Simulation {
             derivation,
             program,
@@ -91,6 +116,8 @@ impl<'p> Simulation<'p> {
             target,
             environments,
             ended: false,
+            interprets_each,
+            drawn: None,
         }
     }
 
@@ -132,14 +159,21 @@ impl<'p> Simulation<'p> {
     /// Every environment answers the queries of the current string, after
     /// a step (`after`) or before the next one.
     fn answer(&mut self, after: bool) -> Result<(), DeriveError> {
+        if after && self.interprets_each {
+            // Even without an environment to answer: the interpretation
+            // draws from the generator the next step goes on with.
+            self.drawn = Some(self.derivation.interpret()?.modules);
+        }
         if self.environments.is_empty() {
             return Ok(());
         }
+        let drawn = self.drawn.take();
         let ctx = StepContext {
             program: self.program,
             compiled: self.compiled,
             opts: &self.opts,
             step: self.derivation.step_number(),
+            drawn: drawn.as_ref(),
         };
         for env in &mut self.environments {
             let string = self.derivation.current_mut();
@@ -150,17 +184,19 @@ impl<'p> Simulation<'p> {
             }
         }
         self.derivation.parameters_changed();
+        self.drawn = drawn;
         Ok(())
     }
 
     /// One step: the environments' pass over the current string,
-    /// `StartEach:`, productions, decomposition, the turtle's answers to
-    /// query modules, `EndEach:`, and `End:` when this was the target step.
+    /// `StartEach:`, productions, decomposition, `EndEach:`, the turtle's
+    /// answers to query modules, and `End:` when this was the target step.
     pub fn step(&mut self) -> Result<(), DeriveError> {
         self.answer(false)?;
+        self.drawn = None;
         self.derivation.rewrite_step()?;
-        self.answer(true)?;
         self.derivation.end_each()?;
+        self.answer(true)?;
         if self.derivation.step_number() == self.target {
             self.finish()?;
         }
@@ -175,6 +211,30 @@ impl<'p> Simulation<'p> {
             self.step()?;
         }
         self.finish()
+    }
+
+    /// The current string as the turtle draws it (the homomorphism's
+    /// output), for drawing or printing. In a cpfg model file this is
+    /// cpfg's: its interpretation draws from the derivation's generator,
+    /// after one interpretation of the string for the view (the one each
+    /// string gets anyway when the file has query modules), so each call
+    /// goes on drawing and the derivation after it too. Otherwise the
+    /// homomorphism starts a generator of its own (see
+    /// [`derive::homomorphism`]).
+    pub fn drawn(&mut self) -> Result<Interpreted, DeriveError> {
+        if !self.program.profile.shared_random_stream {
+            return derive::homomorphism(
+                self.program,
+                self.compiled,
+                self.derivation.current(),
+                &self.opts,
+                self.derivation.step_number(),
+            );
+        }
+        if !self.interprets_each {
+            self.derivation.interpret()?;
+        }
+        self.derivation.interpret()
     }
 
     /// `End:`, unless it already ran.

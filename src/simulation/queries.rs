@@ -20,13 +20,18 @@ pub fn drawn_sites(ctx: &StepContext<'_>, string: &ModuleStore) -> Option<Vec<Qu
     if program.homomorphism.is_empty() {
         return Some(own);
     }
-    let dopts = derive::DeriveOptions {
-        seed: Some(ctx.opts.effective_seed(program)),
-        ..ctx.opts.clone()
+    let drawn = match ctx.drawn {
+        Some(d) => turtle::query_sites(program, d, &opts).ok(),
+        None => {
+            let dopts = derive::DeriveOptions {
+                seed: Some(ctx.opts.effective_seed(program)),
+                ..ctx.opts.clone()
+            };
+            derive::homomorphism(program, ctx.compiled, string, &dopts, ctx.step)
+                .ok()
+                .and_then(|h| turtle::query_sites(program, &h.modules, &opts).ok())
+        }
     };
-    let drawn = derive::homomorphism(program, ctx.compiled, string, &dopts, ctx.step)
-        .ok()
-        .and_then(|h| turtle::query_sites(program, &h.modules, &opts).ok());
     Some(match drawn {
         Some(d) if d.len() == own.len() => own
             .iter()

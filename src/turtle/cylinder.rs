@@ -8,10 +8,12 @@
 //! from its own last point (cpfg's spline stack). Between control points
 //! the turtle usually moves with `f`.
 
+use super::cpfg_contour::{sweep, End};
 use super::drawing::{Chain, Drawing, TubePoint};
 use super::frame::Frame;
 use super::interp::State;
 use crate::lang::commands::Action;
+use crate::load::Contour;
 
 /// Curve segments between two control points when `@Gc`/`@Ge` give none.
 const DEFAULT_SEGMENTS: usize = 8;
@@ -24,16 +26,25 @@ pub(super) struct Open {
     frame: Frame,
     radius: f32,
     chain: Option<usize>,
+    /// The cross-section (`@#`) in force here.
+    contour: Option<usize>,
 }
 
 /// `@Gs` starts a cylinder at the turtle; `@Gc(n)` adds a control point
 /// (starting a cylinder when none is open, as cpfg does); `@Ge(n)` adds
 /// the last one and closes it.
-pub(super) fn control_point(d: &mut Drawing, s: &mut State, act: Action, args: &[f64]) {
+pub(super) fn control_point(
+    d: &mut Drawing,
+    s: &mut State,
+    act: Action,
+    args: &[f64],
+    contours: &[Contour],
+) {
     let here = Open {
         frame: s.frame,
         radius: s.width * 0.5,
         chain: None,
+        contour: s.contour,
     };
     let prev = match (act, s.cylinder) {
         (Action::CylStart, _) | (_, None) => {
@@ -45,7 +56,23 @@ pub(super) fn control_point(d: &mut Drawing, s: &mut State, act: Action, args: &
     let segments = args
         .first()
         .map_or(DEFAULT_SEGMENTS, |&n| (n.max(1.0) as usize).min(1024));
-    let chain = draw_segment(d, &prev, &here, segments, s.colour);
+    // A contour other than round: the previous point's, as cpfg starts
+    // each segment's rings from it (cpfg blends two different ones; the
+    // corpus never changes contour inside a cylinder).
+    let chain = match prev.contour.and_then(|c| contours.get(c)) {
+        Some(c) => {
+            let end = |o: &Open| End {
+                pos: o.frame.pos.as_vec3(),
+                h: o.frame.h.as_vec3(),
+                l: o.frame.l.as_vec3(),
+                u: o.frame.u.as_vec3(),
+                radius: o.radius,
+            };
+            sweep(d, &end(&prev), &end(&here), segments, s.colour, c);
+            None
+        }
+        None => draw_segment(d, &prev, &here, segments, s.colour),
+    };
     s.cylinder = (act != Action::CylEnd).then_some(Open { chain, ..here });
 }
 

@@ -94,6 +94,9 @@ pub(super) struct State {
     /// chain its last segment extended. A branch copies it and goes on
     /// from the branch point, as cpfg's spline stack does.
     pub(super) cylinder: Option<super::cylinder::Open>,
+    /// cpfg's `@#(id)`: the cross-section of the cylinders drawn from
+    /// here, an index into the program's contours; `None`: round.
+    pub(super) contour: Option<usize>,
     tropism: Vec3,
     elasticity: f32,
 }
@@ -200,6 +203,7 @@ fn interpret_with(
             scale: 1.0,
             chain: None,
             cylinder: None,
+            contour: None,
             tropism: Vec3::NEG_Y,
             elasticity: 0.0,
         },
@@ -459,7 +463,14 @@ impl Turtle<'_> {
             }
             CylStart | CylPoint | CylEnd => {
                 let s = &mut self.state;
-                super::cylinder::control_point(&mut self.drawing, s, act, args);
+                let contours = &self.program.turtle.contours;
+                super::cylinder::control_point(&mut self.drawing, s, act, args, contours);
+            }
+            CylContour => {
+                s.contour = args.first().and_then(|&id| {
+                    let contours = &self.program.turtle.contours;
+                    contours.iter().position(|c| f64::from(c.id) == id)
+                })
             }
             SubStart => super::cpfg::enter_sub(&mut self.subs, s, args),
             SubEnd => super::cpfg::leave_sub(&mut self.subs, s),

@@ -2,6 +2,7 @@
 //! all read, and the turtle itself. Input: a derived module string; output:
 //! strokes, polygons and component placements handed to the mesh builder.
 mod cpfg;
+mod cpfg_contour;
 mod cylinder;
 pub mod drawing;
 pub mod error;
