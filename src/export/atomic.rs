@@ -2,7 +2,10 @@
 //! or not at all. Each file is written to a temporary file in its target
 //! directory and renamed over the target only after every file of the set
 //! was written, so a failed run never leaves a half-written model (nor
-//! clobbers the model a previous run wrote).
+//! clobbers the model a previous run wrote). A path that is not a
+//! regular file (`/dev/null`, `/dev/stdout`, a named pipe) is written
+//! straight through instead: renaming a file over it would replace the
+//! device or pipe with that file.
 
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -29,6 +32,13 @@ impl AtomicFiles {
         path: &Path,
         body: impl FnOnce(&mut dyn Write) -> Result<(), E>,
     ) -> Result<(), E> {
+        if is_special(path) {
+            let file = std::fs::OpenOptions::new().write(true).open(path)?;
+            let mut out = BufWriter::with_capacity(1 << 16, file);
+            body(&mut out)?;
+            out.flush()?;
+            return Ok(());
+        }
         let dir = path
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
@@ -50,6 +60,12 @@ impl AtomicFiles {
         }
         Ok(())
     }
+}
+
+/// Whether `path` exists and is neither a regular file nor a folder: a
+/// device, a named pipe or a socket (symbolic links followed).
+fn is_special(path: &Path) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
 }
 
 /// A temporary file in `dir` with the permissions a new file would get
@@ -95,6 +111,32 @@ pub fn write_file<E: From<io::Error>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `-o /dev/null` (or a pipe) is written through, never replaced by a
+    /// regular file renamed over it. Tried on a named pipe of our own, not
+    /// on the machine's /dev/null.
+    #[cfg(unix)]
+    #[test]
+    fn devices_and_pipes_are_written_through_not_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("pipe.glb");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if !made.is_ok_and(|s| s.success()) {
+            eprintln!("skipped: no mkfifo");
+            return;
+        }
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || std::fs::read(fifo).unwrap())
+        };
+        write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")).unwrap();
+        // Checked before joining: a replaced pipe would never get a writer.
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        assert!(kind.is_fifo(), "the pipe was replaced by {kind:?}");
+        assert_eq!(reader.join().unwrap(), b"glTF");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
 
     #[test]
     fn failed_write_keeps_the_old_file_and_leaves_no_temporaries() {
