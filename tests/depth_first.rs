@@ -2,7 +2,8 @@
 //! `Derivation::run_steps`, issue 19) against stepping one step at a time:
 //! the same final string, the same errors, on grammars with brackets,
 //! parameters, conditions, several candidates, faults, limits, strings
-//! that shrink, and derivations longer than the depth it expands.
+//! that shrink, and derivations longer than the depth it expands; on one
+//! thread and on two (the string split in halves).
 
 use lsys::derive::{Derivation, DeriveOptions};
 use lsys::pipeline::Compilation;
@@ -56,7 +57,15 @@ fn same(text: &str, steps: u32, opts: DeriveOptions) -> String {
     let c = compile(text);
     for n in 0..=steps {
         let want = stepping(&c, &opts, n);
-        assert_eq!(expanded(&c, &opts, n), want, "{n} steps of\n{text}");
+        // One thread, and two (the string split in halves).
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got = pool.install(|| expanded(&c, &opts, n));
+            assert_eq!(got, want, "{n} steps of\n{text} on {threads} threads");
+        }
         let sim = lsys::simulation::derive(&c.program, &c.compiled, opts.clone(), n);
         let each =
             lsys::simulation::derive_each(&c.program, &c.compiled, opts.clone(), n, |_, _| {});
@@ -144,6 +153,13 @@ fn limits_of_any_step_give_the_steps_error() {
     // Over the limit only with the modules kept from the axiom.
     let kept = grammar("C C C A", "A --> B B\nB --> ");
     assert!(same(&kept, 2, four.clone()).starts_with("error"));
+    // Over the limit only with both halves of a split string together.
+    let halves = grammar(&"A ".repeat(64), "A --> B B\nB --> ");
+    let hundred = DeriveOptions {
+        max_modules: 100,
+        ..opts()
+    };
+    assert!(same(&halves, 2, hundred).starts_with("error"));
     // Within the limits the same grammars derive.
     assert_eq!(same(&shrinks, 2, opts()), "2 ");
 }

@@ -22,6 +22,11 @@
 //! what it always did. The size of every intermediate string is still
 //! known: each module is counted at the level it is written, and a module
 //! no production rewrites counts once at every later level.
+//!
+//! Two cores: with two threads in the rayon pool, an input of
+//! [`PAR_SPLIT`] modules or more is cut in two halves expanded at once;
+//! their counts add up and the second output is appended to the first
+//! (W2: 8.2 -> 4.5 ms, docs/performance.md).
 
 use super::fast::{first_match, run_range, LimitSink, Plan};
 use super::rewrite::Tables;
@@ -39,6 +44,13 @@ const LEAF_DEPTH: usize = 4;
 /// derivation steps up to the last ones as usual.
 pub(crate) const MAX_DEPTH: u32 = 64;
 
+/// Inputs of at least this many modules are split in two halves, each
+/// expanded on a thread of its own when the rayon pool has two.
+pub(crate) const PAR_SPLIT: usize = 64;
+
+/// Per level (steps to go), modules and parameters written, and kept.
+type Levels = (Vec<(usize, usize)>, Vec<(usize, usize)>);
+
 /// Expand `input` by `steps` steps (1 ..= [`MAX_DEPTH`]) into `out`
 /// (cleared first). `Some(len)`: done, `len` the length of the string one
 /// step before the last (for the memory projection of a later step);
@@ -54,6 +66,69 @@ pub(crate) fn expand(
     debug_assert!((1..=MAX_DEPTH).contains(&steps));
     out.clear();
     let d = steps as usize;
+    let (heads, params) = (&input.heads[..], &input.params[..]);
+    let (written, kept) = if heads.len() >= PAR_SPLIT && rayon::current_num_threads() > 1 {
+        // The halves expand independently; the second is appended to the
+        // first (one copy of half the output, against a second core).
+        let half = heads.len() / 2;
+        let off: usize = heads[..half].iter().map(|&h| head_arity(h)).sum();
+        let mut right = ModuleStore::new();
+        let mut stack2 = vec![0.0; stack.len()];
+        let (a, b) = rayon::join(
+            || run(plan, tab, stack, &heads[..half], &params[..off], d, out),
+            || {
+                run(
+                    plan,
+                    tab,
+                    &mut stack2,
+                    &heads[half..],
+                    &params[off..],
+                    d,
+                    &mut right,
+                )
+            },
+        );
+        let ((mut written, mut kept), (w2, k2)) = (a?, b?);
+        for (x, y) in written.iter_mut().zip(w2).chain(kept.iter_mut().zip(k2)) {
+            x.0 += y.0;
+            x.1 += y.1;
+        }
+        out.heads.extend_from_slice(&right.heads);
+        out.params.extend_from_slice(&right.params);
+        if out.len() > tab.max_modules || out.param_count() > tab.max_params {
+            return None;
+        }
+        (written, kept)
+    } else {
+        run(plan, tab, stack, heads, params, d, out)?
+    };
+    // The string of each step between the input and the output: what was
+    // written at its level, plus every module kept from an earlier level.
+    let (mut mods, mut params) = (0usize, 0usize);
+    let mut before_last = input.len();
+    for q in (1..d).rev() {
+        mods += kept[q + 1].0;
+        params += kept[q + 1].1;
+        let (m, p) = (written[q].0 + mods, written[q].1 + params);
+        if m > tab.max_modules || p > tab.max_params {
+            return None;
+        }
+        before_last = m;
+    }
+    Some(before_last)
+}
+
+/// Expand `heads` (parameters `params`) `d` steps, appending to `out`;
+/// the counts per level.
+fn run(
+    plan: &Plan,
+    tab: &Tables,
+    stack: &mut [f64],
+    heads: &[u32],
+    params: &[f64],
+    d: usize,
+    out: &mut ModuleStore,
+) -> Option<Levels> {
     let mut e = Expander {
         plan,
         tab,
@@ -64,21 +139,8 @@ pub(crate) fn expand(
         kept: vec![(0, 0); d + 1],
         scratch: [ModuleStore::new(), ModuleStore::new()],
     };
-    e.string(&input.heads, &input.params, d).ok()?;
-    // The string of each step between the input and the output: what was
-    // written at its level, plus every module kept from an earlier level.
-    let (mut mods, mut params) = (0usize, 0usize);
-    let mut before_last = input.len();
-    for q in (1..d).rev() {
-        mods += e.kept[q + 1].0;
-        params += e.kept[q + 1].1;
-        let (m, p) = (e.written[q].0 + mods, e.written[q].1 + params);
-        if m > tab.max_modules || p > tab.max_params {
-            return None;
-        }
-        before_last = m;
-    }
-    Some(before_last)
+    e.string(heads, params, d).ok()?;
+    Some((e.written, e.kept))
 }
 
 struct Expander<'a, 't, 'p> {

@@ -181,13 +181,21 @@ impl<'p> Derivation<'p> {
             && hooks.start_each.is_none()
             && hooks.end_each.is_none()
             && !self.tab.has_queries;
-        let deep = if eligible {
+        let mut deep = if eligible {
             steps.min(super::depth_first::MAX_DEPTH)
         } else {
             0
         };
         for _ in deep..steps {
             self.step()?;
+        }
+        // With two threads, a string long enough to be split in two first
+        // (W2 starts from one module).
+        if rayon::current_num_threads() > 1 {
+            while deep > 1 && self.cur.len() < super::depth_first::PAR_SPLIT {
+                self.step()?;
+                deep -= 1;
+            }
         }
         if deep == 0 || !self.depth_first(deep)? {
             for _ in 0..deep {
