@@ -66,17 +66,23 @@ fn main() {
         },
     ];
     let pool = common::pool(1);
+    // lsys also on two threads (the depth-first expansion splits the
+    // string in halves); symbios has one.
+    let pool2 = common::pool(2);
     for case in &cases {
         if !filter.is_empty() && !filter.iter().any(|f| case.name.contains(f.as_str())) {
             continue;
         }
-        let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+        let (mut ours, mut ours2, mut theirs) = (Vec::new(), Vec::new(), Vec::new());
         let mut lens = (0, 0);
         for _ in 0..ROUNDS {
             let t = Instant::now();
             let s = pool.install(|| common::run(&case.lsys, case.steps));
             ours.push(t.elapsed());
             lens.0 = black_box(s).len();
+            let t = Instant::now();
+            black_box(pool2.install(|| common::run(&case.lsys, case.steps)));
+            ours2.push(t.elapsed());
 
             let mut sys = symbios_system(case.rules, case.axiom);
             let t = Instant::now();
@@ -89,7 +95,7 @@ fn main() {
             "{}: both derive the same number of modules",
             case.name
         );
-        let (a, b) = (median(ours), median(theirs));
+        let (a, a2, b) = (median(ours), median(ours2), median(theirs));
         let rate = |d: Duration| lens.0 as f64 / d.as_secs_f64();
         println!(
             "{:<12} {} modules: lsys {:>9.3} ms ({:.3e} modules/s, 1 thread), symbios {:>9.3} ms ({:.3e} modules/s); lsys is {:.1}x faster (medians of {ROUNDS})",
@@ -100,6 +106,13 @@ fn main() {
             b.as_secs_f64() * 1e3,
             rate(b),
             b.as_secs_f64() / a.as_secs_f64()
+        );
+        println!(
+            "{:<12} lsys on 2 threads {:>9.3} ms ({:.3e} modules/s): {:.1}x symbios",
+            "",
+            a2.as_secs_f64() * 1e3,
+            rate(a2),
+            b.as_secs_f64() / a2.as_secs_f64()
         );
     }
 }

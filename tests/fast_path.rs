@@ -3,22 +3,14 @@
 //! errors, and the fallback for grammars the fast path does not take.
 
 use lsys::derive::{Derivation, DeriveOptions};
-use lsys::load::{Input, Options};
-use lsys::pipeline::{self, Compilation};
+use lsys::pipeline::Compilation;
+
+mod common;
+
+use common::grammar;
 
 fn compile(text: &str) -> Compilation {
-    let input = Input::Text {
-        name: "fast.lsys".into(),
-        text: text.into(),
-    };
-    match pipeline::compile(&input, &Options::default()) {
-        Ok(c) => c,
-        Err(_) => panic!("does not compile:\n{text}"),
-    }
-}
-
-fn grammar(axiom: &str, prods: &str) -> String {
-    format!("Lsystem: 1\nderivation length: 1\nAxiom: {axiom}\n{prods}\nendlsystem\n")
+    common::compile_text("fast.lsys", text)
 }
 
 /// Every step's string (or the error's text) of `steps` steps.
@@ -91,17 +83,7 @@ fn w2_conditions_and_brackets() {
 
 #[test]
 fn several_candidates_else_never_nan_and_arity() {
-    let g = grammar(
-        "A(1) A(2,3) B(0) C",
-        "A(x) : 0 --> Z\n\
-         A(x) : x % 2 == 0 --> A(x+1) B(x/2)\n\
-         A(x) : sqrt(-x) --> A(x+1)\n\
-         A(x, y) : x > y --> C A(y, x)\n\
-         A(x, y) --> A(x + y, y) [ B(sqrt(x)) ]\n\
-         B(y) : y > 2 --> C C\n\
-         B(y) --> B(y + 1) B(y * 2 > 3 ? 1 : 0)\n\
-         C --> ",
-    );
+    let g = common::several_candidates();
     assert!(same(&g, 6, opts()));
 }
 

@@ -52,6 +52,14 @@ pub fn run(c: &Compilation, steps: u32) -> ModuleStore {
     lsys::simulation::derive(&c.program, &c.compiled, big(), steps).expect("workload derives")
 }
 
+/// Derive `steps` steps of `c` one step at a time, every intermediate
+/// string built (as `--every` and the REPL do): the engine before the
+/// depth-first expansion of issue 19.
+pub fn run_stepwise(c: &Compilation, steps: u32) -> ModuleStore {
+    lsys::simulation::derive_each(&c.program, &c.compiled, big(), steps, |_, _| {})
+        .expect("workload derives")
+}
+
 /// A rayon pool of `n` threads (1: the single-threaded figures).
 pub fn pool(n: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()

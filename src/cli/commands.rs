@@ -189,12 +189,18 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
             line(&mut deriv, out)?;
         }
         let progress = Progress::new(true);
-        for done in 0..steps {
-            progress.step(done, steps);
-            deriv.step().map_err(Outcome::Derive)?;
-            if d.every {
+        if d.every {
+            for done in 0..steps {
+                progress.step(done, steps);
+                deriv.step().map_err(Outcome::Derive)?;
                 line(&mut deriv, out)?;
             }
+        } else {
+            // Only the last string is printed: the steps may be expanded
+            // depth first without building the ones in between.
+            deriv
+                .run(&mut |done, of| progress.step(done, of))
+                .map_err(Outcome::Derive)?;
         }
         deriv.finish().map_err(Outcome::Derive)?;
         drop(progress);

@@ -179,6 +179,82 @@ impl<'p> Derivation<'p> {
         Ok(())
     }
 
+    /// `steps` more whole steps ([`step`](Derivation::step) each), the
+    /// last of them (up to 64) expanded depth first straight into the
+    /// final string when the grammar allows it: the fast path applies, no
+    /// decomposition, no `StartEach:` / `EndEach:` blocks and no query
+    /// modules (nothing may look at the strings in between). The result,
+    /// and every error, is that of stepping; intermediate strings are
+    /// never built. Callers that need each step's string (`--every`, the
+    /// REPL, environments) step instead.
+    pub fn run_steps(&mut self, steps: u32) -> Result<(), DeriveError> {
+        let hooks = &self.tab.compiled.hooks;
+        let eligible = self.fast.is_some()
+            && self.tab.program.decomposition.is_empty()
+            && hooks.start_each.is_none()
+            && hooks.end_each.is_none()
+            && !self.tab.has_queries;
+        let mut deep = if eligible {
+            steps.min(super::depth_first::MAX_DEPTH)
+        } else {
+            0
+        };
+        for _ in deep..steps {
+            self.step()?;
+        }
+        // With two threads, a string long enough to be split in two first
+        // (W2 starts from one module).
+        if rayon::current_num_threads() > 1 {
+            while deep > 1 && self.cur.len() < super::depth_first::PAR_SPLIT {
+                self.step()?;
+                deep -= 1;
+            }
+        }
+        if deep == 0 || !self.depth_first(deep)? {
+            for _ in 0..deep {
+                self.step()?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The next `steps` steps depth first; `false`: not done (the string
+    /// is as it was, and stepping reports what went wrong).
+    fn depth_first(&mut self, steps: u32) -> Result<bool, DeriveError> {
+        let Some(plan) = &self.fast else {
+            return Ok(false);
+        };
+        // The first of the steps checks memory as stepping would.
+        if self.cur.len() > 1 << 20 {
+            super::budget::check(
+                self.prev_len,
+                &self.cur,
+                self.steps + 1,
+                (self.tab.max_modules, self.tab.max_params),
+                super::budget::available_memory(),
+            )?;
+        }
+        let mut out = mem::take(&mut self.next);
+        let done = super::depth_first::expand(
+            plan,
+            &self.tab,
+            &mut self.st.stack,
+            &self.cur,
+            steps,
+            &mut out,
+        );
+        let Some(before_last) = done else {
+            self.next = out;
+            return Ok(false);
+        };
+        // The string before is not kept: only the final one is in memory.
+        self.cur = out;
+        self.prev_len = before_last;
+        self.steps += steps;
+        self.st.step = self.steps;
+        Ok(true)
+    }
+
     /// The `EndEach:` block of the step just rewritten.
     pub fn end_each(&mut self) -> Result<(), DeriveError> {
         let hooks = &self.tab.compiled.hooks;

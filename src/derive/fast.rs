@@ -149,6 +149,12 @@ impl Plan {
         })
     }
 
+    /// Production `p`'s successor as a template, when it is simple enough.
+    #[inline(always)]
+    pub(crate) fn template(&self, p: usize) -> Option<&Succ> {
+        self.succ[p].as_ref()
+    }
+
     /// Rewrite `input` with the main table into `out` (cleared first).
     /// `false`: not done (fault or limit), `out` holds garbage and the
     /// general engine must do the step.
@@ -170,11 +176,7 @@ impl Plan {
         // while writing.
         out.heads.reserve(input.len());
         out.params.reserve(input.param_count());
-        let mut sink = LimitSink {
-            out,
-            max_modules: tab.max_modules,
-            max_params: tab.max_params,
-        };
+        let mut sink = LimitSink::new(out, tab);
         run_range(self, tab, stack, &input.heads, &input.params, &mut sink).is_ok()
     }
 }
@@ -191,10 +193,21 @@ pub(crate) trait Out: Sink {
     fn template(&mut self, t: &Succ, b: &[f64]) -> Result<(), ()>;
 }
 
-struct LimitSink<'a> {
+pub(crate) struct LimitSink<'a> {
     out: &'a mut ModuleStore,
     max_modules: usize,
     max_params: usize,
+}
+
+impl<'a> LimitSink<'a> {
+    /// Writing to `out` within `tab`'s limits.
+    pub(crate) fn new(out: &'a mut ModuleStore, tab: &Tables) -> LimitSink<'a> {
+        LimitSink {
+            out,
+            max_modules: tab.max_modules,
+            max_params: tab.max_params,
+        }
+    }
 }
 
 impl Sink for LimitSink<'_> {

@@ -61,6 +61,7 @@
 
 mod budget;
 pub mod count;
+mod depth_first;
 mod engine;
 pub mod error;
 mod fast;

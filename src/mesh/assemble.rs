@@ -131,7 +131,14 @@ pub fn assemble_scene(
         for (i, c) in drawing.chains.iter().enumerate() {
             let k = match last {
                 Some((colour, k)) if colour == c.colour => k,
-                _ => b.stroke(c.colour),
+                _ => {
+                    let k = b.stroke(c.colour);
+                    let mesh = &mut b.scene.strokes[k].mesh;
+                    if mesh.positions.is_empty() {
+                        tubes.reserve(c.colour, mesh);
+                    }
+                    k
+                }
             };
             last = Some((c.colour, k));
             let mesh = &mut b.scene.strokes[k].mesh;

@@ -57,8 +57,13 @@ pub struct Piece<'a> {
 /// Appends the tube for `chain` with `sides` facets around to `mesh`, with
 /// flat caps and no sharing: the tube of one chain on its own.
 pub fn tube(chain: &Chain, sides: u32, mesh: &mut TriMesh) {
+    if chain.points.len() < 2 {
+        return;
+    }
     let mut scratch = Scratch::default();
-    for_each_piece(&chain.points, |range, _, _| {
+    let mut dirs = Vec::new();
+    directions(&chain.points, &mut dirs);
+    for_each_piece(&dirs, |range, _, _| {
         piece(
             &Piece {
                 points: &chain.points[range.clone()],
@@ -67,41 +72,54 @@ pub fn tube(chain: &Chain, sides: u32, mesh: &mut TriMesh) {
                 start: None,
                 caps: [Cap::Flat, Cap::Flat],
             },
-            &|_| false,
-            &mut |_, _| {},
+            &dirs[range.start..range.end - 1],
+            |_| false,
+            |_, _| {},
             &mut scratch,
             mesh,
         );
     });
 }
 
-/// Calls `f(range, is_first, is_last)` for each piece of `pts`: the chain
-/// split at every turn sharper than [`SPLIT_COS`] (the two pieces share
-/// the turning point).
-pub(super) fn for_each_piece(
-    pts: &[TubePoint],
-    mut f: impl FnMut(std::ops::Range<usize>, bool, bool),
-) {
+/// The unit direction of each segment of `pts` (zero where two points
+/// coincide) into `dirs`: computed once per chain, then read by the split,
+/// the straight-run test and the ring tangents, which each normalised the
+/// same differences again.
+pub(super) fn directions(pts: &[TubePoint], dirs: &mut Vec<Vec3>) {
+    dirs.clear();
+    dirs.extend(
+        pts.windows(2)
+            .map(|w| (w[1].pos - w[0].pos).normalize_or_zero()),
+    );
+}
+
+/// Calls `f(range, is_first, is_last)` for each piece of the chain whose
+/// segment directions are `dirs` (from [`directions`]): the chain split at
+/// every turn sharper than [`SPLIT_COS`] (the two pieces share the turning
+/// point).
+pub(super) fn for_each_piece(dirs: &[Vec3], mut f: impl FnMut(std::ops::Range<usize>, bool, bool)) {
     let mut start = 0;
-    for i in 1..pts.len().saturating_sub(1) {
-        let d0 = (pts[i].pos - pts[i - 1].pos).normalize_or_zero();
-        let d1 = (pts[i + 1].pos - pts[i].pos).normalize_or_zero();
-        if d0.dot(d1) < SPLIT_COS {
+    for i in 1..dirs.len() {
+        if dirs[i - 1].dot(dirs[i]) < SPLIT_COS {
             f(start..i + 1, start == 0, false);
             start = i;
         }
     }
-    f(start..pts.len(), start == 0, true);
+    f(start..dirs.len() + 1, start == 0, true);
 }
 
 /// True when `b` lies on the straight line from `a` on to `c` with the
 /// same width at all three: its ring would add nothing.
 pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
-    if a.radius != b.radius || b.radius != c.radius {
-        return false;
-    }
-    let d0 = (b.pos - a.pos).normalize_or_zero();
-    let d1 = (c.pos - b.pos).normalize_or_zero();
+    a.radius == b.radius
+        && b.radius == c.radius
+        && straight_dirs(
+            (b.pos - a.pos).normalize_or_zero(),
+            (c.pos - b.pos).normalize_or_zero(),
+        )
+}
+
+fn straight_dirs(d0: Vec3, d1: Vec3) -> bool {
     d0.dot(d1) >= STRAIGHT_COS
 }
 
@@ -110,45 +128,97 @@ pub(super) fn straight(a: &TubePoint, b: &TubePoint, c: &TubePoint) -> bool {
 pub struct Scratch {
     /// Indices of the points that get a ring.
     kept: Vec<usize>,
+    /// Unit direction from each kept point to the next.
+    kdirs: Vec<Vec3>,
     /// (sin, cos) of each facet's angle.
     around: Vec<(f32, f32)>,
+    /// The side wall between two rings: per index, which ring (0 the
+    /// earlier, 1 the later) and the facet, so that a wall is a copy of
+    /// this table plus the rings' first vertices.
+    wall: Vec<(usize, u32)>,
 }
 
-/// Appends one piece to `mesh`. Points in a straight run are skipped
-/// unless `keep(chain index)` says another tube starts there; `visit(chain
-/// index, ring)` sees every ring of the piece.
+impl Scratch {
+    /// The angle and wall tables for `sides` facets, made once per facet
+    /// count in a row (a drawing's tubes mostly share one).
+    fn tables(&mut self, sides: u32) {
+        if self.around.len() == sides as usize {
+            return;
+        }
+        self.around.clear();
+        self.around
+            .extend((0..sides).map(|k| (TAU * k as f32 / sides as f32).sin_cos()));
+        self.wall.clear();
+        for k in 0..sides {
+            let k1 = (k + 1) % sides;
+            // (a0, a1, b0), (a1, b1, b0)
+            self.wall
+                .extend([(0, k), (0, k1), (1, k), (0, k1), (1, k1), (1, k)]);
+        }
+    }
+}
+
+/// Appends one piece to `mesh`. `dirs` are the directions of its segments.
+/// Points in a straight run are skipped unless `keep(chain index)` says
+/// another tube starts there; `visit(chain index, ring)` sees every ring
+/// of the piece.
 pub(super) fn piece(
     p: &Piece,
-    keep: &dyn Fn(usize) -> bool,
-    visit: &mut dyn FnMut(usize, Ring),
+    dirs: &[Vec3],
+    keep: impl Fn(usize) -> bool,
+    mut visit: impl FnMut(usize, Ring),
     scratch: &mut Scratch,
     mesh: &mut TriMesh,
 ) {
-    let Scratch { kept, around } = scratch;
     let pts = p.points;
     if pts.len() < 2 {
         return;
     }
+    let sides = p.sides.max(3);
+    scratch.tables(sides);
+    let Scratch {
+        kept,
+        kdirs,
+        around,
+        wall,
+    } = scratch;
     let n = pts.len();
     kept.clear();
     kept.push(0);
     for i in 1..n - 1 {
         let last = kept[kept.len() - 1];
-        if !straight(&pts[last], &pts[i], &pts[i + 1]) || keep(p.offset + i) {
+        let (a, b, c) = (&pts[last], &pts[i], &pts[i + 1]);
+        let run = a.radius == b.radius && b.radius == c.radius && {
+            // The direction from the last kept point: the segment's own
+            // when that point is the one before.
+            let d0 = if last + 1 == i {
+                dirs[last]
+            } else {
+                (b.pos - a.pos).normalize_or_zero()
+            };
+            straight_dirs(d0, dirs[i])
+        };
+        if !run || keep(p.offset + i) {
             kept.push(i);
         }
     }
     kept.push(n - 1);
     let m = kept.len();
-    let at = |j: usize| &pts[kept[j]];
-    let dir = |j: usize| (at(j + 1).pos - at(j).pos).normalize_or_zero();
+    kdirs.clear();
+    kdirs.extend(kept.windows(2).map(|w| {
+        if w[0] + 1 == w[1] {
+            dirs[w[0]]
+        } else {
+            (pts[w[1]].pos - pts[w[0]].pos).normalize_or_zero()
+        }
+    }));
     let tangent = |j: usize| {
         let t = if j == 0 {
-            dir(0)
+            kdirs[0]
         } else if j == m - 1 {
-            dir(m - 2)
+            kdirs[m - 2]
         } else {
-            (dir(j - 1) + dir(j)).normalize_or_zero()
+            (kdirs[j - 1] + kdirs[j]).normalize_or_zero()
         };
         if t == Vec3::ZERO {
             Vec3::Y
@@ -156,12 +226,11 @@ pub(super) fn piece(
             t
         }
     };
-    let sides = p.sides.max(3);
-    // The same angles for every ring: sines and cosines once per facet count.
-    if around.len() != sides as usize {
-        around.clear();
-        around.extend((0..sides).map(|k| (TAU * k as f32 / sides as f32).sin_cos()));
-    }
+    // Every ring but a shared first one is new: room for all at once.
+    let new_rings = m - usize::from(p.start.is_some());
+    mesh.positions.reserve(new_rings * sides as usize);
+    mesh.normals.reserve(new_rings * sides as usize);
+    mesh.indices.reserve((m - 1) * wall.len());
     let mut rings = [None::<Ring>; 2];
     let mut prev: Option<Ring> = None;
     for (j, &point) in kept.iter().enumerate() {
@@ -179,10 +248,15 @@ pub(super) fn piece(
                 }
                 let b = t.cross(a);
                 let first = mesh.positions.len() as u32;
-                for &(s, c) in around.iter() {
-                    let normal = a * c + b * s;
-                    mesh.vertex(q.pos + normal * q.radius, normal);
-                }
+                let from = mesh.normals.len();
+                mesh.normals
+                    .extend(around.iter().map(|&(s, c)| a * c + b * s));
+                let (pos, radius) = (q.pos, q.radius);
+                mesh.positions.extend(
+                    mesh.normals[from..]
+                        .iter()
+                        .map(|&normal| pos + normal * radius),
+                );
                 Ring {
                     first,
                     sides,
@@ -194,13 +268,9 @@ pub(super) fn piece(
             }
         };
         if let Some(r0) = prev {
-            for k in 0..sides {
-                let k1 = (k + 1) % sides;
-                let (a0, a1) = (r0.first + k, r0.first + k1);
-                let (b0, b1) = (ring.first + k, ring.first + k1);
-                mesh.triangle(a0, a1, b0);
-                mesh.triangle(a1, b1, b0);
-            }
+            let firsts = [r0.first, ring.first];
+            mesh.indices
+                .extend(wall.iter().map(|&(r, k)| firsts[r] + k));
         }
         visit(p.offset + point, ring);
         if j == 0 {
@@ -343,6 +413,8 @@ pub(super) mod tests {
         let mut m = TriMesh::default();
         let c = chain(&[Vec3::ZERO, Vec3::Y, Vec3::new(1.0, 2.0, 0.0)], 0.1);
         let mut scratch = Scratch::default();
+        let mut dirs = Vec::new();
+        directions(&c.points, &mut dirs);
         piece(
             &Piece {
                 points: &c.points,
@@ -351,8 +423,9 @@ pub(super) mod tests {
                 start: None,
                 caps: [Cap::Fan, Cap::Fan],
             },
-            &|_| false,
-            &mut |_, _| {},
+            &dirs,
+            |_| false,
+            |_, _| {},
             &mut scratch,
             &mut m,
         );

@@ -15,7 +15,7 @@ use glam::Vec3;
 
 use super::assemble::MeshOptions;
 use super::scene::{bounds_of, TriMesh};
-use super::tube::{for_each_piece, piece, Cap, Piece, Ring, Scratch};
+use super::tube::{directions, for_each_piece, piece, Cap, Piece, Ring, Scratch};
 use crate::turtle::drawing::{Chain, TubePoint};
 
 /// A tube starts from an earlier tube's ring only when its first segment
@@ -140,14 +140,35 @@ struct Start {
     sides: u32,
 }
 
+/// Most vertices or indices reserved up front for one stroke mesh (16 M:
+/// 192 MB of positions and normals).
+const MAX_ROOM: usize = 1 << 24;
+
+/// No chain starts at this point.
+const NONE: u32 = u32::MAX;
+
 /// Builds the tubes of one drawing's chains, in order.
 pub struct Tubes {
     facets: Facets,
     /// Each chain's facet count (by its widest point).
     sides: Vec<u32>,
-    starts: KeyMap<Start>,
-    /// The ring at each point where some chain starts, once meshed.
-    rings: KeyMap<Ring>,
+    /// Per slot (a point where some chain starts), the first chain that
+    /// starts there.
+    starts: Vec<Start>,
+    /// Per slot, the ring there once meshed.
+    rings: Vec<Option<Ring>>,
+    /// The slot of every point of every chain (`NONE` where no chain
+    /// starts), chain after chain: looked up in one pass, where the
+    /// lookups overlap in the processor; one at a time, between meshing,
+    /// each waited for its cache miss (five a point before: most of the
+    /// meshing time).
+    point_slots: Vec<u32>,
+    /// Where each chain's points begin in `point_slots`.
+    first_point: Vec<usize>,
+    /// Per colour, the most vertices and indices its tubes can take.
+    room: Vec<(u32, usize, usize)>,
+    /// Scratch: the directions of its segments.
+    dirs: Vec<Vec3>,
     scratch: Scratch,
 }
 
@@ -155,22 +176,63 @@ impl Tubes {
     pub fn new(chains: &[Chain], opts: &MeshOptions) -> Tubes {
         let facets = Facets::new(opts, chains);
         let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
-        let mut starts = KeyMap::default();
+        let mut slots = KeyMap::default();
+        let mut starts = Vec::new();
         for (i, c) in chains.iter().enumerate() {
             if let [a, b, ..] = c.points[..] {
-                starts.entry(key(c.colour, &a)).or_insert(Start {
-                    chain: i,
-                    dir: (b.pos - a.pos).normalize_or_zero(),
-                    sides: sides[i],
+                slots.entry(key(c.colour, &a)).or_insert_with(|| {
+                    starts.push(Start {
+                        chain: i,
+                        dir: (b.pos - a.pos).normalize_or_zero(),
+                        sides: sides[i],
+                    });
+                    (starts.len() - 1) as u32
                 });
             }
         }
+        let mut first_point = Vec::with_capacity(chains.len() + 1);
+        let mut point_slots = Vec::new();
+        for c in chains {
+            first_point.push(point_slots.len());
+            point_slots.extend(
+                c.points
+                    .iter()
+                    .map(|p| slots.get(&key(c.colour, p)).copied().unwrap_or(NONE)),
+            );
+        }
+        first_point.push(point_slots.len());
+        let mut room: Vec<(u32, usize, usize)> = Vec::new();
+        for (c, &n) in chains.iter().zip(&sides) {
+            // A ring at every point and flat caps: the most a chain takes.
+            let (n, k) = (n.max(3) as usize, c.points.len());
+            let (v, i) = (k * n + 2 * (n + 1), k.saturating_sub(1) * 6 * n + 6 * n);
+            match room.iter_mut().find(|r| r.0 == c.colour) {
+                Some(r) => (r.1, r.2) = (r.1 + v, r.2 + i),
+                None => room.push((c.colour, v, i)),
+            }
+        }
         Tubes {
+            room,
             facets,
             sides,
+            rings: vec![None; starts.len()],
             starts,
-            rings: KeyMap::default(),
+            point_slots,
+            first_point,
+            dirs: Vec::new(),
             scratch: Scratch::default(),
+        }
+    }
+
+    /// Makes room in `mesh`, the empty stroke mesh of `colour`, for all its
+    /// tubes at once: growing it as it fills copied it (and faulted the
+    /// copies in) about once more. Straight runs take fewer rings than
+    /// this bound; past [`MAX_ROOM`] elements the mesh grows as needed.
+    pub fn reserve(&self, colour: u32, mesh: &mut TriMesh) {
+        if let Some(&(_, v, i)) = self.room.iter().find(|r| r.0 == colour) {
+            mesh.positions.reserve(v.min(MAX_ROOM));
+            mesh.normals.reserve(v.min(MAX_ROOM));
+            mesh.indices.reserve(i.min(MAX_ROOM));
         }
     }
 
@@ -181,7 +243,6 @@ impl Tubes {
         if pts.len() < 2 {
             return;
         }
-        let colour = chain.colour;
         let sides = self.sides[index];
         // Thin tubes close their ends over the ring: their shading is
         // not seen.
@@ -190,24 +251,29 @@ impl Tubes {
         } else {
             Cap::Flat
         };
-        let dir0 = (pts[1].pos - pts[0].pos).normalize_or_zero();
-        let start = self
-            .rings
-            .get(&key(colour, &pts[0]))
-            .filter(|r| r.sides == sides && r.tangent.dot(dir0) >= SHARE_COS)
-            .copied();
-        let n = pts.len();
-        let last_dir = (pts[n - 1].pos - pts[n - 2].pos).normalize_or_zero();
-        let goes_on = self.starts.get(&key(colour, &pts[n - 1])).is_some_and(|s| {
-            s.chain > index && s.sides == sides && s.dir.dot(last_dir) >= SHARE_COS
-        });
         let Tubes {
             starts,
             rings,
+            point_slots,
+            first_point,
+            dirs,
             scratch,
             ..
         } = self;
-        for_each_piece(pts, |range, first, last| {
+        let point_slots = &point_slots[first_point[index]..first_point[index + 1]];
+        let first_slot = point_slots[0];
+        directions(pts, dirs);
+        let dir0 = dirs[0];
+        let start = rings[first_slot as usize]
+            .filter(|r| r.sides == sides && r.tangent.dot(dir0) >= SHARE_COS);
+        let last_dir = dirs[dirs.len() - 1];
+        let end_slot = point_slots[pts.len() - 1];
+        let goes_on = end_slot != NONE && {
+            let s = &starts[end_slot as usize];
+            s.chain > index && s.sides == sides && s.dir.dot(last_dir) >= SHARE_COS
+        };
+        let dirs = &dirs[..];
+        for_each_piece(dirs, |range, first, last| {
             let caps = [
                 if first && start.is_some() {
                     Cap::Open
@@ -224,11 +290,12 @@ impl Tubes {
                     start: if first { start } else { None },
                     caps,
                 },
-                &|i| starts.contains_key(&key(colour, &pts[i])),
-                &mut |i, ring| {
-                    let k = key(colour, &pts[i]);
-                    if starts.contains_key(&k) {
-                        rings.insert(k, ring);
+                &dirs[range.start..range.end - 1],
+                |i| point_slots[i] != NONE,
+                |i, ring| {
+                    let slot = point_slots[i];
+                    if slot != NONE {
+                        rings[slot as usize] = Some(ring);
                     }
                 },
                 scratch,

@@ -205,7 +205,15 @@ impl<'p> Simulation<'p> {
 
     /// Steps until the target, telling `observe(done, target)` before each.
     /// `End:` has run once when this returns (also for a target of 0).
+    /// Without environments the steps are the derivation's
+    /// [`run_steps`](Derivation::run_steps) (the last ones depth first
+    /// when the grammar allows it), told once.
     pub fn run(&mut self, observe: &mut dyn FnMut(u32, u32)) -> Result<(), DeriveError> {
+        let done = self.derivation.step_number();
+        if self.environments.is_empty() && done < self.target {
+            observe(done, self.target);
+            self.derivation.run_steps(self.target - done)?;
+        }
         while self.derivation.step_number() < self.target {
             observe(self.derivation.step_number(), self.target);
             self.step()?;
@@ -280,7 +288,9 @@ pub fn derive(
     opts: DeriveOptions,
     steps: u32,
 ) -> Result<ModuleStore, DeriveError> {
-    derive_each(program, compiled, opts, steps, |_, _| {})
+    let mut s = Simulation::new(program, compiled, opts, steps)?;
+    s.run(&mut |_, _| {})?;
+    Ok(s.into_derivation().into_current())
 }
 
 /// Derives `steps` steps, calling `each(step, string)` for the axiom

@@ -1,4 +1,5 @@
-//! Helpers shared by the test binaries that run `lsys` as a user would.
+//! Helpers shared by the test binaries: running `lsys` as a user would,
+//! and compiling small grammars given as text.
 #![allow(dead_code)]
 
 use std::process::{Command, Output};
@@ -15,4 +16,37 @@ pub fn lsys(args: &[&str]) -> Output {
 /// What a run printed on standard error.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Compiles `text` (named `name`); panics when it does not compile.
+pub fn compile_text(name: &str, text: &str) -> lsys::pipeline::Compilation {
+    let input = lsys::load::Input::Text {
+        name: name.into(),
+        text: text.into(),
+    };
+    match lsys::pipeline::compile(&input, &lsys::load::Options::default()) {
+        Ok(c) => c,
+        Err(_) => panic!("does not compile:\n{text}"),
+    }
+}
+
+/// A one-step L-system with `axiom` and the productions `prods`.
+pub fn grammar(axiom: &str, prods: &str) -> String {
+    format!("Lsystem: 1\nderivation length: 1\nAxiom: {axiom}\n{prods}\nendlsystem\n")
+}
+
+/// Several candidates per symbol: conditions that are false, NaN, or
+/// compare; a ternary; a module erased (the derivation engines' tests).
+pub fn several_candidates() -> String {
+    grammar(
+        "A(1) A(2,3) B(0) C",
+        "A(x) : 0 --> Z\n\
+         A(x) : x % 2 == 0 --> A(x+1) B(x/2)\n\
+         A(x) : sqrt(-x) --> A(x+1)\n\
+         A(x, y) : x > y --> C A(y, x)\n\
+         A(x, y) --> A(x + y, y) [ B(sqrt(x)) ]\n\
+         B(y) : y > 2 --> C C\n\
+         B(y) --> B(y + 1) B(y * 2 > 3 ? 1 : 0)\n\
+         C --> ",
+    )
 }
