@@ -15,34 +15,23 @@ use json::mesh::{Mode, Primitive, Semantic};
 use json::validation::Checked::Valid;
 use json::{Accessor, Index};
 
-use super::{padded, ExportError};
+use super::ExportError;
 
+mod bin;
 mod instancing;
 use crate::mesh::scene::Nested;
 use crate::mesh::{Component, Instance, Scene, TriMesh};
+pub(super) use bin::Bin;
+use bin::Piece;
 
-/// The document and its binary buffer (padded to 4 bytes; empty when the
-/// scene draws nothing, and then the document has no buffer).
-pub(super) fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError> {
-    // Every triangle mesh is written once (components' parts once however
-    // often they are placed, baked placements aside): reserving that much
-    // spares the buffer its doublings, each a copy of everything so far.
-    let estimate: usize = scene
-        .strokes
-        .iter()
-        .map(|s| &s.mesh)
-        .chain(
-            scene
-                .components
-                .iter()
-                .flat_map(|c| c.parts.iter().map(|p| &p.mesh)),
-        )
-        .map(|m| m.positions.len() * 24 + m.indices.len() * 4 + 12)
-        .sum();
+/// The document and the layout of its binary buffer (padded to 4 bytes;
+/// empty when the scene draws nothing, and then the document has no
+/// buffer), whose bytes are encoded as they are written.
+pub(super) fn build(scene: &Scene) -> Result<(json::Root, Bin<'_>), ExportError> {
     let mut b = Builder {
         scene,
         root: json::Root::default(),
-        bin: Vec::with_capacity(estimate),
+        bin: Bin::default(),
         materials: vec![None; scene.materials.len()],
         parts: HashMap::new(),
         meshes: HashMap::new(),
@@ -76,8 +65,7 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Vec<u8>), ExportError>
             ..Default::default()
         }));
     }
-    let mut bin = b.bin;
-    bin.resize(padded(bin.len()), 0);
+    let bin = b.bin;
     if !bin.is_empty() {
         root.push(json::Buffer {
             byte_length: bin.len().into(),
@@ -112,7 +100,8 @@ struct Geometry {
 struct Builder<'s> {
     scene: &'s Scene,
     root: json::Root,
-    bin: Vec<u8>,
+    /// The binary buffer's layout, encoded when the file is written.
+    bin: Bin<'s>,
     /// glTF material per scene material, created on first use so that unused
     /// colours do not clutter the file.
     materials: Vec<Option<Index<json::Material>>>,
@@ -389,13 +378,14 @@ impl<'s> Builder<'s> {
         Ok(done)
     }
 
-    /// Writes positions, unit normals and indices of `mesh`, transformed by
-    /// `bake` if given; `None` for a mesh without triangles (glTF forbids
-    /// empty primitives).
+    /// Lays out positions, unit normals and indices of `mesh`, transformed
+    /// by `bake` if given, in the buffer (encoded when the file is
+    /// written); `None` for a mesh without triangles (glTF forbids empty
+    /// primitives).
     fn geometry(
         &mut self,
         name: &str,
-        mesh: &TriMesh,
+        mesh: &'s TriMesh,
         bake: Option<Mat4>,
     ) -> Result<Option<Geometry>, ExportError> {
         check(name, mesh)?;
@@ -405,7 +395,6 @@ impl<'s> Builder<'s> {
         let transform = bake.unwrap_or(Mat4::IDENTITY);
         let n = mesh.positions.len();
 
-        let start = self.align();
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for &p in &mesh.positions {
             let p = transform.transform_point3(p);
@@ -416,17 +405,18 @@ impl<'s> Builder<'s> {
                 });
             }
             (lo, hi) = (lo.min(p), hi.max(p));
-            self.put_vec3(p);
         }
+        let start = self.bin.push(Piece::Positions(mesh, transform));
         let view = self.view(start, Target::ArrayBuffer);
         let positions = self.accessor(view, n, ComponentType::F32, Type::Vec3, Some((lo, hi)));
 
-        let mut normals = Vec::new();
-        unit_normals(mesh, Mat3::from_mat4(transform), &mut normals);
-        let start = self.align();
-        for &v in &normals {
-            self.put_vec3(v);
-        }
+        let linear = Mat3::from_mat4(transform);
+        let normal_matrix = linear.inverse().transpose();
+        let repair = mesh
+            .normals
+            .iter()
+            .any(|&v| (normal_matrix * v).normalize_or_zero() == Vec3::ZERO);
+        let start = self.bin.push(Piece::Normals(mesh, linear, repair));
         let view = self.view(start, Target::ArrayBuffer);
         let normals = self.accessor(view, n, ComponentType::F32, Type::Vec3, None);
 
@@ -436,21 +426,7 @@ impl<'s> Builder<'s> {
         let flip = transform.determinant() < 0.0;
         // u16 when it fits: 65535 is the primitive restart value, never an index.
         let small = n <= usize::from(u16::MAX);
-        let start = self.align();
-        for t in mesh.indices.chunks_exact(3) {
-            let t = if flip {
-                [t[0], t[2], t[1]]
-            } else {
-                [t[0], t[1], t[2]]
-            };
-            for i in t {
-                if small {
-                    self.bin.extend_from_slice(&(i as u16).to_le_bytes());
-                } else {
-                    self.bin.extend_from_slice(&i.to_le_bytes());
-                }
-            }
-        }
+        let start = self.bin.push(Piece::Indices { mesh, flip, small });
         let view = self.view(start, Target::ElementArrayBuffer);
         let kind = if small {
             ComponentType::U16
@@ -465,25 +441,12 @@ impl<'s> Builder<'s> {
         }))
     }
 
-    /// Pads the buffer so that the next view starts 4-byte aligned (every
-    /// accessor's components must be aligned to their size).
-    fn align(&mut self) -> usize {
-        self.bin.resize(padded(self.bin.len()), 0);
-        self.bin.len()
-    }
-
-    fn put_vec3(&mut self, v: Vec3) {
-        for c in v.to_array() {
-            self.bin.extend_from_slice(&c.to_le_bytes());
-        }
-    }
-
-    /// A view of the bytes written since `start`. Each accessor has a view of
-    /// its own, tightly packed, so no byteStride is needed.
+    /// A view of the bytes laid out since `start`. Each accessor has a view
+    /// of its own, tightly packed, so no byteStride is needed.
     fn view(&mut self, start: usize, target: Target) -> Index<json::buffer::View> {
         self.root.push(json::buffer::View {
             buffer: Index::new(0),
-            byte_length: (self.bin.len() - start).into(),
+            byte_length: (self.bin.end() - start).into(),
             byte_offset: Some(start.into()),
             byte_stride: None,
             name: None,

@@ -50,14 +50,15 @@ pub fn to_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
     Ok(out)
 }
 
-/// Writes the scene as a binary glTF (`.glb`) file to `out`: the header,
-/// the JSON chunk and the binary chunk straight from the buffer, with no
-/// copy of the whole file in memory. Returns the bytes written.
+/// Writes the scene as a binary glTF (`.glb`) file to `out` in one pass:
+/// the header, the JSON chunk, and the binary chunk encoded from the mesh
+/// buffers as it is written, so no copy of the file or of its buffer is
+/// ever in memory. Returns the bytes written.
 pub fn write_glb(scene: &Scene, out: &mut dyn std::io::Write) -> Result<u64, ExportError> {
     let (root, bin) = build(scene)?;
     let mut json = json::serialize::to_vec(&root)?;
-    // The JSON chunk is padded with spaces, the binary one (already padded
-    // by `build`) with zeros.
+    // The JSON chunk is padded with spaces, the binary one (its layout
+    // padded by `build`) with zeros.
     json.resize(padded(json.len()), b' ');
     // GLB lengths are u32: header 12, chunk headers 8 each.
     let length = 12 + 8 + json.len() + if bin.is_empty() { 0 } else { 8 + bin.len() };
@@ -83,7 +84,7 @@ pub fn write_glb(scene: &Scene, out: &mut dyn std::io::Write) -> Result<u64, Exp
         chunk.extend_from_slice(&u32le(bin.len()));
         chunk.extend_from_slice(b"BIN\0");
         out.write_all(&chunk)?;
-        out.write_all(&bin)?;
+        bin.write_to(out)?;
     }
     Ok(length as u64)
 }
@@ -94,7 +95,7 @@ pub fn to_gltf(scene: &Scene) -> Result<Vec<u8>, ExportError> {
     if let Some(buffer) = root.buffers.first_mut() {
         buffer.uri = Some(format!(
             "data:application/octet-stream;base64,{}",
-            base64(&bin)
+            base64(&bin.to_vec())
         ));
     }
     Ok(json::serialize::to_vec_pretty(&root)?)

@@ -14,6 +14,7 @@ use json::buffer::Target;
 use json::Index;
 use serde_json::{json as value, Map};
 
+use super::bin::{f32_bytes, Piece};
 use super::{placement, Builder, Placement};
 use crate::export::gltf::ExportError;
 use crate::mesh::Instance;
@@ -57,21 +58,18 @@ impl Builder<'_> {
         let mut nodes = Vec::new();
         for (mesh, trs) in groups {
             let count = trs.len();
-            let accessor = |b: &mut Self, kind: Type, put: &dyn Fn(&mut Self, &Trs)| {
-                let start = b.align();
+            let accessor = |b: &mut Self, kind: Type, put: &dyn Fn(&mut Vec<u8>, &Trs)| {
+                let mut bytes = Vec::with_capacity(count * 16);
                 for x in &trs {
-                    put(b, x);
+                    put(&mut bytes, x);
                 }
+                let start = b.bin.push(Piece::Bytes(bytes));
                 let view = b.view(start, Target::ArrayBuffer);
                 b.accessor(view, count, ComponentType::F32, kind, None)
             };
-            let translation = accessor(self, Type::Vec3, &|b, x| b.put_vec3(x.0));
-            let rotation = accessor(self, Type::Vec4, &|b, x| {
-                for c in x.1.to_array() {
-                    b.bin.extend_from_slice(&c.to_le_bytes());
-                }
-            });
-            let scale = accessor(self, Type::Vec3, &|b, x| b.put_vec3(x.2));
+            let translation = accessor(self, Type::Vec3, &|b, x| f32_bytes(b, x.0.to_array()));
+            let rotation = accessor(self, Type::Vec4, &|b, x| f32_bytes(b, x.1.to_array()));
+            let scale = accessor(self, Type::Vec3, &|b, x| f32_bytes(b, x.2.to_array()));
             let mut others = Map::new();
             others.insert(
                 EXTENSION.into(),
