@@ -256,6 +256,9 @@ impl Resolver {
             }
             return None;
         }
+        if self.quiet {
+            return None;
+        }
         let mut candidates: Vec<String> = scope.params.iter().map(|(p, _)| p.clone()).collect();
         candidates.extend(self.defines.keys().cloned());
         let mut help = match suggest(n, candidates.iter().map(String::as_str)) {

@@ -85,6 +85,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         broken: loaded.broken,
         failed_includes: loaded.failed_includes,
         missing_names: Vec::new(),
+        quiet: false,
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -175,6 +176,11 @@ pub(crate) struct Resolver {
     /// Unknown names met while an include had failed, with their first
     /// use: reported together once (see [`Resolver::report_missing_names`]).
     pub missing_names: Vec<(String, Span)>,
+    /// Set while defines are evaluated for display only (their errors are
+    /// dropped): an unknown name then costs no help text, whose suggestion
+    /// compares it with every define (most of `lsys pailou`'s compile
+    /// time before, as each define body naming a parameter failed).
+    pub quiet: bool,
 }
 
 impl Resolver {
@@ -389,12 +395,14 @@ impl Resolver {
                 // Defines are evaluated for display only; errors surface
                 // where a define is used.
                 let saved = self.errors.len();
+                self.quiet = true;
                 let value = self
                     .expr(d.value.as_ref()?, &expr::Scope::EMPTY)
                     .and_then(|e| match e.kind {
                         ExprKind::Num(v) => Some(v),
                         _ => None,
                     });
+                self.quiet = false;
                 self.errors.truncate(saved);
                 Some(DefineInfo {
                     name: d.name,
