@@ -272,21 +272,27 @@ pub fn parse_obj(
 /// Centres the parts at the origin and scales each axis to extent 1. An
 /// axis with no extent (a flat model) stays flat.
 pub(super) fn normalise(parts: &mut [Part]) -> Mat4 {
+    normalise_meshes(parts.iter_mut().map(|p| &mut p.mesh).collect())
+}
+
+/// Maps `meshes` together into the unit box centred at the origin (an
+/// axis without extent keeps its scale) and returns the map.
+pub(super) fn normalise_meshes(mut meshes: Vec<&mut TriMesh>) -> Mat4 {
     let Some((lo, hi)) =
-        super::scene::bounds_of(parts.iter().flat_map(|p| p.mesh.positions.iter().copied()))
+        super::scene::bounds_of(meshes.iter().flat_map(|m| m.positions.iter().copied()))
     else {
         return Mat4::IDENTITY;
     };
     let extent = hi - lo;
     let centre = (lo + hi) * 0.5;
     let scale = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent.recip(), Vec3::ONE);
-    for p in parts {
-        for v in &mut p.mesh.positions {
+    // Normals scale by the inverse: multiply by the extent.
+    let inv = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent, Vec3::ONE);
+    for m in &mut meshes {
+        for v in &mut m.positions {
             *v = (*v - centre) * scale;
         }
-        // Normals scale by the inverse: multiply by the extent.
-        let inv = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent, Vec3::ONE);
-        for n in &mut p.mesh.normals {
+        for n in &mut m.normals {
             *n = (*n * inv).normalize_or(*n);
         }
     }

@@ -9,6 +9,7 @@
 
 use glam::{Mat4, Vec3};
 
+use super::components::normalise_meshes;
 use super::scene::{Component, Instance, Nested, Part, TriMesh};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,7 +94,7 @@ pub fn roof_component(kind: RoofKind, detail: u8) -> (TriMesh, Option<Nested>) {
             }
         }
     }
-    let frame = normalise(&mut m);
+    let frame = normalise_meshes(vec![&mut m]);
     let nested = (kind == RoofKind::Clipped && !rows.is_empty()).then(|| {
         let row = tile_row(kind, detail, 0.0, 1.0).unwrap_or_default();
         Nested {
@@ -333,22 +334,6 @@ fn flat(m: &mut TriMesh, a: Vec3, b: Vec3, c: Vec3) {
 
 fn cuboid(m: &mut TriMesh, lo: Vec3, hi: Vec3) {
     m.append(&TriMesh::cuboid(lo, hi));
-}
-
-/// Maps `m` into the unit box and returns the map.
-fn normalise(m: &mut TriMesh) -> Mat4 {
-    let Some((lo, hi)) = m.bounds() else {
-        return Mat4::IDENTITY;
-    };
-    let ext = hi - lo;
-    let centre = (lo + hi) * 0.5;
-    for p in &mut m.positions {
-        *p = (*p - centre) / ext;
-    }
-    for n in &mut m.normals {
-        *n = (*n * ext).normalize_or(*n);
-    }
-    Mat4::from_scale(ext.recip()) * Mat4::from_translation(-centre)
 }
 
 #[cfg(test)]

@@ -91,10 +91,13 @@ pub fn grammar_component(
             }
         })
         .collect();
-    let mut merged: BTreeMap<usize, TriMesh> = BTreeMap::new();
+    // The strokes merged per material are both the start of the flattened
+    // parts and the nested scene's own parts.
+    let mut strokes: BTreeMap<usize, TriMesh> = BTreeMap::new();
     for s in &scene.strokes {
-        merged.entry(map[s.material]).or_default().append(&s.mesh);
+        strokes.entry(map[s.material]).or_default().append(&s.mesh);
     }
+    let mut merged = strokes.clone();
     for inst in &scene.instances {
         let t = inst.transform;
         let normals = Mat3::from_mat4(t).inverse().transpose();
@@ -125,21 +128,14 @@ pub fn grammar_component(
             merged.entry(material).or_default().append(&m);
         }
     }
-    let mut parts: Vec<Part> = merged
-        .into_iter()
-        .filter(|(_, m)| !m.is_empty())
-        .map(|(material, mesh)| Part {
-            mesh,
-            material: Some(material),
-        })
-        .collect();
+    let mut parts = parts_of(merged);
     if parts.is_empty() {
         return Err(fail(
             "it draws nothing (no drawing command in its string)".to_string(),
         ));
     }
     let frame = normalise(&mut parts);
-    let nested = nest(scene, &map, frame);
+    let nested = nest(scene, parts_of(strokes), &map, frame);
     Ok(Component {
         name: name.to_string(),
         parts,
@@ -148,23 +144,25 @@ pub fn grammar_component(
     })
 }
 
-/// The inner scene kept as it was built (strokes merged per material,
-/// components and their placements), in the outer scene's materials.
-fn nest(scene: Scene, map: &[usize], frame: Mat4) -> Nested {
-    let mut strokes: BTreeMap<usize, TriMesh> = BTreeMap::new();
-    for s in scene.strokes {
-        strokes.entry(map[s.material]).or_default().append(&s.mesh);
-    }
+/// One part per material that has triangles.
+fn parts_of(per_material: BTreeMap<usize, TriMesh>) -> Vec<Part> {
+    per_material
+        .into_iter()
+        .filter(|(_, m)| !m.is_empty())
+        .map(|(material, mesh)| Part {
+            mesh,
+            material: Some(material),
+        })
+        .collect()
+}
+
+/// The inner scene kept as it was built (`strokes`: its strokes merged per
+/// material; its components and their placements), in the outer scene's
+/// materials.
+fn nest(scene: Scene, strokes: Vec<Part>, map: &[usize], frame: Mat4) -> Nested {
     Nested {
         frame,
-        parts: strokes
-            .into_iter()
-            .filter(|(_, m)| !m.is_empty())
-            .map(|(material, mesh)| Part {
-                mesh,
-                material: Some(material),
-            })
-            .collect(),
+        parts: strokes,
         components: scene
             .components
             .into_iter()
