@@ -581,6 +581,8 @@ fn khronos_validator_accepts_the_exports() {
             "instanced",
             built_with("examples/plants/bush_3d.lsys", &instanced()),
         ),
+        // Instanced cylinders beside placed components, nested ones too.
+        ("pailou_instanced", built_with("std:pailou", &instanced())),
         // Shape grammars (docs/shapes.md): primitives, fitted components.
         ("veranda", built("examples/shapes/veranda.lsys")),
         ("verandas", built("examples/shapes/verandas.lsys")),

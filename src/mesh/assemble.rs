@@ -164,7 +164,9 @@ pub fn assemble_scene(
     }
     // Symbol -> component index, loaded on first placement.
     let mut loaded: HashMap<SymId, usize> = HashMap::new();
-    let mut numbers: Vec<u32> = Vec::new();
+    // Placements so far per component index (`--instanced` has already
+    // added its cylinder).
+    let mut numbers: Vec<u32> = vec![0; b.scene.components.len()];
     for p in &drawing.placements {
         let component = match loaded.get(&p.symbol) {
             Some(&c) => c,
