@@ -40,7 +40,8 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Bin<'_>), ExportError>
         meshes: HashMap::new(),
         ids: HashMap::new(),
         distinct: Vec::new(),
-        nested_parts: HashMap::new(),
+        nested_meshes: HashMap::new(),
+        nested_geometry: HashMap::new(),
     };
     let mut nodes = Vec::new();
     nodes.extend(b.strokes()?);
@@ -117,8 +118,11 @@ struct Builder<'s> {
     /// Component ids (see [`Builder::id`]) by address, and each id's component.
     ids: HashMap<usize, usize>,
     distinct: Vec<&'s Component>,
-    /// Per (nested component's address, part), its own parts' geometry.
-    nested_parts: HashMap<(usize, usize), Option<Geometry>>,
+    /// Per (nested component's address, placement colour when one of its
+    /// own parts takes it), the mesh of its own parts.
+    nested_meshes: HashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
+    /// Per own part of a nested component (by address), its geometry.
+    nested_geometry: HashMap<usize, Option<Geometry>>,
 }
 
 impl<'s> Builder<'s> {

@@ -28,7 +28,7 @@ type Trs = (Vec3, Quat, Vec3);
 
 impl Builder<'_> {
     /// One node per shared mesh for `instances`; returns the nodes and the
-    /// instances that must be baked (written as nodes of their own).
+    /// instances written as nodes of their own (to bake, or nested).
     pub(super) fn instanced<'i>(
         &mut self,
         instances: &'i [Instance],
@@ -39,11 +39,12 @@ impl Builder<'_> {
         let mut rest = Vec::new();
         let scene = self.scene;
         for instance in instances {
+            let component = &scene.components[instance.component];
             match placement(instance.transform) {
-                Placement::Matrix(_) => {
-                    let Some(mesh) =
-                        self.shared_mesh(&scene.components[instance.component], instance.material)?
-                    else {
+                // A nested component keeps its hierarchy (each smaller mesh
+                // once): it goes to the caller as a node of its own.
+                Placement::Matrix(_) if component.nested.is_none() => {
+                    let Some(mesh) = self.shared_mesh(component, instance.material)? else {
                         continue;
                     };
                     let (s, r, t) = instance.transform.to_scale_rotation_translation();

@@ -35,7 +35,10 @@ impl<'s> Builder<'s> {
     ) -> Result<Index<json::Node>, ExportError> {
         let (mesh, matrix, children) = match placement(transform) {
             Placement::Matrix(matrix) => match &component.nested {
-                Some(nested) => (None, matrix, Some(self.nested(nested, material, &name)?)),
+                Some(nested) => {
+                    let children = self.nested(nested, material, &component.name, &name)?;
+                    (None, matrix, Some(children))
+                }
                 None => (self.shared_mesh(component, material)?, matrix, None),
             },
             Placement::Bake => {
@@ -66,30 +69,14 @@ impl<'s> Builder<'s> {
         &mut self,
         nested: &'s Nested,
         material: usize,
+        symbol: &str,
         outer: &str,
     ) -> Result<Vec<Index<json::Node>>, ExportError> {
         let mut children = Vec::new();
-        let mut primitives = Vec::new();
-        for (i, part) in nested.parts.iter().enumerate() {
-            let key = (nested as *const Nested as usize, i);
-            let geometry = match self.nested_parts.get(&key) {
-                Some(&done) => done,
-                None => {
-                    let g = self.geometry(outer, &part.mesh, None)?;
-                    self.nested_parts.insert(key, g);
-                    g
-                }
-            };
-            if let Some(g) = geometry {
-                primitives.push(self.primitive(g, part.material.unwrap_or(material))?);
-            }
-        }
-        if !primitives.is_empty() {
-            let name = format!("{outer}/strokes");
-            let mesh = self.mesh(name.clone(), primitives);
+        if let Some(mesh) = self.nested_mesh(nested, material, symbol)? {
             children.push(self.root.push(json::Node {
                 mesh: Some(mesh),
-                name: Some(name),
+                name: Some(format!("{outer}/strokes")),
                 ..Default::default()
             }));
         }
@@ -115,6 +102,46 @@ impl<'s> Builder<'s> {
             children: Some(children),
             ..Default::default()
         })])
+    }
+
+    /// The mesh of a nested component's own parts (its strokes, a roof's
+    /// shell), shared by every placement with the same colour; `None` when
+    /// it has none.
+    fn nested_mesh(
+        &mut self,
+        nested: &'s Nested,
+        material: usize,
+        symbol: &str,
+    ) -> Result<Option<Index<json::Mesh>>, ExportError> {
+        let colour = nested
+            .parts
+            .iter()
+            .any(|p| p.material.is_none())
+            .then_some(material);
+        let key = (nested as *const Nested as usize, colour);
+        if let Some(&mesh) = self.nested_meshes.get(&key) {
+            return Ok(mesh);
+        }
+        let mut primitives = Vec::new();
+        for part in &nested.parts {
+            // Laid out once, whatever colours its placements take.
+            let address = &part.mesh as *const _ as usize;
+            let geometry = match self.nested_geometry.get(&address) {
+                Some(&done) => done,
+                None => {
+                    let g = self.geometry(symbol, &part.mesh, None)?;
+                    self.nested_geometry.insert(address, g);
+                    g
+                }
+            };
+            if let Some(g) = geometry {
+                primitives.push(self.primitive(g, part.material.unwrap_or(material))?);
+            }
+        }
+        let mesh =
+            (!primitives.is_empty()).then(|| self.mesh(format!("{symbol}/strokes"), primitives));
+        self.nested_meshes.insert(key, mesh);
+        Ok(mesh)
     }
 
     /// The canonical id of `component`: components loaded twice (the same
