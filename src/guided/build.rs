@@ -97,7 +97,7 @@ fn merge(into: &mut Scene, other: Scene) {
     let components: Vec<usize> = other
         .components
         .into_iter()
-        .map(|mut c| {
+        .map(|c| {
             if let Some(at) = into
                 .components
                 .iter()
@@ -105,21 +105,21 @@ fn merge(into: &mut Scene, other: Scene) {
             {
                 return at;
             }
-            for p in &mut c.parts {
-                p.material = p.material.map(|m| materials[m]);
-            }
-            into.components.push(c);
+            into.components
+                .push(crate::mesh::subgrammar::remap(c, &materials));
             into.components.len() - 1
         })
         .collect();
+    // Placements counted per component once, not per placement.
+    let mut numbers = vec![0u32; into.components.len()];
+    for x in &into.instances {
+        numbers[x.component] += 1;
+    }
     for mut i in other.instances {
         i.component = components[i.component];
         i.material = materials[i.material];
-        i.number = into
-            .instances
-            .iter()
-            .filter(|x| x.component == i.component)
-            .count() as u32;
+        i.number = numbers[i.component];
+        numbers[i.component] += 1;
         into.instances.push(i);
     }
     for s in other.strokes {

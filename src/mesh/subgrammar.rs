@@ -180,8 +180,9 @@ fn nest(scene: Scene, strokes: Vec<Part>, map: &[usize], frame: Mat4) -> Nested 
     }
 }
 
-/// `c` with its material indices (own parts and nested ones) mapped.
-fn remap(mut c: Component, map: &[usize]) -> Component {
+/// `c` with its material indices (own parts and nested ones) mapped by
+/// `map` (old index -> new), for a component moved into another scene.
+pub(crate) fn remap(mut c: Component, map: &[usize]) -> Component {
     for p in &mut c.parts {
         p.material = p.material.map(|m| map[m]);
     }
