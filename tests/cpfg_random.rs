@@ -68,6 +68,19 @@ fn interpretations_continue_the_derivations_generator() {
     assert_close(&firsts(&h, "f"), &[d[5], d[6]], &h);
 }
 
+/// A query module for an environmental program that is not there (`?E`)
+/// makes cpfg interpret every string all the same: the whole derivation
+/// and the one printed step by step agree, the second step drawing after
+/// the first interpretation.
+#[test]
+fn strings_with_unanswered_queries_are_interpreted_after_every_step() {
+    let d = draws(3);
+    let s = derive("environment_query.l", &[]);
+    assert_close(&firsts(&s, "B"), &[d[0], d[2]], &s);
+    let every = derive("environment_query.l", &["--every"]);
+    assert_eq!(every.lines().last(), s.lines().last(), "{every}");
+}
+
 /// Without query modules the strings are not interpreted between steps;
 /// cpfg interprets the final string once for the view before the string
 /// it prints or draws.

@@ -205,12 +205,15 @@ impl<'p> Simulation<'p> {
 
     /// Steps until the target, telling `observe(done, target)` before each.
     /// `End:` has run once when this returns (also for a target of 0).
-    /// Without environments the steps are the derivation's
+    /// Without environments (nor cpfg's interpretation after each step)
+    /// the steps are the derivation's
     /// [`run_steps`](Derivation::run_steps) (the last ones depth first
     /// when the grammar allows it), told once.
     pub fn run(&mut self, observe: &mut dyn FnMut(u32, u32)) -> Result<(), DeriveError> {
         let done = self.derivation.step_number();
-        if self.environments.is_empty() && done < self.target {
+        // A cpfg file with query modules is interpreted after every step
+        // (see `answer`), environments or not: it steps.
+        if self.environments.is_empty() && !self.interprets_each && done < self.target {
             observe(done, self.target);
             self.derivation.run_steps(self.target - done)?;
         }
