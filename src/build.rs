@@ -211,19 +211,10 @@ fn bracket_origin(
 
 /// Whether a `]` in `string` closes no `[`.
 fn has_stray_close(string: &ModuleStore) -> bool {
-    use crate::resolve::{CLOSE_BRACKET, OPEN_BRACKET};
-    let mut depth = 0usize;
-    string
-        .heads()
-        .iter()
-        .any(|&h| match derive::store::head_sym(h) {
-            OPEN_BRACKET => {
-                depth += 1;
-                false
-            }
-            CLOSE_BRACKET => depth.checked_sub(1).map(|d| depth = d).is_none(),
-            _ => false,
-        })
+    // The branch that is open at the start (none) ends before the end of
+    // the string only at a `]` that closes nothing.
+    let heads = string.heads();
+    derive::store::rest_of_branch(heads, 0).0 < heads.len()
 }
 
 /// The back half alone: `string`, step `step` of `comp`'s derivation ->

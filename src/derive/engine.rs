@@ -154,17 +154,7 @@ impl<'p> Derivation<'p> {
             "StartEach",
             hooks.start_each.as_ref(),
         )?;
-        // Only strings over ~1M modules can exhaust memory in one step;
-        // below that, reading /proc/meminfo would cost more than the step.
-        if self.cur.len() > 1 << 20 {
-            super::budget::check(
-                self.prev_len,
-                &self.cur,
-                self.st.step,
-                (self.tab.max_modules, self.tab.max_params),
-                super::budget::available_memory(),
-            )?;
-        }
+        self.check_memory(self.st.step)?;
         self.prev_len = self.cur.len();
         let fast_done = self
             .fast
@@ -218,6 +208,22 @@ impl<'p> Derivation<'p> {
         Ok(())
     }
 
+    /// Refuses step `step` when the string could outgrow the memory left.
+    /// Only strings over ~1M modules can exhaust memory in one step; below
+    /// that, reading /proc/meminfo would cost more than the step.
+    fn check_memory(&self, step: u32) -> Result<(), DeriveError> {
+        if self.cur.len() > 1 << 20 {
+            super::budget::check(
+                self.prev_len,
+                &self.cur,
+                step,
+                (self.tab.max_modules, self.tab.max_params),
+                super::budget::available_memory(),
+            )?;
+        }
+        Ok(())
+    }
+
     /// The next `steps` steps depth first; `false`: not done (the string
     /// is as it was, and stepping reports what went wrong).
     fn depth_first(&mut self, steps: u32) -> Result<bool, DeriveError> {
@@ -225,15 +231,7 @@ impl<'p> Derivation<'p> {
             return Ok(false);
         };
         // The first of the steps checks memory as stepping would.
-        if self.cur.len() > 1 << 20 {
-            super::budget::check(
-                self.prev_len,
-                &self.cur,
-                self.steps + 1,
-                (self.tab.max_modules, self.tab.max_params),
-                super::budget::available_memory(),
-            )?;
-        }
+        self.check_memory(self.steps + 1)?;
         let mut out = mem::take(&mut self.next);
         let done = super::depth_first::expand(
             plan,
