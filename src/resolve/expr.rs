@@ -256,7 +256,7 @@ impl Resolver {
             }
             return None;
         }
-        if self.quiet {
+        if self.evaluating_for_display {
             return None;
         }
         let mut candidates: Vec<String> = scope.params.iter().map(|(p, _)| p.clone()).collect();

@@ -85,7 +85,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         broken: loaded.broken,
         failed_includes: loaded.failed_includes,
         missing_names: Vec::new(),
-        quiet: false,
+        evaluating_for_display: false,
     };
     let program = r.run(loaded.items, opts);
     if r.errors.is_empty() {
@@ -180,7 +180,7 @@ pub(crate) struct Resolver {
     /// dropped): an unknown name then costs no help text, whose suggestion
     /// compares it with every define (most of `lsys pailou`'s compile
     /// time before, as each define body naming a parameter failed).
-    pub quiet: bool,
+    pub evaluating_for_display: bool,
 }
 
 impl Resolver {
@@ -395,14 +395,14 @@ impl Resolver {
                 // Defines are evaluated for display only; errors surface
                 // where a define is used.
                 let saved = self.errors.len();
-                self.quiet = true;
+                self.evaluating_for_display = true;
                 let value = self
                     .expr(d.value.as_ref()?, &expr::Scope::EMPTY)
                     .and_then(|e| match e.kind {
                         ExprKind::Num(v) => Some(v),
                         _ => None,
                     });
-                self.quiet = false;
+                self.evaluating_for_display = false;
                 self.errors.truncate(saved);
                 Some(DefineInfo {
                     name: d.name,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
-use crate::resolve::ir::Production;
+use crate::resolve::ir::{Production, SuccModule};
 use crate::resolve::{Program, CLOSE_BRACKET, OPEN_BRACKET};
 
 #[derive(Debug, Error, Diagnostic)]
@@ -133,7 +133,7 @@ impl From<ShapeError> for TurtleError {
 /// The grammar text and the first successor module (axiom first) that
 /// writes `sym`: the derivation does not record which production wrote a
 /// module, so this is the best place to point at.
-pub(crate) fn blame(
+pub(crate) fn source_of_symbol(
     program: &Program,
     sym: crate::resolve::ir::SymId,
 ) -> (NamedSource<Arc<String>>, Option<SourceSpan>) {
@@ -184,10 +184,11 @@ impl std::fmt::Display for WrittenAt {
     }
 }
 
-/// Whether `succ` closes more branches than it opens at some point.
-fn closes_unopened(p: &Production) -> bool {
+/// The first `]` of `modules` (a successor or the axiom) that closes a
+/// branch it did not open.
+fn first_stray_close(modules: &[SuccModule]) -> Option<&SuccModule> {
     let mut depth = 0i32;
-    p.succ.iter().any(|m| {
+    modules.iter().find(|m| {
         match m.sym {
             OPEN_BRACKET => depth += 1,
             CLOSE_BRACKET => depth -= 1,
@@ -208,7 +209,7 @@ impl TurtleError {
             .iter()
             .chain(&program.decomposition)
             .chain(&program.homomorphism);
-        TurtleError::blame(index, program, all, WrittenAt::default())
+        TurtleError::blame_stray_close(index, program, all, WrittenAt::default())
     }
 
     /// This error with the step that first wrote a stray `]`, the
@@ -222,16 +223,7 @@ impl TurtleError {
         let written = WrittenAt(Some(origin));
         match origin {
             BracketOrigin::Axiom => {
-                let mut depth = 0i32;
-                let stray = program.axiom.iter().find(|m| {
-                    match m.sym {
-                        OPEN_BRACKET => depth += 1,
-                        CLOSE_BRACKET => depth -= 1,
-                        _ => {}
-                    }
-                    depth < 0
-                });
-                match stray {
+                match first_stray_close(&program.axiom) {
                     Some(m) => TurtleError::UnbalancedBracket {
                         index,
                         written,
@@ -240,27 +232,27 @@ impl TurtleError {
                         help: "every `]` must close a `[`: add the `[` that the axiom's `]` should close, or remove the `]`".to_string(),
                     },
                     // The axiom is balanced: its decomposition wrote it.
-                    None => TurtleError::blame(index, program, program.decomposition.iter(), written),
+                    None => TurtleError::blame_stray_close(index, program, program.decomposition.iter(), written),
                 }
             }
             BracketOrigin::Step(_) => {
                 let prods = program.productions.iter().chain(&program.decomposition);
-                TurtleError::blame(index, program, prods, written)
+                TurtleError::blame_stray_close(index, program, prods, written)
             }
             BracketOrigin::Homomorphism(_) => {
-                TurtleError::blame(index, program, program.homomorphism.iter(), written)
+                TurtleError::blame_stray_close(index, program, program.homomorphism.iter(), written)
             }
         }
     }
 
-    fn blame<'a>(
+    fn blame_stray_close<'a>(
         index: usize,
         program: &Program,
         mut candidates: impl Iterator<Item = &'a Production>,
         written: WrittenAt,
     ) -> TurtleError {
         let general = "every `]` must close a `[`; the productions that write brackets must write them in pairs";
-        match candidates.find(|p| closes_unopened(p)) {
+        match candidates.find(|p| first_stray_close(&p.succ).is_some()) {
             Some(p) => TurtleError::UnbalancedBracket {
                 index,
                 written,

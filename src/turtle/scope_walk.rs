@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::error::{blame, ShapeError, TurtleError};
+use super::error::{source_of_symbol, ShapeError, TurtleError};
 use super::frame::Frame;
 use super::interp::{QueryFn, Turtle, Walk};
 use super::scope::{self, axes, num, Misfit, Role, Size};
@@ -49,7 +49,7 @@ impl Turtle<'_> {
             return Ok(next);
         }
         let Some(size) = self.state.scope else {
-            let (src, span) = blame(self.program, sym);
+            let (src, span) = source_of_symbol(self.program, sym);
             return Err(ShapeError::NoScope {
                 index: index + 1,
                 text: self.text(sym, args),
@@ -228,7 +228,7 @@ impl Turtle<'_> {
             i = end + 1;
         }
         if out.len() < min {
-            let (src, span) = blame(self.program, sym);
+            let (src, span) = source_of_symbol(self.program, sym);
             let what = |n: usize| {
                 if n == 1 {
                     "one branch `[...]`".to_string()
@@ -255,7 +255,7 @@ impl Turtle<'_> {
     }
 
     fn misfit(&self, m: Misfit, sym: SymId, args: &[f64], index: usize) -> TurtleError {
-        let (src, span) = blame(self.program, sym);
+        let (src, span) = source_of_symbol(self.program, sym);
         ShapeError::SplitMisfit {
             index: index + 1,
             text: self.text(sym, args),
