@@ -2,23 +2,9 @@
 //! (our own small model under tests/fixtures/cpfg/), derived through the
 //! CLI; and the C preprocessor's effect on what the grammar stages see.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn lsys(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("lsys runs")
-}
-
-fn fixture(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/cpfg")
-        .join(name)
-}
+use common::{cpfg_fixture as fixture, lsys_in as lsys};
 
 #[test]
 fn functions_contexts_and_cpfg_names() {

@@ -3,23 +3,9 @@
 //! (several `Lsystem:` blocks, `?(n,s) ... $`) and contour curves. Our
 //! own small models under tests/fixtures/cpfg/, derived through the CLI.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod common;
 
-fn lsys(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(args)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("lsys runs")
-}
-
-fn fixture(name: &str) -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fixtures/cpfg")
-        .join(name)
-}
+use common::{cpfg_fixture as fixture, lsys_in as lsys};
 
 fn derive(dir: &str, args: &[&str]) -> String {
     let out = lsys(&fixture(dir), args);

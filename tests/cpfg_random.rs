@@ -3,21 +3,15 @@
 //! derived through the CLI, their numbers checked against POSIX
 //! `drand48` seeded as cpfg seeds it.
 
-use std::path::Path;
-use std::process::Command;
+mod common;
 
 use lsys::derive::Rand48;
 
 fn derive(file: &str, args: &[&str]) -> String {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/cpfg/random");
-    let out = Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .arg("derive")
-        .args(args)
-        .arg(file)
-        .current_dir(dir)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("lsys runs");
+    let mut all = vec!["derive"];
+    all.extend(args);
+    all.push(file);
+    let out = common::lsys_in(&common::cpfg_fixture("random"), &all);
     assert!(
         out.status.success(),
         "{}",

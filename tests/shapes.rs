@@ -2,6 +2,8 @@
 //! several widths, their part counts against counts worked out by hand
 //! from the split rules, and the constraint reports as snapshots.
 
+mod common;
+
 use std::path::Path;
 
 use lsys::build::Built;
@@ -120,21 +122,17 @@ fn constraint_reports() {
 fn stats_report_default_and_user_attributes() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("v.glb");
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args([
-            "build",
-            "examples/shapes/veranda.lsys",
-            "-D",
-            "W=9",
-            "-D",
-            "H=4",
-        ])
-        .arg("-o")
-        .arg(&out)
-        .arg("--stats")
-        .output()
-        .unwrap();
+    let o = common::lsys(&[
+        "build",
+        "examples/shapes/veranda.lsys",
+        "-D",
+        "W=9",
+        "-D",
+        "H=4",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let mut lines = Vec::new();

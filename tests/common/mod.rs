@@ -13,6 +13,23 @@ pub fn lsys(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Runs the `lsys` binary with `args` in `dir`, diagnostics without colour.
+pub fn lsys_in(dir: &std::path::Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("lsys runs")
+}
+
+/// A folder of our own cpfg models under tests/fixtures/cpfg/.
+pub fn cpfg_fixture(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/cpfg")
+        .join(name)
+}
+
 /// What a run printed on standard error.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
