@@ -240,10 +240,30 @@ fn grammar_components_build_once_and_refuse_cycles() {
     assert_eq!(cap("TM#0/"), cap("TS#0/"));
 }
 
+/// Table 3's polygon counts, per figure.
+const TABLE_3_POLYGONS: &[(&str, f64)] = &[
+    ("fig17-1", 2.23e5),
+    ("fig17-2", 1.15e6),
+    ("fig17-3", 8.94e5),
+    ("fig17-4", 6.88e5),
+    ("fig18-1", 1.07e6),
+    ("fig18-2", 2.11e6),
+    ("fig18-3", 1.84e6),
+    ("fig18-4", 6.86e5),
+    ("fig18-5", 8.71e5),
+    ("fig18-6", 2.48e6),
+    ("fig19-1", 7.74e5),
+    ("fig19-2", 9.15e5),
+    ("fig19-3", 1.23e6),
+    ("fig19-4", 2.51e6),
+    ("fig19-5", 1.78e6),
+];
+
 /// The 15 Pailous of the paper's Table 3 (`examples/pailou/*.toml`, named
 /// by figure and style) build through `lsys pailou GRAPH` with the pillars
-/// and roofs their names promise, without a structural warning, and pass
-/// the glTF validator when it is installed.
+/// and roofs their names promise, without a structural warning, with 0.5–2×
+/// the paper's polygons at the default detail, and pass the glTF validator
+/// when it is installed.
 #[test]
 fn table_3_pailous_build_with_their_pillars_and_roofs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -270,6 +290,14 @@ fn table_3_pailous_build_with_their_pillars_and_roofs() {
         // Ground pillars stand on bases; upper entrances' pillars do not.
         assert_eq!(count("MPB"), n[0], "{stem} pillar bases");
         assert_eq!(count("RE") + count("RC"), n[2], "{stem} roofs");
+        let fig = stem.split('_').next().unwrap();
+        let paper = TABLE_3_POLYGONS.iter().find(|(f, _)| *f == fig).unwrap().1;
+        let ratio = stats["triangles"].as_f64().unwrap() / paper;
+        assert!(
+            (0.5..=2.0).contains(&ratio),
+            "{stem}: {} triangles, {ratio:.2}× Table 3's {paper} polygons",
+            stats["triangles"]
+        );
         if stem.starts_with("fig17") {
             assert_eq!(count("RE"), 0, "{stem}: the pillar type has no eaves roofs");
         }
