@@ -153,8 +153,10 @@ fn limits_of_any_step_give_the_steps_error() {
     // Over the limit only with the modules kept from the axiom.
     let kept = grammar("C C C A", "A --> B B\nB --> ");
     assert!(same(&kept, 2, four.clone()).starts_with("error"));
-    // Over the limit only with both halves of a split string together.
-    let halves = grammar(&"A ".repeat(64), "A --> B B\nB --> ");
+    // Over the limit only with both halves of a split string together
+    // (distinct modules: a repetitive string is not split).
+    let distinct: String = (0..64).map(|i| format!("A({i}) ")).collect();
+    let halves = grammar(&distinct, "A(x) --> B B\nB --> ");
     let hundred = DeriveOptions {
         max_modules: 100,
         ..opts()
@@ -162,6 +164,63 @@ fn limits_of_any_step_give_the_steps_error() {
     assert!(same(&halves, 2, hundred).starts_with("error"));
     // Within the limits the same grammars derive.
     assert_eq!(same(&shrinks, 2, opts()), "2 ");
+}
+
+/// Repeated modules (the same symbol and parameters with as many steps to
+/// go) are copied from their first expansion: the copies carry the kept
+/// modules and the counts of every level, so strings and limit errors are
+/// those of stepping; a module that differs only in a parameter (or in the
+/// sign of a zero) is expanded on its own.
+#[test]
+fn repeated_subtrees_are_copied_exactly() {
+    let rules = "A(x) : x < 6 --> A(x + 1) [ K(x) ] A(x + 1) A(x * 2) B(x)\nB(y) --> C(y) C(y)\nC(y) : y > 2 -->";
+    // Not repetitive at the top: split in halves on two threads.
+    let distinct: String = (0..64)
+        .map(|i| format!("A({}) ", f64::from(i) / 10.0))
+        .collect();
+    same(&grammar(&distinct, rules), 8, opts());
+    let g = grammar(&format!("{}A(0) A(-0) A(1)", "A(1) ".repeat(64)), rules);
+    let full = same(&g, 8, opts());
+    // A(0) and A(-0) were expanded each on its own.
+    assert!(
+        full.contains("[ K(0) ]") && full.contains("[ K(-0) ]"),
+        "{}",
+        &full[..200]
+    );
+    for (modules, params) in [(300, usize::MAX), (5_000, usize::MAX), (usize::MAX, 2_000)] {
+        let o = DeriveOptions {
+            max_modules: modules,
+            max_params: params,
+            ..opts()
+        };
+        same(&g, 8, o);
+    }
+}
+
+/// A limit that only a middle step's string passes, through modules that
+/// copies of repeated subtrees write there and the next step erases: the
+/// copies must count them as their first expansion did.
+#[test]
+fn repeated_subtrees_count_the_strings_in_between() {
+    let g = grammar(
+        "A(0)",
+        "A(x) : x < 7 --> A(x + 1) [ K(x) ] A(x + 1) B(x) B(x) B(x)\nB(y) -->",
+    );
+    let c = compile(&g);
+    let mut d = Derivation::new(&c.program, &c.compiled, opts()).unwrap();
+    let mut sizes = Vec::new();
+    for _ in 0..8 {
+        d.step().unwrap();
+        sizes.push(d.current().len());
+    }
+    let last = *sizes.last().unwrap();
+    let widest = *sizes.iter().max().unwrap();
+    assert!(widest > last, "{sizes:?}");
+    let o = DeriveOptions {
+        max_modules: last,
+        ..opts()
+    };
+    assert!(same(&g, 8, o).starts_with("error"));
 }
 
 #[test]

@@ -23,6 +23,14 @@
 //! known: each module is counted at the level it is written, and a module
 //! no production rewrites counts once at every later level.
 //!
+//! Repeated subtrees: the expansion of a module depends only on the
+//! module (its symbol and the bits of its parameters) and the steps to go,
+//! so when a module is the same as the last one expanded with as many
+//! steps to go (W2's two `A(x+1)` of one successor, W1's `F F`), its
+//! expansion is copied from the output already written, counts included
+//! ([`Memo`]). W2: only one branch per level is expanded; the output is
+//! written by copies.
+//!
 //! Two cores: with two threads in the rayon pool, an input of
 //! [`PAR_SPLIT`] modules or more is cut in two halves expanded at once;
 //! their counts add up and the second output is appended to the first
@@ -48,6 +56,9 @@ pub(crate) const MAX_DEPTH: u32 = 64;
 /// expanded on a thread of its own when the rayon pool has two.
 pub(crate) const PAR_SPLIT: usize = 64;
 
+/// Memo slots per level (see [`Expander::memo`]).
+const SLOTS: usize = 8;
+
 /// Per level (steps to go), modules and parameters written, and kept.
 type Levels = (Vec<(usize, usize)>, Vec<(usize, usize)>);
 
@@ -67,7 +78,10 @@ pub(crate) fn expand(
     out.clear();
     let d = steps as usize;
     let (heads, params) = (&input.heads[..], &input.params[..]);
-    let (written, kept) = if heads.len() >= PAR_SPLIT && rayon::current_num_threads() > 1 {
+    let split = heads.len() >= PAR_SPLIT
+        && rayon::current_num_threads() > 1
+        && !repetitive(tab, heads, params);
+    let (written, kept) = if split {
         // The halves expand independently; the second is appended to the
         // first (one copy of half the output, against a second core).
         let half = heads.len() / 2;
@@ -118,6 +132,32 @@ pub(crate) fn expand(
     Some(before_last)
 }
 
+/// Whether most modules to rewrite at the start of `heads` (the first
+/// [`SAMPLE`]) repeat an earlier one: then the memo copies most of the
+/// output, which is faster on one core than two halves and the copy that
+/// joins them (W2: 0.8 ms against 7 ms, docs/performance.md).
+fn repetitive(tab: &Tables, heads: &[u32], params: &[f64]) -> bool {
+    let has_rules = &tab.rules[0].has_rules;
+    let mut seen = std::collections::HashSet::new();
+    let (mut n, mut repeats, mut off) = (0usize, 0usize, 0usize);
+    for &h in heads {
+        let a = head_arity(h);
+        if has_rules[head_sym(h) as usize] {
+            let bits: Vec<u64> = params[off..off + a].iter().map(|x| x.to_bits()).collect();
+            repeats += usize::from(!seen.insert((h, bits)));
+            n += 1;
+            if n == SAMPLE {
+                break;
+            }
+        }
+        off += a;
+    }
+    2 * repeats >= n
+}
+
+/// Modules looked at by [`repetitive`].
+const SAMPLE: usize = 4096;
+
 /// Expand `heads` (parameters `params`) `d` steps, appending to `out`;
 /// the counts per level.
 fn run(
@@ -138,6 +178,7 @@ fn run(
         written: vec![(0, 0); d + 1],
         kept: vec![(0, 0); d + 1],
         scratch: [ModuleStore::new(), ModuleStore::new()],
+        memo: (0..=d).map(|_| Default::default()).collect(),
     };
     e.string(heads, params, d).ok()?;
     Some((e.written, e.kept))
@@ -158,6 +199,33 @@ struct Expander<'a, 't, 'p> {
     kept: Vec<(usize, usize)>,
     /// The strings of the breadth-first steps.
     scratch: [ModuleStore; 2],
+    /// `memo[r][slot(head)]`: the last module of its slot expanded with
+    /// `r` steps to go (a slot per symbol modulo [`SLOTS`], so that
+    /// alternating symbols, W1's `F X F X`, each find their last).
+    memo: Vec<[Memo; SLOTS]>,
+}
+
+/// The last module expanded at one level: what it wrote to the output and
+/// what it added to the counts of the levels below (and its own kept).
+#[derive(Default)]
+struct Memo {
+    valid: bool,
+    head: u32,
+    params: Vec<u64>,
+    heads: std::ops::Range<usize>,
+    values: std::ops::Range<usize>,
+    /// Per level `0..r` (written) and `0..=r` (kept): the counts added.
+    written: Vec<(usize, usize)>,
+    kept: Vec<(usize, usize)>,
+}
+
+impl Memo {
+    fn is(&self, head: u32, b: &[f64]) -> bool {
+        self.valid
+            && self.head == head
+            && self.params.len() == b.len()
+            && self.params.iter().zip(b).all(|(&x, y)| x == y.to_bits())
+    }
 }
 
 impl Expander<'_, '_, '_> {
@@ -201,8 +269,64 @@ impl Expander<'_, '_, '_> {
         Ok(())
     }
 
-    /// Expand module `head(b)`, which has productions, `r` steps.
+    /// Expand module `head(b)`, which has productions, `r` steps: a copy
+    /// of the last module's expansion at this level when it is the same
+    /// module, else [`Self::expand_module`], remembered.
     fn module(&mut self, head: u32, b: &[f64], r: usize) -> Result<(), ()> {
+        if r < 2 {
+            return self.expand_module(head, b, r);
+        }
+        let slot = head_sym(head) as usize % SLOTS;
+        if self.memo[r][slot].is(head, b) {
+            return self.repeat(r, slot);
+        }
+        let (h0, v0) = (self.out.heads.len(), self.out.params.len());
+        let mut m = std::mem::take(&mut self.memo[r][slot]);
+        m.valid = false;
+        m.written.clear();
+        m.written.extend_from_slice(&self.written[..r]);
+        m.kept.clear();
+        m.kept.extend_from_slice(&self.kept[..=r]);
+        let res = self.expand_module(head, b, r);
+        if res.is_ok() {
+            m.valid = true;
+            m.head = head;
+            m.params.clear();
+            m.params.extend(b.iter().map(|x| x.to_bits()));
+            m.heads = h0..self.out.heads.len();
+            m.values = v0..self.out.params.len();
+            for (d, now) in m.written.iter_mut().zip(&self.written) {
+                *d = (now.0 - d.0, now.1 - d.1);
+            }
+            for (d, now) in m.kept.iter_mut().zip(&self.kept) {
+                *d = (now.0 - d.0, now.1 - d.1);
+            }
+        }
+        self.memo[r][slot] = m;
+        res
+    }
+
+    /// The last expansion at level `r` again: its output copied, its counts
+    /// added, the limits checked as the expansion itself would.
+    fn repeat(&mut self, r: usize, slot: usize) -> Result<(), ()> {
+        let m = &self.memo[r][slot];
+        for (w, d) in self.written.iter_mut().zip(&m.written) {
+            w.0 += d.0;
+            w.1 += d.1;
+            if w.0 > self.tab.max_modules || w.1 > self.tab.max_params {
+                return Err(());
+            }
+        }
+        for (k, d) in self.kept.iter_mut().zip(&m.kept) {
+            k.0 += d.0;
+            k.1 += d.1;
+        }
+        self.out.heads.extend_from_within(m.heads.clone());
+        self.out.params.extend_from_within(m.values.clone());
+        self.check_out()
+    }
+
+    fn expand_module(&mut self, head: u32, b: &[f64], r: usize) -> Result<(), ()> {
         let Some(p) = first_match(self.plan, self.tab, self.stack, head, b)? else {
             // No production applies now, so none ever will (conditions
             // are pure): the module stays as it is.
