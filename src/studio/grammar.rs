@@ -16,6 +16,8 @@ use super::watch::Snapshot;
 pub struct Define {
     pub name: String,
     pub value: String,
+    /// The value as a number (a number or `a/b`), for a slider.
+    pub number: Option<f64>,
     /// A slider's range, for a number.
     pub range: Option<(f64, f64)>,
     pub integer: bool,
@@ -139,6 +141,7 @@ impl GrammarSession {
                 json!({
                     "name": d.name,
                     "value": d.value,
+                    "number": d.number,
                     "override": self.overrides.get(&d.name),
                     "range": d.range.map(|(a, b)| [a, b]),
                     "integer": d.integer,
@@ -159,48 +162,83 @@ impl GrammarSession {
     }
 }
 
-/// The `#define NAME VALUE` lines of a grammar's text (function-like
-/// macros left out): a number gets a slider from 0 to twice it (around
-/// it when negative; 0..1 for 0).
+/// The `#define NAME VALUE` lines of a grammar's text, lists included
+/// (`#define αPW 7/61, αEW 10/12`; function-like macros and tables left
+/// out): a number (or a fraction of two) gets a slider from 0 to twice it
+/// (around it when negative; 0..1 for 0).
 pub fn defines_of(text: &str) -> Vec<Define> {
     let mut out: Vec<Define> = Vec::new();
     for line in text.lines() {
         let Some(rest) = line.trim_start().strip_prefix("#define") else {
             continue;
         };
-        let rest = rest.trim();
-        let name: String = rest
-            .chars()
-            .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '.')
-            .collect();
-        let after = &rest[name.len()..];
-        if name.is_empty() || after.starts_with('(') {
-            continue;
+        let rest = rest.split("//").next().unwrap_or("");
+        for item in top_level_items(rest) {
+            let item = item.trim();
+            let name: String = item
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '.')
+                .collect();
+            let after = &item[name.len()..];
+            if name.is_empty() || after.starts_with(['(', '[']) {
+                continue;
+            }
+            let value = after.trim().to_string();
+            out.retain(|d| d.name != name);
+            out.push(slider(name, value));
         }
-        let value = after.split("//").next().unwrap_or("").trim().to_string();
-        let number = value.parse::<f64>().ok().filter(|v| v.is_finite());
-        let integer = number.is_some() && !value.contains(['.', 'e', 'E']);
-        let range = number.map(|v| match v {
-            v if v > 0.0 => (
-                0.0,
-                if integer {
-                    (2.0 * v).max(v + 5.0)
-                } else {
-                    2.0 * v
-                },
-            ),
-            v if v < 0.0 => (2.0 * v, -2.0 * v),
-            _ => (0.0, if integer { 10.0 } else { 1.0 }),
-        });
-        out.retain(|d| d.name != name);
-        out.push(Define {
-            name,
-            value,
-            range,
-            integer,
-        });
     }
     out
+}
+
+/// `text` cut at the commas outside brackets (the items of a list define).
+fn top_level_items(text: &str) -> Vec<&str> {
+    let (mut items, mut depth, mut start) = (Vec::new(), 0i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' | '[' | '{' => depth += 1,
+            ')' | ']' | '}' => depth -= 1,
+            ',' if depth == 0 => {
+                items.push(&text[start..i]);
+                start = i + 1;
+            }
+            _ => {}
+        }
+    }
+    items.push(&text[start..]);
+    items
+}
+
+/// A define as the page shows it: a slider for a number or `a/b`.
+fn slider(name: String, value: String) -> Define {
+    let number = match value.split_once('/') {
+        Some((a, b)) => match (a.trim().parse::<f64>(), b.trim().parse::<f64>()) {
+            (Ok(a), Ok(b)) => Some(a / b),
+            _ => None,
+        },
+        None => value.parse::<f64>().ok(),
+    }
+    .filter(|v| v.is_finite());
+    let integer = number.is_some() && !value.contains(['.', 'e', 'E', '/']);
+    let range = number.map(|v| match v {
+        v if v > 0.0 => (
+            0.0,
+            if integer {
+                (2.0 * v).max(v + 5.0)
+            } else {
+                2.0 * v
+            },
+        ),
+        v if v < 0.0 => (2.0 * v, -2.0 * v),
+        _ => (0.0, if integer { 10.0 } else { 1.0 }),
+    });
+    Define {
+        name,
+        value,
+        number,
+        range,
+        integer,
+    }
 }
 
 #[cfg(test)]
@@ -222,6 +260,29 @@ mod tests {
                 "N 4 Some((0.0, 9.0)) true",
                 "angle 22.5 Some((0.0, 45.0)) false",
                 "NAME foo None false"
+            ]
+        );
+    }
+
+    /// A list define gives one slider per item (the Pailou's ratios); a
+    /// table or a call in a value does not cut it.
+    #[test]
+    fn list_defines_give_one_slider_each() {
+        let d = defines_of(
+            "#define αPW 7/61, αEW 10/12, αUp 1/2 // ratios\n#define NTL 5, κT max(1, 2)\n#define exists[1..2, 1..2] {\n",
+        );
+        let shown: Vec<String> = d
+            .iter()
+            .map(|d| format!("{} {} {:?}", d.name, d.value, d.range.map(|r| r.1)))
+            .collect();
+        assert_eq!(
+            shown,
+            [
+                "αPW 7/61 Some(0.22950819672131148)",
+                "αEW 10/12 Some(1.6666666666666667)",
+                "αUp 1/2 Some(1.0)",
+                "NTL 5 Some(10.0)",
+                "κT max(1, 2) None"
             ]
         );
     }

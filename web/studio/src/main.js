@@ -166,7 +166,7 @@ $("graph").addEventListener("pointerup", async () => {
 
 // name, meaning, default, range and step of the Pailou grammar's sliders.
 const PARAMS = [
-  ["ω", "ground pillar height of the central entrance", 10, 2, 30, 0.5],
+  ["ω", "ground pillar height of the central entrance", 9, 2, 30, 0.5],
   ["αUp", "an entrance above / the one below", 0.5, 0.2, 1, 0.01],
   ["αSide", "an entrance beside / the inner one", 0.8, 0.3, 1, 0.01],
   ["αEW", "entrance width / pillar height", 0.8333, 0.4, 1.5, 0.01],
@@ -253,7 +253,7 @@ function showGrammar(s) {
     box.replaceChildren(...s.defines.map((d) => {
       const l = document.createElement("label");
       const input = d.range
-        ? `<input type="range" data-name="${d.name}" min="${d.range[0]}" max="${d.range[1]}" step="${d.integer ? 1 : (d.range[1] - d.range[0]) / 100}" value="${d.override ?? d.value}">`
+        ? `<input type="range" data-name="${d.name}" min="${d.range[0]}" max="${d.range[1]}" step="${d.integer ? 1 : (d.range[1] - d.range[0]) / 100}" value="${d.override ?? d.number}">`
         : `<input data-name="${d.name}" value="${d.override ?? d.value}">`;
       l.innerHTML = `${d.name}${input}<output>${d.override ?? d.value}</output>`;
       return l;
@@ -266,7 +266,7 @@ function showGrammar(s) {
   // A saved file's new values move the sliders not set on the page.
   for (const d of s.defines) {
     const i = box.querySelector(`input[data-name="${CSS.escape(d.name)}"]`);
-    if (i && d.override == null && document.activeElement !== i) { i.value = d.value; i.nextElementSibling.textContent = d.value; }
+    if (i && d.override == null && document.activeElement !== i) { i.value = i.type === "range" ? d.number : d.value; i.nextElementSibling.textContent = d.value; }
   }
 }
 function sendGrammar() {
@@ -274,7 +274,12 @@ function sendGrammar() {
   const defines = {};
   $("grammar-defines").querySelectorAll("input").forEach((i) => {
     const d = studio.state.defines.find((x) => x.name === i.dataset.name);
-    if (d && String(i.value) !== String(d.value)) defines[i.dataset.name] = i.type === "range" ? Number(i.value) : i.value;
+    if (!d) return;
+    // A slider differs from the file's value (7/61 is a number there).
+    const changed = i.type === "range"
+      ? Math.abs(Number(i.value) - d.number) > 1e-9 * Math.max(1, Math.abs(d.number))
+      : String(i.value) !== String(d.value);
+    if (changed) defines[i.dataset.name] = i.type === "range" ? Number(i.value) : i.value;
   });
   return api("/api/grammar", { defines, step: Number($("step").value) }).then((r) => show(r.data, true));
 }

@@ -157,19 +157,30 @@ try {
 
   // Grammar mode: edit the file on disk, the view follows; a mistake is shown.
   const g = join(dir, "bush.lsys");
-  const grammar = (n) => `// a bush\n#define ANGLE 25.7\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
+  const grammar = (n) => `// a bush\n#define ANGLE 25.7, W 3/4\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
   writeFileSync(g, grammar(2));
   await page.evaluate(async () => { const r = await fetch("/api/files"); const f = await r.json(); const sel = document.getElementById("open"); sel.replaceChildren(new Option("open…", ""), ...f.files.map((x) => new Option(x, x))); });
   n = await loads();
   await page.selectOption("#open", "bush.lsys");
   await waitLoads(n + 1);
   const t2 = await page.evaluate(() => window.studio.state.triangles);
-  check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 2, `triangles ${t2}`);
+  check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 3, `triangles ${t2}`);
   n = await loads();
   writeFileSync(g, grammar(3));
   await waitLoads(n + 1);
   const t3 = await page.evaluate(() => window.studio.state.triangles);
   check("saving the file on disk updates the view", t3 > t2, `${t2} -> ${t3}`);
+  // Moving the step sends the page's overrides: none, though W is 3/4 in
+  // the file and 0.75 on its slider.
+  n = await loads();
+  await page.$eval("#step", (i) => { i.value = "2"; i.dispatchEvent(new Event("change")); });
+  await waitLoads(n + 1);
+  const overrides = await page.evaluate(() => window.studio.state.defines.filter((d) => d.override != null).map((d) => d.name));
+  const w = await page.$eval('#grammar-defines input[data-name="W"]', (i) => Number(i.value));
+  check("a list define's fraction is a slider at its value and no override", overrides.length === 0 && Math.abs(w - 0.75) < 1e-9, `${JSON.stringify(overrides)} W=${w}`);
+  n = await loads();
+  await page.$eval("#step", (i) => { i.value = "3"; i.dispatchEvent(new Event("change")); });
+  await waitLoads(n + 1);
   await page.click('#views button[data-view="front"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(images, "studio-grammar.png") });
