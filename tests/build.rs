@@ -267,12 +267,7 @@ const TABLE_3_POLYGONS: &[(&str, f64)] = &[
 #[test]
 fn table_3_pailous_build_with_their_pillars_and_roofs() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut graphs: Vec<PathBuf> = std::fs::read_dir(root.join("examples/pailou"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    graphs.sort();
+    let graphs = common::files("examples/pailou", "toml");
     assert_eq!(graphs.len(), 15, "Table 3 has 15 Pailous");
     let dir = tempfile::tempdir().unwrap();
     let mut files = Vec::new();

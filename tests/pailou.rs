@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Output;
 
 use common::{lsys, stderr};
@@ -13,14 +13,7 @@ use glam::{Mat4, Vec3};
 
 /// The example graphs, sorted by name.
 fn examples() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut graphs: Vec<PathBuf> = std::fs::read_dir(root.join("examples/pailou"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    graphs.sort();
-    graphs
+    common::files("examples/pailou", "toml")
 }
 
 /// Builds `args` to a GLB and returns its placements: (name, world
@@ -140,13 +133,7 @@ fn warnings(o: &Output) -> String {
 /// the gap or depth.
 #[test]
 fn the_structural_check_flags_each_defect_of_issue_15() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut fixtures: Vec<PathBuf> = std::fs::read_dir(root.join("tests/fixtures/pailou"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "lsys"))
-        .collect();
-    fixtures.sort();
+    let fixtures = common::files("tests/fixtures/pailou", "lsys");
     assert_eq!(fixtures.len(), 5);
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("f.glb");

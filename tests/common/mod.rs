@@ -30,6 +30,18 @@ pub fn cpfg_fixture(name: &str) -> std::path::PathBuf {
         .join(name)
 }
 
+/// The files ending in `.ext` in the package's folder `dir`, sorted.
+pub fn files(dir: &str, ext: &str) -> Vec<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut found: Vec<std::path::PathBuf> = std::fs::read_dir(root.join(dir))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
+        .collect();
+    found.sort();
+    found
+}
+
 /// What a run printed on standard error.
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
