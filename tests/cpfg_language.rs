@@ -81,6 +81,34 @@ fn contour_curves_give_points_by_arc_length() {
     insta::assert_snapshot!(s);
 }
 
+/// Every call of `curveX(1, s)` reads one copy of the curve: a grammar
+/// naming it in three productions compiles to one function per axis.
+#[test]
+fn curve_calls_share_one_function_per_curve_and_axis() {
+    let tmp = tempfile::tempdir().unwrap();
+    for f in ["arc.v", "arc.con"] {
+        std::fs::copy(fixture("curve").join(f), tmp.path().join(f)).unwrap();
+    }
+    let path = tmp.path().join("arc.l");
+    std::fs::write(
+        &path,
+        "Lsystem: 1\nderivation length: 1\nAxiom: P(0)\nP(s) --> Q(curveX(1, s), curveY(1, s))\nQ(x, y) --> R(curveX(1, x)) R(curveY(1, y))\nR(x) --> R(curveX(1, x))\nendlsystem\n",
+    )
+    .unwrap();
+    let c = lsys::pipeline::compile(
+        &lsys::load::Input::Path(path),
+        &lsys::load::Options::default(),
+    )
+    .unwrap_or_else(|_| panic!("compiles"));
+    let names: Vec<&str> = c
+        .compiled
+        .functions
+        .iter()
+        .map(|f| f.name.as_str())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+}
+
 /// A missing curve is an error at the call that names it.
 #[test]
 fn a_curve_the_view_file_does_not_name_is_an_error() {

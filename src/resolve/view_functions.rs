@@ -149,13 +149,20 @@ impl Resolver {
         // After the view file's functions, so that `func`'s numbers stay.
         self.seed_functions();
         let functions = self.vars.functions.get_or_insert_with(Vec::new);
-        functions.push(SplineFn {
-            name: format!("{}:{}", name.name, curve.name),
-            points: Vec::new(),
-            table: Vec::new(),
-            contour: Some((Box::new(curve), axis)),
-        });
-        let index = functions.len() as u32 - 1;
+        // One function per curve and axis, however many calls name it.
+        let fname = format!("{}:{}", name.name, curve.name);
+        let index = match functions.iter().position(|f| f.name == fname) {
+            Some(i) => i as u32,
+            None => {
+                functions.push(SplineFn {
+                    name: fname,
+                    points: Vec::new(),
+                    table: Vec::new(),
+                    contour: Some((Box::new(curve), axis)),
+                });
+                functions.len() as u32 - 1
+            }
+        };
         Some(Some(Expr {
             kind: ExprKind::Spline(index, Box::new(s)),
             span,
