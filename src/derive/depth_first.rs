@@ -109,7 +109,7 @@ pub(crate) fn expand(
         }
         out.heads.extend_from_slice(&right.heads);
         out.params.extend_from_slice(&right.params);
-        if out.len() > tab.max_modules || out.param_count() > tab.max_params {
+        if tab.over(out.len(), out.param_count()) {
             return None;
         }
         (written, kept)
@@ -124,7 +124,7 @@ pub(crate) fn expand(
         mods += kept[q + 1].0;
         params += kept[q + 1].1;
         let (m, p) = (written[q].0 + mods, written[q].1 + params);
-        if m > tab.max_modules || p > tab.max_params {
+        if tab.over(m, p) {
             return None;
         }
         before_last = m;
@@ -263,7 +263,7 @@ impl Expander<'_, '_, '_> {
     }
 
     fn check_out(&self) -> Result<(), ()> {
-        if self.out.len() > self.tab.max_modules || self.out.param_count() > self.tab.max_params {
+        if self.tab.over(self.out.len(), self.out.param_count()) {
             return Err(());
         }
         Ok(())
@@ -313,7 +313,7 @@ impl Expander<'_, '_, '_> {
         for (w, d) in self.written.iter_mut().zip(&m.written) {
             w.0 += d.0;
             w.1 += d.1;
-            if w.0 > self.tab.max_modules || w.1 > self.tab.max_params {
+            if self.tab.over(w.0, w.1) {
                 return Err(());
             }
         }
@@ -349,7 +349,7 @@ impl Expander<'_, '_, '_> {
             w.1 += succ.param_count();
             // Each level's string alone can pass the limits: give up
             // early rather than expand all of it.
-            if w.0 > self.tab.max_modules || w.1 > self.tab.max_params {
+            if self.tab.over(w.0, w.1) {
                 return Err(());
             }
             self.string(&succ.heads, &succ.params, r - 1)
@@ -374,7 +374,7 @@ impl Expander<'_, '_, '_> {
             let w = &mut self.written[q];
             w.0 += cur.len();
             w.1 += cur.param_count();
-            if w.0 > self.tab.max_modules || w.1 > self.tab.max_params {
+            if self.tab.over(w.0, w.1) {
                 res = Err(());
                 break;
             }

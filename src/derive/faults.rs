@@ -119,7 +119,7 @@ pub(crate) fn check_limits(
     site: Option<Site>,
     step: u32,
 ) -> Result<(), Fail> {
-    if out.len() > tab.max_modules || out.param_count() > tab.max_params {
+    if tab.over(out.len(), out.param_count()) {
         return Err(limit_error(tab, out, site, step));
     }
     Ok(())

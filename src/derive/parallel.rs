@@ -81,7 +81,7 @@ pub(crate) fn step(
     let out_mods = prefix(&measured.iter().map(|m| m.0).collect::<Vec<_>>());
     let out_params = prefix(&measured.iter().map(|m| m.1).collect::<Vec<_>>());
     let (total_mods, total_params) = (out_mods[k], out_params[k]);
-    if total_mods > tab.max_modules || total_params > tab.max_params {
+    if tab.over(total_mods, total_params) {
         return Some(false);
     }
 

@@ -63,6 +63,12 @@ pub(crate) struct Tables<'p> {
 }
 
 impl<'p> Tables<'p> {
+    /// Whether a string of `modules` modules and `params` parameter values
+    /// is over `--max-modules` or `--max-params`.
+    pub(crate) fn over(&self, modules: usize, params: usize) -> bool {
+        modules > self.max_modules || params > self.max_params
+    }
+
     pub(crate) fn new(
         program: &'p Program,
         compiled: &'p Compiled,
