@@ -290,10 +290,7 @@ impl<'s> Builder<'s> {
 
         let linear = Mat3::from_mat4(transform);
         let normal_matrix = linear.inverse().transpose();
-        let repair = mesh
-            .normals
-            .iter()
-            .any(|&v| (normal_matrix * v).normalize_or_zero() == Vec3::ZERO);
+        let repair = mesh.normals.iter().any(|&v| collapses(normal_matrix * v));
         let start = self.bin.push(Piece::Normals(mesh, linear, repair));
         let view = self.view(start, Target::ArrayBuffer);
         let normals = self.accessor(view, n, ComponentType::F32, Type::Vec3, None);
@@ -375,7 +372,7 @@ pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
         format!("{} normals for {n} vertices", mesh.normals.len())
     } else if mesh.indices.len() % 3 != 0 {
         format!("{} indices do not form triangles", mesh.indices.len())
-    } else if let Some(i) = mesh.indices.iter().find(|&&i| i as usize >= n) {
+    } else if let Some(i) = out_of_range(&mesh.indices, n) {
         format!("index {i} refers past the {n} vertices")
     } else {
         return Ok(());
@@ -384,6 +381,26 @@ pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
         name: name.into(),
         detail,
     })
+}
+
+/// True when `v.normalize_or_zero()` is zero: its length is zero or not
+/// finite (glam normalises by `1 / length` when that is finite and
+/// positive). Decided on the squared length, without the square root and
+/// division the normalisation itself costs.
+fn collapses(v: Vec3) -> bool {
+    let l2 = v.length_squared();
+    !(l2 > 0.0 && l2.is_finite())
+}
+
+/// The first index at or past `n`. The largest index is checked first, a
+/// loop the compiler vectorises: the search an index at a time cost as
+/// much as writing the indices out.
+fn out_of_range(indices: &[u32], n: usize) -> Option<u32> {
+    let max = indices.iter().copied().max()?;
+    if (max as usize) < n {
+        return None;
+    }
+    indices.iter().copied().find(|&i| i as usize >= n)
 }
 
 /// Unit normals of `mesh` after the vertices are mapped by `linear`, into
@@ -431,5 +448,31 @@ fn srgb_to_linear(c: f32) -> f32 {
         c / 12.92
     } else {
         ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod collapse_tests {
+    use super::*;
+
+    /// `collapses` agrees with glam's normalisation on zero, tiny, huge
+    /// and non-finite vectors.
+    #[test]
+    fn collapses_exactly_when_the_normal_normalises_to_zero() {
+        let tiny = f32::from_bits(1);
+        for v in [
+            Vec3::ZERO,
+            Vec3::new(-0.0, 0.0, -0.0),
+            Vec3::X,
+            Vec3::splat(tiny),
+            Vec3::new(1e-20, 0.0, 0.0),
+            Vec3::new(1e19, 0.0, 0.0),
+            Vec3::new(1e20, 1e20, 0.0),
+            Vec3::splat(f32::MAX),
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+            Vec3::new(f32::NAN, 1.0, 0.0),
+        ] {
+            assert_eq!(collapses(v), v.normalize_or_zero() == Vec3::ZERO, "{v:?}");
+        }
     }
 }
