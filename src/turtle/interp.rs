@@ -90,6 +90,9 @@ pub(super) struct State {
     pub(super) scale: f32,
     /// The chain the next drawn segment may extend.
     chain: Option<usize>,
+    /// The drawn point the turtle stands on (chain, point), if any: a
+    /// chain started here records it as its origin (a hint for meshing).
+    at: Option<(u32, u32)>,
     /// The open generalized cylinder: its last control point, and the
     /// chain its last segment extended. A branch copies it and goes on
     /// from the branch point, as cpfg's spline stack does.
@@ -202,6 +205,7 @@ fn interpret_with(
             colour: program.turtle.colour.unwrap_or(0),
             scale: 1.0,
             chain: None,
+            at: None,
             cylinder: None,
             contour: None,
             tropism: Vec3::NEG_Y,
@@ -437,6 +441,7 @@ impl Turtle<'_> {
             MoveTo => {
                 s.frame.pos = DVec3::new(args[0], args[1], args[2]);
                 s.chain = None;
+                s.at = None;
             }
             SetHeading => {
                 let v = |k: usize| DVec3::new(args[k], args[k + 1], args[k + 2]);
@@ -514,15 +519,26 @@ impl Turtle<'_> {
                 radius,
                 up: s.frame.u.as_vec3(),
             };
+            let chains = &mut self.drawing.chains;
             match s.chain {
                 Some(c)
-                    if self.drawing.chains[c].colour == s.colour
-                        && self.drawing.chains[c].points.last().map(|p| p.pos) == Some(from) =>
+                    if chains[c].colour == s.colour
+                        && chains[c].points.last().map(|p| p.pos) == Some(from) =>
                 {
-                    self.drawing.chains[c].points.push(point);
+                    chains[c].points.push(point);
+                    s.at = Some((c as u32, (chains[c].points.len() - 1) as u32));
                 }
                 _ => {
-                    self.drawing.chains.push(Chain {
+                    let origin = s.at.filter(|&(c, k)| {
+                        chains[c as usize].points.get(k as usize).map(|p| p.pos) == Some(from)
+                    });
+                    let origins = &mut self.drawing.origins;
+                    if let Some((chain, point)) = origin {
+                        origins.resize(chains.len(), None);
+                        origins.push(Some(super::drawing::Origin { chain, point }));
+                    }
+                    s.at = Some((chains.len() as u32, 1));
+                    chains.push(Chain {
                         colour: s.colour,
                         points: vec![
                             TubePoint {
@@ -533,11 +549,14 @@ impl Turtle<'_> {
                             point,
                         ],
                     });
-                    s.chain = Some(self.drawing.chains.len() - 1);
+                    s.chain = Some(chains.len() - 1);
                 }
             }
         } else {
             s.chain = None;
+            if d != 0.0 {
+                s.at = None;
+            }
         }
         if s.elasticity != 0.0 {
             s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));
