@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 
 use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
-use super::frame::Frame;
+use super::frame::{sin_cos_degrees, Frame};
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
@@ -120,6 +120,35 @@ pub(super) struct Turtle<'a> {
     /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
     pub(super) solids: Vec<super::solid::Solid>,
     pub(super) holes: Vec<super::solid::Solid>,
+    trig: Trig,
+}
+
+/// The sines and cosines of the last two angles turned by: a plant turns
+/// by a few angles again and again (W2: +25 and -25 in turn), and libm's
+/// sin_cos was a twentieth of the turtle's time. The same angle, bit for
+/// bit, gives the same values.
+struct Trig {
+    cache: [(u64, (f64, f64)); 2],
+}
+
+impl Trig {
+    fn new() -> Trig {
+        Trig {
+            cache: [(0f64.to_bits(), sin_cos_degrees(0.0)); 2],
+        }
+    }
+
+    fn sin_cos(&mut self, degrees: f64) -> (f64, f64) {
+        let bits = degrees.to_bits();
+        if self.cache[0].0 == bits {
+            return self.cache[0].1;
+        }
+        if self.cache[1].0 != bits {
+            self.cache[1] = (bits, sin_cos_degrees(degrees));
+        }
+        self.cache.swap(0, 1);
+        self.cache[0].1
+    }
 }
 
 /// The string being walked and each symbol's act.
@@ -216,6 +245,7 @@ fn interpret_with(
         subs: Vec::new(),
         solids: Vec::new(),
         holes: Vec::new(),
+        trig: Trig::new(),
     };
     let walk = Walk {
         heads: store.heads(),
@@ -275,7 +305,8 @@ impl Turtle<'_> {
             }
             offset += arity;
             let act = w.acts[sym as usize];
-            if act != Act::Command(Action::Nothing) {
+            // `matches!`, not `==`: comparing two `Act`s was a call.
+            if !matches!(act, Act::Command(Action::Nothing)) {
                 if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
                     return Err(TurtleError::NonFinite {
                         index: i + 1,
@@ -284,7 +315,7 @@ impl Turtle<'_> {
                         value: bad,
                     });
                 }
-                if act == Act::Command(Action::Cut) {
+                if matches!(act, Act::Command(Action::Cut)) {
                     // Skip to the `]` that ends this branch (or the end), and
                     // let that `]` pop the branch as usual.
                     let (end, skipped) = rest_of_branch(heads, i + 1);
@@ -345,16 +376,16 @@ impl Turtle<'_> {
                 self.forward(d, draw, vertex);
             }
             Turn(sign) => {
-                let a = self.angle(args);
-                self.state.frame.turn(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.turn_by(sc)
             }
             Pitch(sign) => {
-                let a = self.angle(args);
-                self.state.frame.pitch(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.pitch_by(sc)
             }
             Roll(sign) => {
-                let a = self.angle(args);
-                self.state.frame.roll(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.roll_by(sc)
             }
             TurnAround => s.frame.turn(180.0),
             RollAround => s.frame.roll(180.0),
