@@ -24,7 +24,7 @@ mod instancing;
 mod nodes;
 use crate::mesh::{Component, Scene, TriMesh};
 pub(super) use bin::Bin;
-use bin::Piece;
+use bin::{is_identity, Piece};
 use nodes::{placement, Placement};
 
 /// The document and the layout of its binary buffer (padded to 4 bytes;
@@ -273,24 +273,34 @@ impl<'s> Builder<'s> {
         let transform = bake.unwrap_or(Mat4::IDENTITY);
         let n = mesh.positions.len();
 
-        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for &p in &mesh.positions {
-            let p = transform.transform_point3(p);
-            if !p.is_finite() {
-                return Err(ExportError::InvalidGeometry {
-                    name: name.into(),
-                    detail: "a vertex position is not finite".into(),
-                });
-            }
-            (lo, hi) = (lo.min(p), hi.max(p));
-        }
+        // The identity maps a finite position p to p + 0 bit for bit, and
+        // a position that is not finite to one that is not finite either
+        // (see `Bin::write_to`); its normals keep their lengths but for the
+        // sign of zero. Most meshes are not baked: the matrix products
+        // were a third of the document's time.
+        let identity = is_identity(&transform);
+        let bounds = if identity {
+            bounds(&mesh.positions, |p| p + Vec3::ZERO)
+        } else {
+            bounds(&mesh.positions, |p| transform.transform_point3(p))
+        };
+        let Some((lo, hi)) = bounds else {
+            return Err(ExportError::InvalidGeometry {
+                name: name.into(),
+                detail: "a vertex position is not finite".into(),
+            });
+        };
         let start = self.bin.push(Piece::Positions(mesh, transform));
         let view = self.view(start, Target::ArrayBuffer);
         let positions = self.accessor(view, n, ComponentType::F32, Type::Vec3, Some((lo, hi)));
 
         let linear = Mat3::from_mat4(transform);
         let normal_matrix = linear.inverse().transpose();
-        let repair = mesh.normals.iter().any(|&v| collapses(normal_matrix * v));
+        let repair = if identity {
+            mesh.normals.iter().any(|&v| collapses(v))
+        } else {
+            mesh.normals.iter().any(|&v| collapses(normal_matrix * v))
+        };
         let start = self.bin.push(Piece::Normals(mesh, linear, repair));
         let view = self.view(start, Target::ArrayBuffer);
         let normals = self.accessor(view, n, ComponentType::F32, Type::Vec3, None);
@@ -381,6 +391,20 @@ pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
         name: name.into(),
         detail,
     })
+}
+
+/// The smallest and largest of the mapped `positions`; `None` when one is
+/// not finite.
+fn bounds(positions: &[Vec3], map: impl Fn(Vec3) -> Vec3) -> Option<(Vec3, Vec3)> {
+    let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for &p in positions {
+        let p = map(p);
+        if !p.is_finite() {
+            return None;
+        }
+        (lo, hi) = (lo.min(p), hi.max(p));
+    }
+    Some((lo, hi))
 }
 
 /// True when `v.normalize_or_zero()` is zero: its length is zero or not

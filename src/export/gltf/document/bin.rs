@@ -224,7 +224,7 @@ impl Blocks<'_> {
 
 /// True when `m` is the identity bit for bit (a -0.0 entry changes the
 /// sign of zero coordinates).
-fn is_identity(m: &Mat4) -> bool {
+pub(super) fn is_identity(m: &Mat4) -> bool {
     m.to_cols_array().map(f32::to_bits) == Mat4::IDENTITY.to_cols_array().map(f32::to_bits)
 }
 
