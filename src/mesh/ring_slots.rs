@@ -117,51 +117,45 @@ pub(super) struct Slots {
 /// The slots of `chains`; `origins` (per chain, maybe shorter) are
 /// checked before use, so wrong ones only cost lookups.
 pub(super) fn slots(chains: &[Chain], origins: &[Option<Origin>]) -> Slots {
+    let total = chains.iter().map(|c| c.points.len()).sum();
     let mut first_point = Vec::with_capacity(chains.len() + 1);
-    let mut total = 0;
-    for c in chains {
-        first_point.push(total);
-        total += c.points.len();
-    }
-    first_point.push(total);
     // Per chain, the earliest point known to have its first point's key:
     // that point's own number, or its origin's root.
-    let mut root: Vec<u32> = first_point[..chains.len()]
-        .iter()
-        .map(|&p| p as u32)
-        .collect();
-    for (j, c) in chains.iter().enumerate() {
-        let Some(Some(o)) = origins.get(j) else {
-            continue;
-        };
-        let (oc, ok) = (o.chain as usize, o.point as usize);
-        let Some(first) = c.points.first().filter(|_| c.points.len() >= 2 && oc < j) else {
-            continue;
-        };
-        let Some(p) = chains[oc].points.get(ok) else {
-            continue;
-        };
-        if key(chains[oc].colour, p) == key(c.colour, first) {
-            root[j] = if ok == 0 {
-                root[oc]
-            } else {
-                (first_point[oc] + ok) as u32
-            };
-        }
-    }
+    let mut root: Vec<u32> = Vec::with_capacity(chains.len());
     // Per point, its slot; at a root, the slot of its key once known (a
     // root comes before the points that refer to it).
     let mut point_slots = vec![UNSET; total];
     let mut table: HashMap<Key, u32, KeyHash> = HashMap::default();
     let mut filter = Filter::new(chains.len());
     let mut first_chain = Vec::new();
+    // One pass for the roots and the starts: each pass over the chains
+    // reads every chain's points from its own allocation.
+    let mut from = 0;
     for (j, c) in chains.iter().enumerate() {
-        if c.points.len() < 2 {
+        first_point.push(from);
+        root.push(from as u32);
+        from += c.points.len();
+        let Some(first) = c.points.first().filter(|_| c.points.len() >= 2) else {
             continue;
+        };
+        if let Some(Some(o)) = origins.get(j) {
+            let (oc, ok) = (o.chain as usize, o.point as usize);
+            let p = chains[..j]
+                .get(oc)
+                .and_then(|o| o.points.get(ok).map(|p| (o, p)));
+            if let Some((o, p)) = p {
+                if key(o.colour, p) == key(c.colour, first) {
+                    root[j] = if ok == 0 {
+                        root[oc]
+                    } else {
+                        (first_point[oc] + ok) as u32
+                    };
+                }
+            }
         }
         let r = root[j] as usize;
         if point_slots[r] == UNSET {
-            let k = key(c.colour, &c.points[0]);
+            let k = key(c.colour, first);
             point_slots[r] = *table.entry(k).or_insert_with(|| {
                 filter.insert(&k);
                 first_chain.push(j);
@@ -169,6 +163,7 @@ pub(super) fn slots(chains: &[Chain], origins: &[Option<Origin>]) -> Slots {
             });
         }
     }
+    first_point.push(from);
     for (j, c) in chains.iter().enumerate() {
         let from = first_point[j];
         for (i, p) in c.points.iter().enumerate() {
