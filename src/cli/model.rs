@@ -402,7 +402,7 @@ fn build_compiled(
     let written = write_scene(&built.scene, out, format, &picture(pic));
     drop(progress);
     let write_time = t1.elapsed();
-    match written {
+    let code = match written {
         Ok(bytes) => {
             if m.look.stats {
                 println!(
@@ -415,7 +415,13 @@ fn build_compiled(
             EX_OK
         }
         Err(e) => write_failed(e, out, color),
-    }
+    };
+    // Freeing a big model (W2: a quarter of a million tube chains, each
+    // its own allocation) took milliseconds after the file was complete:
+    // it is freed beside the exit (or the next build, in `watch`). Should
+    // no thread start, the refused closure frees it here.
+    let _ = std::thread::Builder::new().spawn(move || drop(built));
+    code
 }
 
 /// Prints the structural check's problems as warnings (at most 40, then

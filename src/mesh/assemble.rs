@@ -124,7 +124,7 @@ pub fn assemble_scene(
     if opts.instanced {
         internodes(&mut b, drawing, opts, &mut check)?;
     } else {
-        let mut tubes = Tubes::new(&drawing.chains, opts);
+        let mut tubes = Tubes::new(&drawing.chains, &drawing.origins, opts);
         // Chains come in long runs of one colour: two hash lookups per
         // chain were a sixth of the meshing time.
         let mut last: Option<(u32, usize)> = None;

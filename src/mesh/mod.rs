@@ -5,6 +5,7 @@ pub mod components;
 pub mod error;
 pub mod internodes;
 pub mod palette;
+mod ring_slots;
 pub mod roof;
 pub mod scene;
 pub mod shapes;

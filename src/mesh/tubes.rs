@@ -7,16 +7,15 @@
 //! from is left open. How many facets a tube gets follows from its width
 //! against the size of the whole drawing and `--detail` ([`Facets`]).
 
-use std::collections::HashMap;
 use std::f32::consts::PI;
-use std::hash::{BuildHasherDefault, Hasher};
 
 use glam::Vec3;
 
 use super::assemble::MeshOptions;
+use super::ring_slots::{slots, Slots, NONE};
 use super::scene::{bounds_of, TriMesh};
 use super::tube::{directions, for_each_piece, piece, Cap, Piece, Ring, Scratch};
-use crate::turtle::drawing::{Chain, TubePoint};
+use crate::turtle::drawing::{Chain, Origin};
 
 /// A tube starts from an earlier tube's ring only when its first segment
 /// leaves within about 45 degrees of that ring's axis: further round, the
@@ -86,53 +85,7 @@ impl Facets {
     }
 }
 
-/// Where rings can be shared: the colour, position and radius of a point,
-/// bit for bit (the turtle writes a branch's first point from the same
-/// value as its parent's).
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
-struct Key {
-    colour: u32,
-    x: u32,
-    y: u32,
-    z: u32,
-    radius: u32,
-}
-
-fn key(colour: u32, p: &TubePoint) -> Key {
-    Key {
-        colour,
-        x: p.pos.x.to_bits(),
-        y: p.pos.y.to_bits(),
-        z: p.pos.z.to_bits(),
-        radius: p.radius.to_bits(),
-    }
-}
-
-/// A multiply-rotate hasher for [`Key`]s (a few u32s): SipHash's
-/// protection against chosen keys buys nothing here and costs a third of
-/// the meshing time.
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u32(u32::from(b));
-        }
-    }
-
-    fn write_u32(&mut self, i: u32) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-type KeyMap<V> = HashMap<Key, V, BuildHasherDefault<KeyHasher>>;
-
-/// The first chain that starts at a key.
+/// The first chain that starts at a slot.
 #[derive(Clone, Copy)]
 struct Start {
     chain: usize,
@@ -143,9 +96,6 @@ struct Start {
 /// Most vertices or indices reserved up front for one stroke mesh (16 M:
 /// 192 MB of positions and normals).
 const MAX_ROOM: usize = 1 << 24;
-
-/// No chain starts at this point.
-const NONE: u32 = u32::MAX;
 
 /// Builds the tubes of one drawing's chains, in order.
 pub struct Tubes {
@@ -158,10 +108,9 @@ pub struct Tubes {
     /// Per slot, the ring there once meshed.
     rings: Vec<Option<Ring>>,
     /// The slot of every point of every chain (`NONE` where no chain
-    /// starts), chain after chain: looked up in one pass, where the
-    /// lookups overlap in the processor; one at a time, between meshing,
-    /// each waited for its cache miss (five a point before: most of the
-    /// meshing time).
+    /// starts), chain after chain (see `ring_slots`): found in one pass
+    /// before meshing; looked up one at a time, between meshing, each
+    /// waited for its cache miss (five a point: most of the meshing time).
     point_slots: Vec<u32>,
     /// Where each chain's points begin in `point_slots`.
     first_point: Vec<usize>,
@@ -173,34 +122,26 @@ pub struct Tubes {
 }
 
 impl Tubes {
-    pub fn new(chains: &[Chain], opts: &MeshOptions) -> Tubes {
+    /// The tubes of `chains`, whose `origins` the turtle may know.
+    pub fn new(chains: &[Chain], origins: &[Option<Origin>], opts: &MeshOptions) -> Tubes {
         let facets = Facets::new(opts, chains);
         let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
-        let mut slots = KeyMap::default();
-        let mut starts = Vec::new();
-        for (i, c) in chains.iter().enumerate() {
-            if let [a, b, ..] = c.points[..] {
-                slots.entry(key(c.colour, &a)).or_insert_with(|| {
-                    starts.push(Start {
-                        chain: i,
-                        dir: (b.pos - a.pos).normalize_or_zero(),
-                        sides: sides[i],
-                    });
-                    (starts.len() - 1) as u32
-                });
-            }
-        }
-        let mut first_point = Vec::with_capacity(chains.len() + 1);
-        let mut point_slots = Vec::new();
-        for c in chains {
-            first_point.push(point_slots.len());
-            point_slots.extend(
-                c.points
-                    .iter()
-                    .map(|p| slots.get(&key(c.colour, p)).copied().unwrap_or(NONE)),
-            );
-        }
-        first_point.push(point_slots.len());
+        let Slots {
+            first_chain,
+            point_slots,
+            first_point,
+        } = slots(chains, origins);
+        let starts: Vec<Start> = first_chain
+            .into_iter()
+            .map(|i| {
+                let (a, b) = (chains[i].points[0], chains[i].points[1]);
+                Start {
+                    chain: i,
+                    dir: (b.pos - a.pos).normalize_or_zero(),
+                    sides: sides[i],
+                }
+            })
+            .collect();
         let mut room: Vec<(u32, usize, usize)> = Vec::new();
         for (c, &n) in chains.iter().zip(&sides) {
             // A ring at every point and flat caps: the most a chain takes.
@@ -316,7 +257,7 @@ mod tests {
 
     fn mesh(chains: &[Chain], opts: &MeshOptions) -> TriMesh {
         let mut m = TriMesh::default();
-        let mut tubes = Tubes::new(chains, opts);
+        let mut tubes = Tubes::new(chains, &[], opts);
         for (i, c) in chains.iter().enumerate() {
             tubes.add(i, c, &mut m);
         }

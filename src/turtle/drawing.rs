@@ -28,6 +28,16 @@ pub struct Chain {
     pub points: Vec<TubePoint>,
 }
 
+/// Where a chain starts: the point of an earlier chain the turtle stood
+/// on when it drew the chain's first segment (a branch leaving its
+/// parent). Meshing checks it before use: it only saves looking the point
+/// up by position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Origin {
+    pub chain: u32,
+    pub point: u32,
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polygon {
     pub colour: u32,
@@ -61,6 +71,9 @@ pub struct Placement {
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Drawing {
     pub chains: Vec<Chain>,
+    /// Per chain, its [`Origin`] when the turtle knows it; shorter than
+    /// `chains` when the last ones have none (or were added by others).
+    pub origins: Vec<Option<Origin>>,
     pub polygons: Vec<Polygon>,
     pub shapes: Vec<Shape>,
     pub placements: Vec<Placement>,

@@ -7,6 +7,11 @@ use glam::{DQuat, DVec3};
 /// World up: the reference for "roll to horizontal" (`@v`, cpfg's `$`).
 pub const WORLD_UP: DVec3 = DVec3::Y;
 
+/// The sine and cosine of an angle in degrees, as the rotations take them.
+pub fn sin_cos_degrees(degrees: f64) -> (f64, f64) {
+    degrees.to_radians().sin_cos()
+}
+
 /// Position and orientation. The start frame is cpfg's: heading up the y
 /// axis, left along −x, up toward the viewer (+z).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,7 +50,11 @@ impl Frame {
 
     /// `+(θ)`: turn left about U (H toward L); negative θ turns right.
     pub fn turn(&mut self, degrees: f64) {
-        let (s, c) = degrees.to_radians().sin_cos();
+        self.turn_by(sin_cos_degrees(degrees));
+    }
+
+    /// [`Frame::turn`] by an angle's [`sin_cos_degrees`].
+    pub fn turn_by(&mut self, (s, c): (f64, f64)) {
         let (h, l) = (self.h, self.l);
         self.h = h * c + l * s;
         self.l = l * c - h * s;
@@ -53,7 +62,11 @@ impl Frame {
 
     /// `&(θ)`: pitch down about L (H away from U); negative θ pitches up.
     pub fn pitch(&mut self, degrees: f64) {
-        let (s, c) = degrees.to_radians().sin_cos();
+        self.pitch_by(sin_cos_degrees(degrees));
+    }
+
+    /// [`Frame::pitch`] by an angle's [`sin_cos_degrees`].
+    pub fn pitch_by(&mut self, (s, c): (f64, f64)) {
         let (h, u) = (self.h, self.u);
         self.h = h * c - u * s;
         self.u = u * c + h * s;
@@ -61,7 +74,11 @@ impl Frame {
 
     /// `\(θ)`: roll left about H (U toward L); negative θ rolls right.
     pub fn roll(&mut self, degrees: f64) {
-        let (s, c) = degrees.to_radians().sin_cos();
+        self.roll_by(sin_cos_degrees(degrees));
+    }
+
+    /// [`Frame::roll`] by an angle's [`sin_cos_degrees`].
+    pub fn roll_by(&mut self, (s, c): (f64, f64)) {
         let (l, u) = (self.l, self.u);
         self.u = u * c + l * s;
         self.l = l * c - u * s;

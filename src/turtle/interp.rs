@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 
 use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
-use super::frame::Frame;
+use super::frame::{sin_cos_degrees, Frame};
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
@@ -90,6 +90,9 @@ pub(super) struct State {
     pub(super) scale: f32,
     /// The chain the next drawn segment may extend.
     chain: Option<usize>,
+    /// The drawn point the turtle stands on (chain, point), if any: a
+    /// chain started here records it as its origin (a hint for meshing).
+    at: Option<(u32, u32)>,
     /// The open generalized cylinder: its last control point, and the
     /// chain its last segment extended. A branch copies it and goes on
     /// from the branch point, as cpfg's spline stack does.
@@ -117,6 +120,35 @@ pub(super) struct Turtle<'a> {
     /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
     pub(super) solids: Vec<super::solid::Solid>,
     pub(super) holes: Vec<super::solid::Solid>,
+    trig: Trig,
+}
+
+/// The sines and cosines of the last two angles turned by: a plant turns
+/// by a few angles again and again (W2: +25 and -25 in turn), and libm's
+/// sin_cos was a twentieth of the turtle's time. The same angle, bit for
+/// bit, gives the same values.
+struct Trig {
+    cache: [(u64, (f64, f64)); 2],
+}
+
+impl Trig {
+    fn new() -> Trig {
+        Trig {
+            cache: [(0f64.to_bits(), sin_cos_degrees(0.0)); 2],
+        }
+    }
+
+    fn sin_cos(&mut self, degrees: f64) -> (f64, f64) {
+        let bits = degrees.to_bits();
+        if self.cache[0].0 == bits {
+            return self.cache[0].1;
+        }
+        if self.cache[1].0 != bits {
+            self.cache[1] = (bits, sin_cos_degrees(degrees));
+        }
+        self.cache.swap(0, 1);
+        self.cache[0].1
+    }
 }
 
 /// The string being walked and each symbol's act.
@@ -202,6 +234,7 @@ fn interpret_with(
             colour: program.turtle.colour.unwrap_or(0),
             scale: 1.0,
             chain: None,
+            at: None,
             cylinder: None,
             contour: None,
             tropism: Vec3::NEG_Y,
@@ -212,6 +245,7 @@ fn interpret_with(
         subs: Vec::new(),
         solids: Vec::new(),
         holes: Vec::new(),
+        trig: Trig::new(),
     };
     let walk = Walk {
         heads: store.heads(),
@@ -271,7 +305,8 @@ impl Turtle<'_> {
             }
             offset += arity;
             let act = w.acts[sym as usize];
-            if act != Act::Command(Action::Nothing) {
+            // `matches!`, not `==`: comparing two `Act`s was a call.
+            if !matches!(act, Act::Command(Action::Nothing)) {
                 if let Some(&bad) = args.iter().find(|a| !a.is_finite()) {
                     return Err(TurtleError::NonFinite {
                         index: i + 1,
@@ -280,7 +315,7 @@ impl Turtle<'_> {
                         value: bad,
                     });
                 }
-                if act == Act::Command(Action::Cut) {
+                if matches!(act, Act::Command(Action::Cut)) {
                     // Skip to the `]` that ends this branch (or the end), and
                     // let that `]` pop the branch as usual.
                     let (end, skipped) = rest_of_branch(heads, i + 1);
@@ -341,16 +376,16 @@ impl Turtle<'_> {
                 self.forward(d, draw, vertex);
             }
             Turn(sign) => {
-                let a = self.angle(args);
-                self.state.frame.turn(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.turn_by(sc)
             }
             Pitch(sign) => {
-                let a = self.angle(args);
-                self.state.frame.pitch(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.pitch_by(sc)
             }
             Roll(sign) => {
-                let a = self.angle(args);
-                self.state.frame.roll(f64::from(sign * a))
+                let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
+                self.state.frame.roll_by(sc)
             }
             TurnAround => s.frame.turn(180.0),
             RollAround => s.frame.roll(180.0),
@@ -437,6 +472,7 @@ impl Turtle<'_> {
             MoveTo => {
                 s.frame.pos = DVec3::new(args[0], args[1], args[2]);
                 s.chain = None;
+                s.at = None;
             }
             SetHeading => {
                 let v = |k: usize| DVec3::new(args[k], args[k + 1], args[k + 2]);
@@ -514,15 +550,26 @@ impl Turtle<'_> {
                 radius,
                 up: s.frame.u.as_vec3(),
             };
+            let chains = &mut self.drawing.chains;
             match s.chain {
                 Some(c)
-                    if self.drawing.chains[c].colour == s.colour
-                        && self.drawing.chains[c].points.last().map(|p| p.pos) == Some(from) =>
+                    if chains[c].colour == s.colour
+                        && chains[c].points.last().map(|p| p.pos) == Some(from) =>
                 {
-                    self.drawing.chains[c].points.push(point);
+                    chains[c].points.push(point);
+                    s.at = Some((c as u32, (chains[c].points.len() - 1) as u32));
                 }
                 _ => {
-                    self.drawing.chains.push(Chain {
+                    let origin = s.at.filter(|&(c, k)| {
+                        chains[c as usize].points.get(k as usize).map(|p| p.pos) == Some(from)
+                    });
+                    let origins = &mut self.drawing.origins;
+                    if let Some((chain, point)) = origin {
+                        origins.resize(chains.len(), None);
+                        origins.push(Some(super::drawing::Origin { chain, point }));
+                    }
+                    s.at = Some((chains.len() as u32, 1));
+                    chains.push(Chain {
                         colour: s.colour,
                         points: vec![
                             TubePoint {
@@ -533,11 +580,14 @@ impl Turtle<'_> {
                             point,
                         ],
                     });
-                    s.chain = Some(self.drawing.chains.len() - 1);
+                    s.chain = Some(chains.len() - 1);
                 }
             }
         } else {
             s.chain = None;
+            if d != 0.0 {
+                s.at = None;
+            }
         }
         if s.elasticity != 0.0 {
             s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));

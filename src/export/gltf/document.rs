@@ -24,7 +24,7 @@ mod instancing;
 mod nodes;
 use crate::mesh::{Component, Scene, TriMesh};
 pub(super) use bin::Bin;
-use bin::Piece;
+use bin::{is_identity, Piece};
 use nodes::{placement, Placement};
 
 /// The document and the layout of its binary buffer (padded to 4 bytes;
@@ -273,27 +273,34 @@ impl<'s> Builder<'s> {
         let transform = bake.unwrap_or(Mat4::IDENTITY);
         let n = mesh.positions.len();
 
-        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for &p in &mesh.positions {
-            let p = transform.transform_point3(p);
-            if !p.is_finite() {
-                return Err(ExportError::InvalidGeometry {
-                    name: name.into(),
-                    detail: "a vertex position is not finite".into(),
-                });
-            }
-            (lo, hi) = (lo.min(p), hi.max(p));
-        }
+        // The identity maps a finite position p to p + 0 bit for bit, and
+        // a position that is not finite to one that is not finite either
+        // (see `Bin::write_to`); its normals keep their lengths but for the
+        // sign of zero. Most meshes are not baked: the matrix products
+        // were a third of the document's time.
+        let identity = is_identity(&transform);
+        let bounds = if identity {
+            bounds(&mesh.positions, |p| p + Vec3::ZERO)
+        } else {
+            bounds(&mesh.positions, |p| transform.transform_point3(p))
+        };
+        let Some((lo, hi)) = bounds else {
+            return Err(ExportError::InvalidGeometry {
+                name: name.into(),
+                detail: "a vertex position is not finite".into(),
+            });
+        };
         let start = self.bin.push(Piece::Positions(mesh, transform));
         let view = self.view(start, Target::ArrayBuffer);
         let positions = self.accessor(view, n, ComponentType::F32, Type::Vec3, Some((lo, hi)));
 
         let linear = Mat3::from_mat4(transform);
         let normal_matrix = linear.inverse().transpose();
-        let repair = mesh
-            .normals
-            .iter()
-            .any(|&v| (normal_matrix * v).normalize_or_zero() == Vec3::ZERO);
+        let repair = if identity {
+            mesh.normals.iter().any(|&v| collapses(v))
+        } else {
+            mesh.normals.iter().any(|&v| collapses(normal_matrix * v))
+        };
         let start = self.bin.push(Piece::Normals(mesh, linear, repair));
         let view = self.view(start, Target::ArrayBuffer);
         let normals = self.accessor(view, n, ComponentType::F32, Type::Vec3, None);
@@ -375,7 +382,7 @@ pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
         format!("{} normals for {n} vertices", mesh.normals.len())
     } else if mesh.indices.len() % 3 != 0 {
         format!("{} indices do not form triangles", mesh.indices.len())
-    } else if let Some(i) = mesh.indices.iter().find(|&&i| i as usize >= n) {
+    } else if let Some(i) = out_of_range(&mesh.indices, n) {
         format!("index {i} refers past the {n} vertices")
     } else {
         return Ok(());
@@ -384,6 +391,40 @@ pub(crate) fn check(name: &str, mesh: &TriMesh) -> Result<(), ExportError> {
         name: name.into(),
         detail,
     })
+}
+
+/// The smallest and largest of the mapped `positions`; `None` when one is
+/// not finite.
+fn bounds(positions: &[Vec3], map: impl Fn(Vec3) -> Vec3) -> Option<(Vec3, Vec3)> {
+    let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    for &p in positions {
+        let p = map(p);
+        if !p.is_finite() {
+            return None;
+        }
+        (lo, hi) = (lo.min(p), hi.max(p));
+    }
+    Some((lo, hi))
+}
+
+/// True when `v.normalize_or_zero()` is zero: its length is zero or not
+/// finite (glam normalises by `1 / length` when that is finite and
+/// positive). Decided on the squared length, without the square root and
+/// division the normalisation itself costs.
+fn collapses(v: Vec3) -> bool {
+    let l2 = v.length_squared();
+    !(l2 > 0.0 && l2.is_finite())
+}
+
+/// The first index at or past `n`. The largest index is checked first, a
+/// loop the compiler vectorises: the search an index at a time cost as
+/// much as writing the indices out.
+fn out_of_range(indices: &[u32], n: usize) -> Option<u32> {
+    let max = indices.iter().copied().max()?;
+    if (max as usize) < n {
+        return None;
+    }
+    indices.iter().copied().find(|&i| i as usize >= n)
 }
 
 /// Unit normals of `mesh` after the vertices are mapped by `linear`, into
@@ -431,5 +472,31 @@ fn srgb_to_linear(c: f32) -> f32 {
         c / 12.92
     } else {
         ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod collapse_tests {
+    use super::*;
+
+    /// `collapses` agrees with glam's normalisation on zero, tiny, huge
+    /// and non-finite vectors.
+    #[test]
+    fn collapses_exactly_when_the_normal_normalises_to_zero() {
+        let tiny = f32::from_bits(1);
+        for v in [
+            Vec3::ZERO,
+            Vec3::new(-0.0, 0.0, -0.0),
+            Vec3::X,
+            Vec3::splat(tiny),
+            Vec3::new(1e-20, 0.0, 0.0),
+            Vec3::new(1e19, 0.0, 0.0),
+            Vec3::new(1e20, 1e20, 0.0),
+            Vec3::splat(f32::MAX),
+            Vec3::new(f32::INFINITY, 0.0, 0.0),
+            Vec3::new(f32::NAN, 1.0, 0.0),
+        ] {
+            assert_eq!(collapses(v), v.normalize_or_zero() == Vec3::ZERO, "{v:?}");
+        }
     }
 }

@@ -78,68 +78,94 @@ impl<'s> Bin<'s> {
 
     /// Writes the buffer (zero padding included) to `out`.
     pub fn write_to(&self, out: &mut dyn Write) -> io::Result<()> {
-        // Encoded a block at a time: a few writes per mesh, no copy of it.
-        const BLOCK: usize = 1 << 16;
-        let mut block: Vec<u8> = Vec::with_capacity(BLOCK + 16);
+        let mut blocks = Blocks {
+            out,
+            block: Vec::with_capacity(2 * BLOCK),
+        };
         let mut at = 0;
         let mut scratch = Vec::new();
         for (start, piece) in &self.pieces {
-            block.resize(block.len() + (start - at), 0);
+            blocks.zeros(start - at);
             at = start + piece.len();
-            let mut flush = |block: &mut Vec<u8>| -> io::Result<()> {
-                if block.len() >= BLOCK {
-                    out.write_all(block)?;
-                    block.clear();
-                }
-                Ok(())
-            };
             match piece {
+                Piece::Positions(mesh, transform) if is_identity(transform) => {
+                    // The identity maps each coordinate to itself plus the
+                    // translation's +0.0 (the terms of the other
+                    // coordinates are ±0): -0.0 becomes +0.0, all else is
+                    // kept. The positions are finite (`Builder::geometry`
+                    // checked them), where `c + 0.0` is exactly that.
+                    blocks.encode(&mesh.positions, 12, 1, |ps, dst| {
+                        for (&p, d) in ps.iter().zip(dst.chunks_exact_mut(12)) {
+                            put_vec3(d, p + Vec3::ZERO);
+                        }
+                    })?;
+                }
                 Piece::Positions(mesh, transform) => {
-                    for &p in &mesh.positions {
-                        put_vec3(&mut block, transform.transform_point3(p));
-                        flush(&mut block)?;
-                    }
+                    blocks.encode(&mesh.positions, 12, 1, |ps, dst| {
+                        for (&p, d) in ps.iter().zip(dst.chunks_exact_mut(12)) {
+                            put_vec3(d, transform.transform_point3(p));
+                        }
+                    })?;
                 }
                 Piece::Normals(mesh, linear, true) => {
                     unit_normals(mesh, *linear, &mut scratch);
-                    for &n in &scratch {
-                        put_vec3(&mut block, n);
-                        flush(&mut block)?;
-                    }
+                    blocks.encode(&scratch, 12, 1, |ns, dst| {
+                        for (&n, d) in ns.iter().zip(dst.chunks_exact_mut(12)) {
+                            put_vec3(d, n);
+                        }
+                    })?;
                 }
                 Piece::Normals(mesh, linear, false) => {
                     let normal_matrix = linear.inverse().transpose();
-                    for &n in &mesh.normals {
-                        put_vec3(&mut block, (normal_matrix * n).normalize_or_zero());
-                        flush(&mut block)?;
-                    }
+                    blocks.encode(&mesh.normals, 12, 1, |ns, dst| {
+                        for (&n, d) in ns.iter().zip(dst.chunks_exact_mut(12)) {
+                            put_vec3(d, (normal_matrix * n).normalize_or_zero());
+                        }
+                    })?;
                 }
                 Piece::Indices { mesh, flip, small } => {
-                    for t in mesh.indices.chunks_exact(3) {
-                        let t = if *flip {
-                            [t[0], t[2], t[1]]
+                    // Each size spelt out: a size known only at run time
+                    // made every index a call to memcpy.
+                    let triangles = |t: &[u32]| {
+                        let (a, b, c) = (t[0], t[1], t[2]);
+                        if *flip {
+                            [a, c, b]
                         } else {
-                            [t[0], t[1], t[2]]
-                        };
-                        for i in t {
-                            if *small {
-                                block.extend_from_slice(&(i as u16).to_le_bytes());
-                            } else {
-                                block.extend_from_slice(&i.to_le_bytes());
-                            }
+                            [a, b, c]
                         }
-                        flush(&mut block)?;
+                    };
+                    if *small {
+                        blocks.encode(&mesh.indices, 2, 3, |is, dst| {
+                            for (t, d) in is.chunks_exact(3).zip(dst.chunks_exact_mut(6)) {
+                                for (i, d) in triangles(t).into_iter().zip(d.chunks_exact_mut(2)) {
+                                    d.copy_from_slice(&(i as u16).to_le_bytes());
+                                }
+                            }
+                        })?;
+                    } else if *flip {
+                        blocks.encode(&mesh.indices, 4, 3, |is, dst| {
+                            for (t, d) in is.chunks_exact(3).zip(dst.chunks_exact_mut(12)) {
+                                for (i, d) in triangles(t).into_iter().zip(d.chunks_exact_mut(4)) {
+                                    d.copy_from_slice(&i.to_le_bytes());
+                                }
+                            }
+                        })?;
+                    } else {
+                        blocks.encode(&mesh.indices, 4, 1, |is, dst| {
+                            for (&i, d) in is.iter().zip(dst.chunks_exact_mut(4)) {
+                                d.copy_from_slice(&i.to_le_bytes());
+                            }
+                        })?;
                     }
                 }
                 Piece::Bytes(bytes) => {
-                    out.write_all(&block)?;
-                    block.clear();
-                    out.write_all(bytes)?;
+                    blocks.flush()?;
+                    blocks.out.write_all(bytes)?;
                 }
             }
         }
-        block.resize(block.len() + (self.len() - at), 0);
-        out.write_all(&block)
+        blocks.zeros(self.len() - at);
+        blocks.flush()
     }
 
     /// The buffer's bytes in memory (for a `.gltf` data URI).
@@ -151,9 +177,60 @@ impl<'s> Bin<'s> {
     }
 }
 
-fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
-    for c in v.to_array() {
-        out.extend_from_slice(&c.to_le_bytes());
+/// Bytes encoded before each write: a few writes per mesh, no copy of it.
+const BLOCK: usize = 1 << 16;
+
+/// The buffer being written: bytes are encoded into `block`, which goes
+/// out whenever it holds [`BLOCK`] bytes or more.
+struct Blocks<'w> {
+    out: &'w mut dyn Write,
+    block: Vec<u8>,
+}
+
+impl Blocks<'_> {
+    fn zeros(&mut self, n: usize) {
+        self.block.resize(self.block.len() + n, 0);
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.out.write_all(&self.block)?;
+        self.block.clear();
+        Ok(())
+    }
+
+    /// Encodes `items`, `size` bytes each, a run of whole groups of
+    /// `group` at a time: `put(run, bytes)` fills the run's bytes. A run
+    /// is a block's worth, so that `put`'s loop has no per-item bounds or
+    /// capacity checks (an item at a time, they were most of the cost).
+    fn encode<T>(
+        &mut self,
+        items: &[T],
+        size: usize,
+        group: usize,
+        put: impl Fn(&[T], &mut [u8]),
+    ) -> io::Result<()> {
+        let per_run = (BLOCK / size / group).max(1) * group;
+        for run in items.chunks(per_run) {
+            let from = self.block.len();
+            self.block.resize(from + run.len() * size, 0);
+            put(run, &mut self.block[from..]);
+            if self.block.len() >= BLOCK {
+                self.flush()?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// True when `m` is the identity bit for bit (a -0.0 entry changes the
+/// sign of zero coordinates).
+pub(super) fn is_identity(m: &Mat4) -> bool {
+    m.to_cols_array().map(f32::to_bits) == Mat4::IDENTITY.to_cols_array().map(f32::to_bits)
+}
+
+fn put_vec3(out: &mut [u8], v: Vec3) {
+    for (d, c) in out.chunks_exact_mut(4).zip(v.to_array()) {
+        d.copy_from_slice(&c.to_le_bytes());
     }
 }
 
