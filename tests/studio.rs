@@ -318,7 +318,7 @@ fn grammar_mode_keeps_the_last_good_model() {
     );
     assert_eq!(
         s["defines"][0],
-        json!({"name": "N", "value": "2", "override": null, "range": [0.0, 7.0], "integer": true})
+        json!({"name": "N", "value": "2", "number": 2.0, "override": null, "range": [0.0, 7.0], "integer": true})
     );
     let t2 = s["triangles"].as_u64().unwrap();
     let (_, s) = post(&h, "/api/grammar", json!({"defines": {"N": 3}}));
