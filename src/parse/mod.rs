@@ -403,6 +403,36 @@ mod tests {
         parse(0, &file).1
     }
 
+    /// (left context length, predecessor length, successor length) of
+    /// each production of `text`, which must parse.
+    fn heads(text: &str) -> Vec<(usize, usize, usize)> {
+        let file = SourceFile::new("t.lsys", Origin::Memory, text.to_string());
+        let (ast, errors) = parse(0, &file);
+        assert!(errors.is_empty(), "{text}: {errors:?}");
+        ast.items
+            .iter()
+            .filter_map(|item| match item {
+                ast::Item::Production(p) => Some((p.lctx.len(), p.pred.len(), p.succ.len())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The look-ahead for a left context ends at the end of the line, but
+    /// passes over a block comment and a `\` line join inside the head; a
+    /// `<` (roll) in a successor's continuation lines is no left context.
+    #[test]
+    fn left_contexts_are_found_within_their_line() {
+        assert_eq!(heads("A B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(heads("A \\\n B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(heads("A /* one\n two */ B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(
+            heads("A --> B\n  < C\n  D < E\nF : G\n"),
+            vec![(0, 1, 6), (0, 1, 1)]
+        );
+        assert_eq!(heads("A --> B\nC < D --> E\n"), vec![(0, 1, 1), (1, 1, 1)]);
+    }
+
     /// Input that would exhaust the stack is refused before parsing; just
     /// below the limits it parses (on a 64 MiB stack, as the binary runs
     /// with 256 MiB: a debug build's frames are large).
