@@ -7,6 +7,7 @@
 //! serde_json as before.
 
 use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
 use std::io::Write;
 
 use gltf_json as json;
@@ -60,8 +61,9 @@ pub(super) fn to_vec(root: &mut json::Root) -> Result<Vec<u8>, serde_json::Error
 
 /// `nodes` as a JSON array, as serde_json writes it.
 fn write_nodes(out: &mut Vec<u8>, nodes: &[json::Node]) -> Result<(), serde_json::Error> {
-    // The text of each matrix met, by its bits.
-    let mut matrices: HashMap<[u32; 16], Vec<u8>> = HashMap::new();
+    // Where the text of each matrix met is in `out`, by its bits.
+    let mut matrices: HashMap<[u32; 16], (usize, usize), BuildHasherDefault<Mix>> =
+        HashMap::default();
     out.push(b'[');
     for (i, node) in nodes.iter().enumerate() {
         if i > 0 {
@@ -95,10 +97,17 @@ fn write_nodes(out: &mut Vec<u8>, nodes: &[json::Node]) -> Result<(), serde_json
         }
         if let Some(m) = &node.matrix {
             key(out, "matrix");
-            let text = matrices
-                .entry(m.map(f32::to_bits))
-                .or_insert_with(|| serde_json::to_vec(m).expect("floats serialise"));
-            out.extend_from_slice(text);
+            match matrices.entry(m.map(f32::to_bits)) {
+                std::collections::hash_map::Entry::Occupied(at) => {
+                    let (start, end) = *at.get();
+                    out.extend_from_within(start..end);
+                }
+                std::collections::hash_map::Entry::Vacant(slot) => {
+                    let start = out.len();
+                    serde_json::to_writer(&mut *out, m)?;
+                    slot.insert((start, out.len()));
+                }
+            }
         }
         if let Some(mesh) = &node.mesh {
             key(out, "mesh");
@@ -124,6 +133,27 @@ fn plain(node: &json::Node) -> bool {
         && node.translation.is_none()
         && node.skin.is_none()
         && node.weights.is_none()
+}
+
+/// A quick hash for the matrices' bits (the default one, made to resist
+/// crafted keys, cost more than the formatting it saves for a Toukung
+/// whose matrices are all different).
+#[derive(Default)]
+struct Mix(u64);
+
+impl Hasher for Mix {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word))
+                .wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
 }
 
 fn number(out: &mut Vec<u8>, n: usize) {
