@@ -118,6 +118,37 @@ pub fn component_at(name: &str, detail: u8) -> Option<&'static str> {
     set.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
 }
 
+/// The meshes of built-in components `names` from set `set` (`""` or
+/// `"preview/"`), as build.rs decoded them from the OBJ models.
+macro_rules! decoded {
+    ($set:literal: $($name:literal),*) => {
+        &[$((
+            $name,
+            include_bytes!(concat!(env!("OUT_DIR"), "/components/", $set, $name, ".mesh"))
+                as &[u8],
+        )),*]
+    };
+}
+
+/// (name, decoded mesh) of every built-in component model: the meshes of
+/// [`COMPONENTS`] as tobj reads them, decoded at build time (build.rs) so
+/// that a build does not parse OBJ text (`mesh::components::built_in`).
+pub const DECODED: &[(&str, &[u8])] = decoded!("": "MAL", "MAO", "MAn", "MBP", "MCa", "MFB", "MIB", "ML", "MNo", "MP", "MPB", "MQ", "MY");
+
+/// The decoded meshes of [`PREVIEW_COMPONENTS`].
+pub const DECODED_PREVIEW: &[(&str, &[u8])] = decoded!("preview/": "MAL", "MAO", "MAn", "MBP", "MCa", "MFB", "MIB", "ML", "MNo", "MP", "MPB", "MQ", "MY");
+
+/// The decoded mesh of the built-in component `name` at level of `detail`
+/// (0: the preview set).
+pub fn decoded_at(name: &str, detail: u8) -> Option<&'static [u8]> {
+    let set = if detail == 0 {
+        DECODED_PREVIEW
+    } else {
+        DECODED
+    };
+    set.iter().find(|(n, _)| *n == name).map(|(_, m)| *m)
+}
+
 /// Components that are standard library grammars: `~TM(s)` places the
 /// middle Toukung, `~TS(s)` the side one (paper, Fig 10), each derived once.
 pub const GRAMMAR_COMPONENTS: &[(&str, &str)] = &[("TM", "toukung_middle"), ("TS", "toukung_side")];

@@ -28,10 +28,11 @@ pub struct ComponentSearch {
     pub detail: u8,
 }
 
-/// Where a component's OBJ text came from.
+/// Where a component's model came from.
 enum Found {
     File(PathBuf),
-    BuiltIn(&'static str),
+    /// A built-in model, decoded at build time (see [`built_in`]).
+    BuiltIn(&'static [u8]),
     /// A grammar, derived and built once, then placed like any component.
     Grammar(crate::load::Input),
     /// A roof built on the fly.
@@ -81,8 +82,8 @@ impl ComponentSearch {
         if let Some(kind) = super::roof::RoofKind::from_name(name) {
             return Ok(Found::Roof(kind));
         }
-        if let Some(text) = stdlib::component_at(name, self.detail) {
-            return Ok(Found::BuiltIn(text));
+        if let Some(mesh) = stdlib::decoded_at(name, self.detail) {
+            return Ok(Found::BuiltIn(mesh));
         }
         stdlib::grammar_component(name)
             .map(|g| Found::Grammar(crate::load::Input::Std(g.to_string())))
@@ -153,7 +154,7 @@ impl ComponentSearch {
                     cause,
                 }),
             },
-            Found::BuiltIn(text) => parse_obj(name, text.as_bytes(), "built-in", None, materials),
+            Found::BuiltIn(mesh) => Ok(built_in(name, mesh)),
             Found::Roof(kind) => {
                 let (mesh, nested) = super::roof::roof_component(kind, self.detail);
                 Ok(Component {
@@ -213,9 +214,72 @@ pub fn parse_obj(
             rgb: rgb.map(|c| c.clamp(0.0, 1.0)),
         });
     }
+    let meshes = models.into_iter().map(|model| {
+        let m = model.mesh;
+        ObjMesh {
+            positions: m.positions,
+            normals: m.normals,
+            indices: m.indices,
+            material: m
+                .material_id
+                .filter(|&i| i < mtl.len())
+                .map(|i| first_material + i),
+        }
+    });
+    component_of(name, origin, meshes).map_err(bad)
+}
+
+/// One mesh of an OBJ model as tobj reads it (flat coordinate lists).
+struct ObjMesh {
+    positions: Vec<f32>,
+    normals: Vec<f32>,
+    indices: Vec<u32>,
+    /// Index into the scene's materials.
+    material: Option<usize>,
+}
+
+/// The built-in component `name` from its mesh decoded at build time
+/// (build.rs: tobj's reading of the OBJ model, so the component is the one
+/// [`parse_obj`] makes of the OBJ text, without parsing text at run time).
+fn built_in(name: &str, mut bytes: &[u8]) -> Component {
+    let mut word = || {
+        let (w, rest) = bytes.split_first_chunk::<4>().expect("build.rs wrote it");
+        bytes = rest;
+        *w
+    };
+    let models = u32::from_le_bytes(word());
+    let meshes: Vec<ObjMesh> = (0..models)
+        .map(|_| {
+            let mut floats = || {
+                let n = u32::from_le_bytes(word());
+                (0..n)
+                    .map(|_| f32::from_le_bytes(word()))
+                    .collect::<Vec<f32>>()
+            };
+            let positions = floats();
+            let normals = floats();
+            let n = u32::from_le_bytes(word());
+            let indices = (0..n).map(|_| u32::from_le_bytes(word())).collect();
+            ObjMesh {
+                positions,
+                normals,
+                indices,
+                material: None,
+            }
+        })
+        .collect();
+    component_of(name, "built-in", meshes).expect("a built-in component is a valid model")
+}
+
+/// The component of `meshes` (an OBJ model's), normalised to the unit
+/// box; `Err(reason)` for a model that is not one.
+fn component_of(
+    name: &str,
+    origin: &str,
+    meshes: impl IntoIterator<Item = ObjMesh>,
+) -> Result<Component, String> {
     let mut parts = Vec::new();
-    for model in &models {
-        let m = &model.mesh;
+    for m in meshes {
         if m.indices.is_empty() {
             continue;
         }
@@ -225,9 +289,9 @@ pub fn parse_obj(
             .map(|p| Vec3::new(p[0], p[1], p[2]))
             .collect();
         if let Some(bad_pos) = pos.iter().find(|p| !p.is_finite()) {
-            return Err(bad(format!(
+            return Err(format!(
                 "a vertex has a coordinate that is not a number ({bad_pos})"
-            )));
+            ));
         }
         let mut mesh = TriMesh::default();
         if m.normals.len() == m.positions.len() {
@@ -237,7 +301,7 @@ pub fn parse_obj(
                 .chunks_exact(3)
                 .map(|n| Vec3::new(n[0], n[1], n[2]).normalize_or(Vec3::Y))
                 .collect();
-            mesh.indices = m.indices.clone();
+            mesh.indices = m.indices;
         } else {
             // No normals in the file: give each triangle its own flat ones.
             for t in m.indices.chunks_exact(3) {
@@ -251,14 +315,11 @@ pub fn parse_obj(
         }
         parts.push(Part {
             mesh,
-            material: m
-                .material_id
-                .filter(|&i| i < mtl.len())
-                .map(|i| first_material + i),
+            material: m.material,
         });
     }
     if parts.is_empty() {
-        return Err(bad("it has no faces (`f` lines)".to_string()));
+        return Err("it has no faces (`f` lines)".to_string());
     }
     normalise(&mut parts);
     Ok(Component {
@@ -354,6 +415,40 @@ mod tests {
             .normals
             .iter()
             .all(|n| (n.length() - 1.0).abs() < 1e-5));
+    }
+
+    /// The meshes build.rs decoded are what reading the OBJ text gives:
+    /// every built-in model of both sets, bit for bit.
+    #[test]
+    fn decoded_built_ins_are_the_obj_models() {
+        let sets = [
+            (stdlib::COMPONENTS, stdlib::DECODED),
+            (stdlib::PREVIEW_COMPONENTS, stdlib::DECODED_PREVIEW),
+        ];
+        for (texts, decoded) in sets {
+            let texts_named: Vec<&str> = texts.iter().map(|(n, _)| *n).collect();
+            let decoded_named: Vec<&str> = decoded.iter().map(|(n, _)| *n).collect();
+            assert_eq!(texts_named, decoded_named);
+            for ((name, text), (_, mesh)) in texts.iter().zip(decoded) {
+                let read = parse_obj(name, text.as_bytes(), "built-in", None, &mut Vec::new())
+                    .expect("reads");
+                let built = built_in(name, mesh);
+                assert_eq!(read.parts.len(), built.parts.len(), "{name}");
+                for (r, b) in read.parts.iter().zip(&built.parts) {
+                    assert_eq!(r.material, b.material, "{name}");
+                    let bits = |m: &TriMesh| {
+                        let v = |vs: &[Vec3]| {
+                            vs.iter()
+                                .map(|v| v.to_array().map(f32::to_bits))
+                                .collect::<Vec<_>>()
+                        };
+                        (v(&m.positions), v(&m.normals), m.indices.clone())
+                    };
+                    assert_eq!(bits(&r.mesh), bits(&b.mesh), "{name}");
+                }
+                assert_eq!(read.origin, built.origin);
+            }
+        }
     }
 
     #[test]

@@ -98,34 +98,51 @@ pub fn grammar_component(
         strokes.entry(map[s.material]).or_default().append(&s.mesh);
     }
     let mut merged = strokes.clone();
+    // Room for every placed part at once: grown piece by piece, copying
+    // the merged meshes as they grew took a third of the merging.
+    let mut room: BTreeMap<usize, (usize, usize)> = BTreeMap::new();
+    for inst in &scene.instances {
+        for p in &scene.components[inst.component].parts {
+            let r = room
+                .entry(map[p.material.unwrap_or(inst.material)])
+                .or_default();
+            r.0 += p.mesh.positions.len();
+            r.1 += p.mesh.indices.len();
+        }
+    }
+    for (material, (vertices, indices)) in room {
+        let m = merged.entry(material).or_default();
+        m.positions.reserve_exact(vertices);
+        m.normals.reserve_exact(vertices);
+        m.indices.reserve_exact(indices);
+    }
     for inst in &scene.instances {
         let t = inst.transform;
         let normals = Mat3::from_mat4(t).inverse().transpose();
         let mirrored = Mat3::from_mat4(t).determinant() < 0.0;
         for p in &scene.components[inst.component].parts {
-            let mut m = TriMesh {
-                positions: p
-                    .mesh
-                    .positions
-                    .iter()
-                    .map(|&v| t.transform_point3(v))
-                    .collect(),
-                normals: p
-                    .mesh
-                    .normals
-                    .iter()
-                    .map(|&n| (normals * n).normalize_or(n))
-                    .collect(),
-                indices: p.mesh.indices.clone(),
-            };
+            let material = map[p.material.unwrap_or(inst.material)];
+            // Transformed straight into the merged mesh (no copy of the
+            // part per placement: a Pailou's Toukungs place thousands).
+            let m = merged.entry(material).or_default();
+            let base = m.positions.len() as u32;
+            let src = &p.mesh;
+            m.positions
+                .extend(src.positions.iter().map(|&v| t.transform_point3(v)));
+            m.normals
+                .extend(src.normals.iter().map(|&n| (normals * n).normalize_or(n)));
             if mirrored {
                 // A mirror turns faces inside out; keep them outward.
-                for tri in m.indices.chunks_exact_mut(3) {
-                    tri.swap(1, 2);
-                }
+                m.indices.extend(
+                    src.indices
+                        .chunks_exact(3)
+                        .flat_map(|t| [t[0], t[2], t[1]])
+                        .chain(src.indices.chunks_exact(3).remainder().iter().copied())
+                        .map(|i| i + base),
+                );
+            } else {
+                m.indices.extend(src.indices.iter().map(|i| i + base));
             }
-            let material = map[p.material.unwrap_or(inst.material)];
-            merged.entry(material).or_default().append(&m);
         }
     }
     let mut parts = parts_of(merged);

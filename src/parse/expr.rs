@@ -129,7 +129,7 @@ impl Lower<'_> {
         }
     }
 
-    fn primary(&self, p: Pair<Rule>) -> PResult<Expr> {
+    pub(super) fn primary(&self, p: Pair<Rule>) -> PResult<Expr> {
         let span = self.span(&p);
         let kind = match p.as_rule() {
             Rule::number => {

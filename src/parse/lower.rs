@@ -127,10 +127,12 @@ impl Lower<'_> {
 
     pub(super) fn table_values(&self, v: Pair<Rule>, out: &mut Vec<Expr>) -> PResult<()> {
         for item in v.into_inner() {
-            if item.as_rule() == Rule::table_values {
-                self.table_values(item, out)?;
-            } else {
-                out.push(self.expr(item)?);
+            match item.as_rule() {
+                Rule::table_values => self.table_values(item, out)?,
+                // A number alone (see `table_value` in grammar/lsys.pest):
+                // what its `expr` would have been.
+                Rule::number => out.push(self.primary(item)?),
+                _ => out.push(self.expr(item)?),
             }
         }
         Ok(())

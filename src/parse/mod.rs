@@ -403,6 +403,78 @@ mod tests {
         parse(0, &file).1
     }
 
+    /// (left context length, predecessor length, successor length) of
+    /// each production of `text`, which must parse.
+    fn heads(text: &str) -> Vec<(usize, usize, usize)> {
+        let file = SourceFile::new("t.lsys", Origin::Memory, text.to_string());
+        let (ast, errors) = parse(0, &file);
+        assert!(errors.is_empty(), "{text}: {errors:?}");
+        ast.items
+            .iter()
+            .filter_map(|item| match item {
+                ast::Item::Production(p) => Some((p.lctx.len(), p.pred.len(), p.succ.len())),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The look-ahead for a left context ends at the end of the line, but
+    /// passes over a block comment and a `\` line join inside the head; a
+    /// `<` (roll) in a successor's continuation lines is no left context.
+    #[test]
+    fn left_contexts_are_found_within_their_line() {
+        assert_eq!(heads("A B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(heads("A \\\n B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(heads("A /* one\n two */ B < C --> D\n"), vec![(2, 1, 1)]);
+        assert_eq!(
+            heads("A --> B\n  < C\n  D < E\nF : G\n"),
+            vec![(0, 1, 6), (0, 1, 1)]
+        );
+        assert_eq!(heads("A --> B\nC < D --> E\n"), vec![(0, 1, 1), (1, 1, 1)]);
+    }
+
+    /// A table's plain numbers (taken without the expression rule) are
+    /// the numbers their expressions were, spanning only their text; any
+    /// other value is an expression as before.
+    #[test]
+    fn table_numbers_are_their_expressions() {
+        let text = "#define t[9] {1, 2.5 , 3e2,\n 4 /* c */, 5+1, -2, 7 ? 1 : 0, .5,\n {8}}\n";
+        let file = SourceFile::new("t.lsys", Origin::Memory, text.to_string());
+        let (ast, errors) = parse(0, &file);
+        assert!(errors.is_empty(), "{errors:?}");
+        let Some(ast::Item::Define(ds)) = ast.items.first() else {
+            panic!("a define")
+        };
+        let (values, _) = ds[0].elems.as_ref().expect("a table");
+        let shown: Vec<(String, &str)> = values
+            .iter()
+            .map(|v| {
+                let kind = match &v.kind {
+                    ast::ExprKind::Num(n) => format!("{n}"),
+                    ast::ExprKind::Binary(..) => "binary".to_string(),
+                    ast::ExprKind::Unary(..) => "unary".to_string(),
+                    ast::ExprKind::Ternary(..) => "ternary".to_string(),
+                    other => format!("{other:?}"),
+                };
+                (kind, &text[v.span.start as usize..v.span.end as usize])
+            })
+            .collect();
+        let expected = [
+            ("1", "1"),
+            ("2.5", "2.5"),
+            ("300", "3e2"),
+            ("4", "4"),
+            ("binary", "5+1"),
+            ("unary", "-2"),
+            ("ternary", "7 ? 1 : 0"),
+            ("0.5", ".5"),
+            ("8", "8"),
+        ];
+        let expected: Vec<(String, &str)> =
+            expected.iter().map(|(k, t)| (k.to_string(), *t)).collect();
+        assert_eq!(shown, expected);
+    }
+
     /// Input that would exhaust the stack is refused before parsing; just
     /// below the limits it parses (on a 64 MiB stack, as the binary runs
     /// with 256 MiB: a debug build's frames are large).

@@ -33,6 +33,26 @@ impl Scope<'_> {
     };
 }
 
+/// Expansions of defines without arguments already made: a define's
+/// expansion depends only on the names in scope where it is used (the
+/// production's parameters and variables, and cpfg's globals and arrays,
+/// counted here), so within a production each define is resolved once
+/// however often it is used (a Pailou's defines use each other thousands
+/// of times). Only expansions that succeeded without a diagnostic are
+/// kept; a failing one runs again and reports again, as before.
+#[derive(Default)]
+pub(crate) struct Expansions {
+    made: HashMap<String, Vec<Made>>,
+}
+
+/// One expansion and the scope it was made in.
+struct Made {
+    params: Vec<(String, u16)>,
+    locals: Vec<(String, u32)>,
+    declared: (usize, usize),
+    expr: Expr,
+}
+
 /// Expansion state: defines being expanded (for cycles) and the arguments
 /// of the function-like define being expanded.
 #[derive(Default, Clone)]
@@ -319,7 +339,7 @@ impl Resolver {
             });
             return None;
         }
-        let Some(value) = def.value.clone() else {
+        let Some(value) = &def.value else {
             self.error(ResolveError::DefineWithoutValue {
                 name: name.clone(),
                 src: self.sources.named_source(span),
@@ -330,12 +350,51 @@ impl Resolver {
             });
             return None;
         };
+        // Without arguments the expansion is the same wherever the same
+        // names are in scope (the stack only finds cycles, and a define
+        // that expanded once has none).
+        let reusable = args.is_empty();
+        let declared = (self.vars.globals.len(), self.vars.array_ids.len());
+        if reusable {
+            let made = self.expansions.made.get(name).and_then(|m| {
+                m.iter().find(|m| {
+                    m.declared == declared && m.params == scope.params && m.locals == scope.locals
+                })
+            });
+            if let Some(m) = made {
+                return Some(m.expr.clone());
+            }
+        }
         let mut inner = Expansion {
             stack: exp.stack.clone(),
             args,
         };
         inner.stack.push(name.clone());
-        self.expr_in(&value, scope, &inner)
+        let reported = (
+            self.errors.len(),
+            self.warnings.len(),
+            self.missing_names.len(),
+        );
+        let expr = self.expr_in(value, scope, &inner)?;
+        let quiet = reported
+            == (
+                self.errors.len(),
+                self.warnings.len(),
+                self.missing_names.len(),
+            );
+        if reusable && quiet {
+            self.expansions
+                .made
+                .entry(name.clone())
+                .or_default()
+                .push(Made {
+                    params: scope.params.to_vec(),
+                    locals: scope.locals.to_vec(),
+                    declared,
+                    expr: expr.clone(),
+                });
+        }
+        Some(expr)
     }
 
     fn call(

@@ -62,6 +62,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         warnings: loaded.warnings,
         defines: HashMap::new(),
         define_order: Vec::new(),
+        expansions: Default::default(),
         symbols: Symbols::default(),
         alphabet: alphabet::Alphabet::new(),
         arities: HashMap::new(),
@@ -127,8 +128,13 @@ pub(crate) struct Resolver {
     pub sources: SourceMap,
     pub errors: Vec<Report>,
     pub warnings: Vec<Report>,
-    pub defines: HashMap<String, DefineEntry>,
+    /// Shared, so that a use of a define (there are thousands in a
+    /// Pailou) does not copy its body.
+    pub defines: HashMap<String, std::rc::Rc<DefineEntry>>,
     pub define_order: Vec<String>,
+    /// Expansions of defines without arguments, by define name, for the
+    /// scope they were made in (see [`expr::Expansions`]).
+    pub expansions: expr::Expansions,
     pub symbols: Symbols,
     pub alphabet: alphabet::Alphabet,
     pub arities: HashMap<SymId, ArityInfo>,
@@ -260,7 +266,7 @@ impl Resolver {
                 self.define_order.push(d.name.name.clone());
                 self.defines.insert(
                     d.name.name.clone(),
-                    DefineEntry {
+                    std::rc::Rc::new(DefineEntry {
                         name: d.name.name.clone(),
                         params: d
                             .params
@@ -272,7 +278,7 @@ impl Resolver {
                         span: d.name.span,
                         order,
                         overridden: false,
-                    },
+                    }),
                 );
             }
         }
@@ -355,7 +361,8 @@ impl Resolver {
                     )),
                 }),
                 (None, Table(elems)) if is_table => {
-                    let entry = self.defines.get_mut(base).expect("checked above");
+                    let entry =
+                        std::rc::Rc::make_mut(self.defines.get_mut(base).expect("checked above"));
                     entry.elems = Some((elems, span));
                     entry.value = None;
                     entry.overridden = true;
@@ -366,7 +373,8 @@ impl Resolver {
                     help: None,
                 }),
                 (None, Expr(e)) => {
-                    let entry = self.defines.get_mut(base).expect("checked above");
+                    let entry =
+                        std::rc::Rc::make_mut(self.defines.get_mut(base).expect("checked above"));
                     entry.value = Some(e);
                     if is_table {
                         entry.elems = None;
@@ -386,7 +394,7 @@ impl Resolver {
                 let d = self.defines.get(n)?.clone();
                 if d.params.is_some() || d.value.is_none() {
                     return Some(DefineInfo {
-                        name: d.name,
+                        name: d.name.clone(),
                         value: None,
                         span: d.span,
                         overridden: d.overridden,
@@ -405,7 +413,7 @@ impl Resolver {
                 self.evaluating_for_display = false;
                 self.errors.truncate(saved);
                 Some(DefineInfo {
-                    name: d.name,
+                    name: d.name.clone(),
                     value,
                     span: d.span,
                     overridden: d.overridden,

@@ -1,10 +1,12 @@
 //! glTF 2.0 export: a [`Scene`] -> the bytes of a binary `.glb` ([`to_glb`],
 //! or [`write_glb`] straight into a writer) or of a self-contained `.gltf`
 //! whose buffer is a base64 data URI ([`to_gltf`]). The document itself
-//! (meshes, nodes, accessors) is built in `document.rs`; this file holds
-//! the two file containers and the export's errors.
+//! (meshes, nodes, accessors) is built in `document.rs` and its GLB JSON
+//! text written by `json_chunk.rs`; this file holds the two file
+//! containers and the export's errors.
 
 mod document;
+mod json_chunk;
 
 use document::build;
 pub(crate) use document::{check, unit_normals};
@@ -55,8 +57,8 @@ pub fn to_glb(scene: &Scene) -> Result<Vec<u8>, ExportError> {
 /// buffers as it is written, so no copy of the file or of its buffer is
 /// ever in memory. Returns the bytes written.
 pub fn write_glb(scene: &Scene, out: &mut dyn std::io::Write) -> Result<u64, ExportError> {
-    let (root, bin) = build(scene)?;
-    let mut json = json::serialize::to_vec(&root)?;
+    let (mut root, bin) = build(scene)?;
+    let mut json = json_chunk::to_vec(&mut root)?;
     // The JSON chunk is padded with spaces, the binary one (its layout
     // padded by `build`) with zeros.
     json.resize(padded(json.len()), b' ');

@@ -19,7 +19,7 @@ impl<'s> Builder<'s> {
     ) -> Result<Index<json::Node>, ExportError> {
         let scene = self.scene;
         let component = &scene.components[instance.component];
-        let name = format!("{}#{}", component.name, instance.number);
+        let name = node_name(&[&component.name], instance.number);
         self.placed(component, instance.transform, instance.material, name)
     }
 
@@ -76,13 +76,13 @@ impl<'s> Builder<'s> {
         if let Some(mesh) = self.nested_mesh(nested, material, symbol)? {
             children.push(self.root.push(json::Node {
                 mesh: Some(mesh),
-                name: Some(format!("{outer}/strokes")),
+                name: Some([outer, "/strokes"].concat()),
                 ..Default::default()
             }));
         }
         for inner in &nested.instances {
             let component = &nested.components[inner.component];
-            let name = format!("{outer}/{}#{}", component.name, inner.number);
+            let name = node_name(&[outer, "/", &component.name], inner.number);
             let colour = if nested.placement_colour {
                 material
             } else {
@@ -98,7 +98,7 @@ impl<'s> Builder<'s> {
         };
         Ok(vec![self.root.push(json::Node {
             matrix,
-            name: Some(format!("{outer}/frame")),
+            name: Some([outer, "/frame"].concat()),
             children: Some(children),
             ..Default::default()
         })])
@@ -173,6 +173,29 @@ impl<'s> Builder<'s> {
     }
 }
 
+/// `pieces` then `#number`: a placement's node name (`MAn#3`,
+/// `TM#2/MAn#3`). Built by hand: `format!` was a third of the node tree's
+/// time (thousands of nested names in a Pailou).
+fn node_name(pieces: &[&str], number: u32) -> String {
+    let mut digits = [0u8; 10];
+    let mut at = digits.len();
+    let mut n = number;
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    let digits = std::str::from_utf8(&digits[at..]).expect("ASCII digits");
+    let mut name = String::with_capacity(pieces.iter().map(|p| p.len()).sum::<usize>() + 11);
+    pieces.iter().for_each(|p| name.push_str(p));
+    name.push('#');
+    name.push_str(digits);
+    name
+}
+
 pub(super) enum Placement {
     /// A node matrix (`None` for the identity, which glTF wants omitted).
     Matrix(Option<[f32; 16]>),
@@ -226,6 +249,14 @@ pub(super) fn placement(m: Mat4) -> Placement {
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    #[test]
+    fn export_node_names_are_formats() {
+        for n in [0, 7, 10, 99, 100, 4_096, u32::MAX] {
+            assert_eq!(node_name(&["MAn"], n), format!("MAn#{n}"));
+            assert_eq!(node_name(&["TM#2", "/", "MAn"], n), format!("TM#2/MAn#{n}"));
+        }
+    }
 
     #[test]
     fn export_placement_keeps_trs_and_bakes_shear() {

@@ -1,0 +1,76 @@
+//! Build script: the built-in component models (`grammar/std/components/`
+//! and its `preview/` set, OBJ text) -> their meshes as tobj reads them,
+//! in a compact binary form in `OUT_DIR` (`components/NAME.mesh`,
+//! `components/preview/NAME.mesh`), embedded by `src/stdlib.rs`.
+//!
+//! Why: reading the OBJ text with tobj took about a third of a Pailou
+//! build's instructions (the Pailou and each Toukung it places read their
+//! models again). The meshes are read here with the same tobj and the same
+//! options as `mesh::components::parse_obj`, so the program gets the very
+//! same numbers and only decodes them.
+//!
+//! Format (little-endian): model count (u32); per model: positions
+//! (u32 count, then f32s), normals (u32 count, then f32s), indices (u32
+//! count, then u32s). Built-in models have no materials (no `.mtl` is
+//! read for them), so none is stored.
+
+use std::io::BufReader;
+use std::path::Path;
+
+fn main() {
+    let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    for set in ["", "preview"] {
+        let src = Path::new("grammar/std/components").join(set);
+        println!("cargo:rerun-if-changed={}", src.display());
+        let dst = Path::new(&out).join("components").join(set);
+        std::fs::create_dir_all(&dst).expect("creates the output folder");
+        let mut entries: Vec<_> = std::fs::read_dir(&src)
+            .expect("reads the components folder")
+            .map(|e| e.expect("lists the components folder").path())
+            .filter(|p| p.extension().is_some_and(|e| e == "obj"))
+            .collect();
+        entries.sort();
+        for path in entries {
+            println!("cargo:rerun-if-changed={}", path.display());
+            let text = std::fs::read(&path).expect("reads a component model");
+            let stem = path.file_stem().expect("a file name");
+            let bytes = encode(&text, &path);
+            std::fs::write(dst.join(stem).with_extension("mesh"), bytes)
+                .expect("writes a decoded component");
+        }
+    }
+}
+
+/// The meshes of OBJ `text`, read as `parse_obj` reads a built-in model.
+fn encode(text: &[u8], path: &Path) -> Vec<u8> {
+    let opts = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    // A built-in model has no folder to read a `.mtl` from.
+    let (models, _) = tobj::load_obj_buf(&mut BufReader::new(text), &opts, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut out = Vec::new();
+    let count = |out: &mut Vec<u8>, n: usize| {
+        out.extend_from_slice(&u32::try_from(n).expect("fits u32").to_le_bytes())
+    };
+    count(&mut out, models.len());
+    for m in &models {
+        let m = &m.mesh;
+        for floats in [&m.positions, &m.normals] {
+            count(&mut out, floats.len());
+            for f in floats.iter() {
+                out.extend_from_slice(&f.to_le_bytes());
+            }
+        }
+        count(&mut out, m.indices.len());
+        for i in &m.indices {
+            out.extend_from_slice(&i.to_le_bytes());
+        }
+    }
+    out
+}
