@@ -433,6 +433,20 @@ mod tests {
         assert_eq!(heads("A --> B\nC < D --> E\n"), vec![(0, 1, 1), (1, 1, 1)]);
     }
 
+    /// The paper's form (`A : successor`) is told from the arrow form by
+    /// an arrow later on the same line; an arrow in a comment does not
+    /// count, one after a `\` line join does.
+    #[test]
+    fn the_papers_form_is_told_by_an_arrow_on_its_line() {
+        assert_eq!(
+            heads("A : B C // not --> here\nD --> E\n"),
+            vec![(0, 1, 2), (0, 1, 1)]
+        );
+        assert_eq!(heads("A : B /* a --> b\n */ C\n"), vec![(0, 1, 2)]);
+        assert_eq!(heads("A(x) : x > 1 \\\n --> B C\n"), vec![(0, 1, 2)]);
+        assert_eq!(heads("A(x) : x > 1 B C\n"), vec![(0, 1, 2)]);
+    }
+
     /// A table's plain numbers (taken without the expression rule) are
     /// the numbers their expressions were, spanning only their text; any
     /// other value is an expression as before.
