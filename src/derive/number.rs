@@ -91,18 +91,7 @@ fn write_whole(buf: &mut Vec<u8>, v: f64, below: f64) -> bool {
     if v.is_sign_negative() {
         buf.push(b'-');
     }
-    let mut n = v.abs() as u64;
-    let mut digits = [0u8; 20];
-    let mut k = digits.len();
-    loop {
-        k -= 1;
-        digits[k] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    buf.extend_from_slice(&digits[k..]);
+    buf.extend_from_slice(itoa::Buffer::new().format(v.abs() as u64).as_bytes());
     true
 }
 

@@ -8,7 +8,6 @@
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
-use std::io::Write;
 
 use gltf_json as json;
 
@@ -157,7 +156,7 @@ impl Hasher for Mix {
 }
 
 fn number(out: &mut Vec<u8>, n: usize) {
-    write!(out, "{n}").expect("writes to memory");
+    out.extend_from_slice(itoa::Buffer::new().format(n).as_bytes());
 }
 
 #[cfg(test)]

@@ -177,18 +177,8 @@ impl<'s> Builder<'s> {
 /// `TM#2/MAn#3`). Built by hand: `format!` was a third of the node tree's
 /// time (thousands of nested names in a Pailou).
 fn node_name(pieces: &[&str], number: u32) -> String {
-    let mut digits = [0u8; 10];
-    let mut at = digits.len();
-    let mut n = number;
-    loop {
-        at -= 1;
-        digits[at] = b'0' + (n % 10) as u8;
-        n /= 10;
-        if n == 0 {
-            break;
-        }
-    }
-    let digits = std::str::from_utf8(&digits[at..]).expect("ASCII digits");
+    let mut digits = itoa::Buffer::new();
+    let digits = digits.format(number);
     let mut name = String::with_capacity(pieces.iter().map(|p| p.len()).sum::<usize>() + 11);
     pieces.iter().for_each(|p| name.push_str(p));
     name.push('#');
