@@ -13,7 +13,9 @@
 //! the meshing time.
 
 use std::collections::HashMap;
-use std::hash::{BuildHasher, BuildHasherDefault, Hasher};
+use std::hash::BuildHasher;
+
+use rustc_hash::FxBuildHasher;
 
 use crate::turtle::drawing::{Chain, Origin, TubePoint};
 
@@ -45,30 +47,6 @@ fn key(colour: u32, p: &TubePoint) -> Key {
     }
 }
 
-/// A multiply-rotate hasher for [`Key`]s (a few u32s): SipHash's
-/// protection against chosen keys buys nothing here and costs a third of
-/// the meshing time.
-#[derive(Default)]
-struct KeyHasher(u64);
-
-impl Hasher for KeyHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u32(u32::from(b));
-        }
-    }
-
-    fn write_u32(&mut self, i: u32) {
-        self.0 = (self.0.rotate_left(5) ^ u64::from(i)).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-}
-
-type KeyHash = BuildHasherDefault<KeyHasher>;
-
 /// A one-hash Bloom filter of the start keys: 16 bits a start (about one
 /// false "maybe" in 16), small enough to stay in cache where the table of
 /// starts is not.
@@ -87,8 +65,8 @@ impl Filter {
     }
 
     fn bit(&self, k: &Key) -> (usize, u64) {
-        // The top bits: the hash's last multiply mixes into them.
-        let b = (KeyHash::default().hash_one(k) >> self.shift) as usize;
+        // The top bits: FxHash's finish rotates multiplied (mixed) bits there.
+        let b = (FxBuildHasher.hash_one(k) >> self.shift) as usize;
         (b / 64, 1 << (b % 64))
     }
 
@@ -125,7 +103,7 @@ pub(super) fn slots(chains: &[Chain], origins: &[Option<Origin>]) -> Slots {
     // Per point, its slot; at a root, the slot of its key once known (a
     // root comes before the points that refer to it).
     let mut point_slots = vec![UNSET; total];
-    let mut table: HashMap<Key, u32, KeyHash> = HashMap::default();
+    let mut table: HashMap<Key, u32, FxBuildHasher> = HashMap::default();
     let mut filter = Filter::new(chains.len());
     let mut first_chain = Vec::new();
     // One pass for the roots and the starts: each pass over the chains

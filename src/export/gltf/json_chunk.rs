@@ -7,9 +7,9 @@
 //! serde_json as before.
 
 use std::collections::HashMap;
-use std::hash::{BuildHasherDefault, Hasher};
 
 use gltf_json as json;
+use rustc_hash::FxBuildHasher;
 
 /// The name of the node that holds the node list's place while the rest
 /// of the document is serialised. A name lsys never makes (module names
@@ -61,8 +61,7 @@ pub(super) fn to_vec(root: &mut json::Root) -> Result<Vec<u8>, serde_json::Error
 /// `nodes` as a JSON array, as serde_json writes it.
 fn write_nodes(out: &mut Vec<u8>, nodes: &[json::Node]) -> Result<(), serde_json::Error> {
     // Where the text of each matrix met is in `out`, by its bits.
-    let mut matrices: HashMap<[u32; 16], (usize, usize), BuildHasherDefault<Mix>> =
-        HashMap::default();
+    let mut matrices: HashMap<[u32; 16], (usize, usize), FxBuildHasher> = HashMap::default();
     out.push(b'[');
     for (i, node) in nodes.iter().enumerate() {
         if i > 0 {
@@ -132,27 +131,6 @@ fn plain(node: &json::Node) -> bool {
         && node.translation.is_none()
         && node.skin.is_none()
         && node.weights.is_none()
-}
-
-/// A quick hash for the matrices' bits (the default one, made to resist
-/// crafted keys, cost more than the formatting it saves for a Toukung
-/// whose matrices are all different).
-#[derive(Default)]
-struct Mix(u64);
-
-impl Hasher for Mix {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut word = [0u8; 8];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.0 = (self.0.rotate_left(5) ^ u64::from_le_bytes(word))
-                .wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-        }
-    }
 }
 
 fn number(out: &mut Vec<u8>, n: usize) {
