@@ -6,8 +6,9 @@
 //! Why: reading the OBJ text with tobj took about a third of a Pailou
 //! build's instructions (the Pailou and each Toukung it places read their
 //! models again). The meshes are read here with the same tobj and the same
-//! options as `mesh::components::parse_obj`, so the program gets the very
-//! same numbers and only decodes them.
+//! options as `mesh::components::parse_obj` (`src/mesh/obj_options.rs`,
+//! included), so the program gets the very same numbers and only decodes
+//! them.
 //!
 //! Format (little-endian): model count (u32); per model: positions
 //! (u32 count, then f32s), normals (u32 count, then f32s), indices (u32
@@ -17,8 +18,12 @@
 use std::io::BufReader;
 use std::path::Path;
 
+#[path = "src/mesh/obj_options.rs"]
+mod obj_options;
+
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    println!("cargo:rerun-if-changed=src/mesh/obj_options.rs");
     for set in ["", "preview"] {
         let src = Path::new("grammar/std/components").join(set);
         println!("cargo:rerun-if-changed={}", src.display());
@@ -43,12 +48,7 @@ fn main() {
 
 /// The meshes of OBJ `text`, read as `parse_obj` reads a built-in model.
 fn encode(text: &[u8], path: &Path) -> Vec<u8> {
-    let opts = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
+    let opts = obj_options::obj_options();
     // A built-in model has no folder to read a `.mtl` from.
     let (models, _) = tobj::load_obj_buf(&mut BufReader::new(text), &opts, |_| {
         Err(tobj::LoadError::OpenFileFailed)

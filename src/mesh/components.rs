@@ -188,12 +188,7 @@ pub fn parse_obj(
         path: origin.to_string(),
         reason,
     };
-    let opts = tobj::LoadOptions {
-        single_index: true,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
+    let opts = super::obj_options::obj_options();
     let (models, mtl) = tobj::load_obj_buf(&mut BufReader::new(bytes), &opts, |mtl_path| {
         let Some(dir) = dir else {
             return Err(tobj::LoadError::OpenFileFailed);

@@ -4,6 +4,7 @@ pub mod assemble;
 pub mod components;
 pub mod error;
 pub mod internodes;
+pub mod obj_options;
 pub mod palette;
 mod ring_slots;
 pub mod roof;
