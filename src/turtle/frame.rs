@@ -12,6 +12,36 @@ pub fn sin_cos_degrees(degrees: f64) -> (f64, f64) {
     degrees.to_radians().sin_cos()
 }
 
+/// The sines and cosines of the last two angles turned by: a plant turns
+/// by a few angles again and again (W2: +25 and -25 in turn), and libm's
+/// sin_cos was a twentieth of the turtle's time. The same angle, bit for
+/// bit, gives the same values.
+pub struct SinCosCache {
+    cache: [(u64, (f64, f64)); 2],
+}
+
+impl Default for SinCosCache {
+    fn default() -> SinCosCache {
+        SinCosCache {
+            cache: [(0f64.to_bits(), sin_cos_degrees(0.0)); 2],
+        }
+    }
+}
+
+impl SinCosCache {
+    pub fn sin_cos(&mut self, degrees: f64) -> (f64, f64) {
+        let bits = degrees.to_bits();
+        if self.cache[0].0 == bits {
+            return self.cache[0].1;
+        }
+        if self.cache[1].0 != bits {
+            self.cache[1] = (bits, sin_cos_degrees(degrees));
+        }
+        self.cache.swap(0, 1);
+        self.cache[0].1
+    }
+}
+
 /// Position and orientation. The start frame is cpfg's: heading up the y
 /// axis, left along −x, up toward the viewer (+z).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,7 +6,7 @@ use glam::{DVec3, Vec3};
 
 use super::drawing::{Chain, Drawing, Polygon, TubePoint};
 use super::error::TurtleError;
-use super::frame::{sin_cos_degrees, Frame};
+use super::frame::{Frame, SinCosCache};
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
@@ -120,35 +120,7 @@ pub(super) struct Turtle<'a> {
     /// Primitives and hole cutters, drawn at the end (turtle/solid.rs).
     pub(super) solids: Vec<super::solid::Solid>,
     pub(super) holes: Vec<super::solid::Solid>,
-    trig: Trig,
-}
-
-/// The sines and cosines of the last two angles turned by: a plant turns
-/// by a few angles again and again (W2: +25 and -25 in turn), and libm's
-/// sin_cos was a twentieth of the turtle's time. The same angle, bit for
-/// bit, gives the same values.
-struct Trig {
-    cache: [(u64, (f64, f64)); 2],
-}
-
-impl Trig {
-    fn new() -> Trig {
-        Trig {
-            cache: [(0f64.to_bits(), sin_cos_degrees(0.0)); 2],
-        }
-    }
-
-    fn sin_cos(&mut self, degrees: f64) -> (f64, f64) {
-        let bits = degrees.to_bits();
-        if self.cache[0].0 == bits {
-            return self.cache[0].1;
-        }
-        if self.cache[1].0 != bits {
-            self.cache[1] = (bits, sin_cos_degrees(degrees));
-        }
-        self.cache.swap(0, 1);
-        self.cache[0].1
-    }
+    trig: SinCosCache,
 }
 
 /// The string being walked and each symbol's act.
@@ -245,7 +217,7 @@ fn interpret_with(
         subs: Vec::new(),
         solids: Vec::new(),
         holes: Vec::new(),
-        trig: Trig::new(),
+        trig: SinCosCache::default(),
     };
     let walk = Walk {
         heads: store.heads(),
