@@ -34,7 +34,9 @@
 //! Two cores: with two threads in the rayon pool, an input of
 //! [`PAR_SPLIT`] modules or more is cut in two halves expanded at once;
 //! their counts add up and the second output is appended to the first
-//! (W2: 8.2 -> 4.5 ms, docs/performance.md).
+//! (W2: 8.2 -> 4.5 ms, docs/performance.md). Only when the output looks
+//! large ([`SPLIT_OUTPUT`], judged from a first slice expanded alone):
+//! starting the pool costs a small build more than the split saves.
 
 use super::fast::{first_match, run_range, LimitSink, Plan};
 use super::rewrite::Tables;
@@ -55,6 +57,12 @@ pub(crate) const MAX_DEPTH: u32 = 64;
 /// Inputs of at least this many modules are split in two halves, each
 /// expanded on a thread of its own when the rayon pool has two.
 pub(crate) const PAR_SPLIT: usize = 64;
+
+/// A split input's first `1 / PROBE_PARTS` is expanded on one thread;
+/// only if it wrote at least `SPLIT_OUTPUT / PROBE_PARTS` modules is the
+/// rest split in halves (tests/depth_first.rs reaches both).
+const PROBE_PARTS: usize = 8;
+pub(crate) const SPLIT_OUTPUT: usize = 1 << 16;
 
 /// Memo slots per level (see [`Expander::memo`]).
 const SLOTS: usize = 8;
@@ -79,40 +87,22 @@ pub(crate) fn expand(
     let d = steps as usize;
     let (heads, params) = (&input.heads[..], &input.params[..]);
     let split = heads.len() >= PAR_SPLIT
-        && rayon::current_num_threads() > 1
+        && super::parallel::threads() > 1
         && !repetitive(tab, heads, params);
     let (written, kept) = if split {
-        // The halves expand independently; the second is appended to the
-        // first (one copy of half the output, against a second core).
-        let half = heads.len() / 2;
-        let off: usize = heads[..half].iter().map(|&h| head_arity(h)).sum();
-        let mut right = ModuleStore::new();
-        let mut stack2 = vec![0.0; stack.len()];
-        let (a, b) = rayon::join(
-            || run(plan, tab, stack, &heads[..half], &params[..off], d, out),
-            || {
-                run(
-                    plan,
-                    tab,
-                    &mut stack2,
-                    &heads[half..],
-                    &params[off..],
-                    d,
-                    &mut right,
-                )
-            },
-        );
-        let ((mut written, mut kept), (w2, k2)) = (a?, b?);
-        for (x, y) in written.iter_mut().zip(w2).chain(kept.iter_mut().zip(k2)) {
-            x.0 += y.0;
-            x.1 += y.1;
-        }
-        out.heads.extend_from_slice(&right.heads);
-        out.params.extend_from_slice(&right.params);
-        if tab.over(out.len(), out.param_count()) {
-            return None;
-        }
-        (written, kept)
+        // A first slice on this thread tells whether the rest is worth two
+        // threads: starting the pool costs more than a small build's whole
+        // derivation (a Pailou's 1,600 modules: 0.7 ms against 0.3).
+        let probe = (heads.len() / PROBE_PARTS).max(1);
+        let off: usize = heads[..probe].iter().map(|&h| head_arity(h)).sum();
+        let first = run(plan, tab, stack, &heads[..probe], &params[..off], d, out)?;
+        let (heads, params) = (&heads[probe..], &params[off..]);
+        let rest = if out.len().saturating_mul(PROBE_PARTS) >= SPLIT_OUTPUT {
+            halves(plan, tab, stack, heads, params, d, out)?
+        } else {
+            run(plan, tab, stack, heads, params, d, out)?
+        };
+        add(first, rest)
     } else {
         run(plan, tab, stack, heads, params, d, out)?
     };
@@ -130,6 +120,51 @@ pub(crate) fn expand(
         before_last = m;
     }
     Some(before_last)
+}
+
+/// Expand `heads` `d` steps in two halves at once, the first appended to
+/// `out` here, the second on the pool's other thread and then appended
+/// (one copy of half the output, against a second core).
+fn halves(
+    plan: &Plan,
+    tab: &Tables,
+    stack: &mut [f64],
+    heads: &[u32],
+    params: &[f64],
+    d: usize,
+    out: &mut ModuleStore,
+) -> Option<Levels> {
+    let half = heads.len() / 2;
+    let off: usize = heads[..half].iter().map(|&h| head_arity(h)).sum();
+    let mut right = ModuleStore::new();
+    let mut stack2 = vec![0.0; stack.len()];
+    let (a, b) = rayon::join(
+        || run(plan, tab, stack, &heads[..half], &params[..off], d, out),
+        || {
+            run(
+                plan,
+                tab,
+                &mut stack2,
+                &heads[half..],
+                &params[off..],
+                d,
+                &mut right,
+            )
+        },
+    );
+    let both = add(a?, b?);
+    out.heads.extend_from_slice(&right.heads);
+    out.params.extend_from_slice(&right.params);
+    (!tab.over(out.len(), out.param_count())).then_some(both)
+}
+
+/// The counts of two pieces of one string, level by level.
+fn add((mut written, mut kept): Levels, (w2, k2): Levels) -> Levels {
+    for (x, y) in written.iter_mut().zip(w2).chain(kept.iter_mut().zip(k2)) {
+        x.0 += y.0;
+        x.1 += y.1;
+    }
+    (written, kept)
 }
 
 /// Whether most modules to rewrite at the start of `heads` (the first

@@ -194,7 +194,7 @@ impl<'p> Derivation<'p> {
         }
         // With two threads, a string long enough to be split in two first
         // (W2 starts from one module).
-        if rayon::current_num_threads() > 1 {
+        if super::parallel::threads() > 1 {
             while deep > 1 && self.cur.len() < super::depth_first::PAR_SPLIT {
                 self.step()?;
                 deep -= 1;

@@ -165,7 +165,7 @@ impl Plan {
         input: &ModuleStore,
         out: &mut ModuleStore,
     ) -> bool {
-        if input.len() >= self.par_min && rayon::current_num_threads() > 1 {
+        if input.len() >= self.par_min && super::parallel::threads() > 1 {
             if let Some(done) = super::parallel::step(self, tab, input, out) {
                 return done;
             }

@@ -81,4 +81,5 @@ pub use count::{count, Counts};
 pub use engine::{homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted};
 pub use error::{DepthWarning, DeriveError};
 pub use number::{NumberFormat, NumberStyle};
+pub use parallel::threads;
 pub use store::{ContextIndex, Module, ModuleStore};

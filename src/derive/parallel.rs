@@ -31,6 +31,25 @@ use crate::bytecode::vm::Sink;
 /// (Measured: W2 at 2^18 modules per step is no faster on two busy cores.)
 pub(crate) const PAR_MIN_MODULES: usize = 1 << 20;
 
+/// How many threads rayon runs on, without starting its global pool:
+/// asking rayon starts it, spawning its threads (0.3–1.5 ms of a small
+/// build's process, a Toukung's, that never splits its work). Inside a
+/// pool, that pool's size; outside, `RAYON_NUM_THREADS` or the cores, as
+/// the global pool will be built.
+pub fn threads() -> usize {
+    if rayon::current_thread_index().is_some() {
+        return rayon::current_num_threads();
+    }
+    static GLOBAL: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *GLOBAL.get_or_init(|| {
+        std::env::var("RAYON_NUM_THREADS")
+            .ok()
+            .and_then(|n| n.parse().ok())
+            .filter(|&n: &usize| n > 0)
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+    })
+}
+
 /// Slices per thread, so that a slow slice does not leave a core idle.
 const SLICES_PER_THREAD: usize = 8;
 
