@@ -2,6 +2,7 @@
 //! -> turtle -> meshes, timed per stage. The CLI's `build` and `render`,
 //! the tests and the REPL all go through here.
 
+use std::collections::HashMap;
 use std::time::{Duration, Instant};
 
 use miette::Diagnostic;
@@ -12,6 +13,12 @@ use crate::mesh::{self, ComponentSearch, MeshError, MeshOptions, Palette, Scene}
 use crate::pipeline::Compilation;
 use crate::simulation::Simulation;
 use crate::turtle::{self, BracketOrigin, Drawing, TurtleError, TurtleOptions};
+
+/// The stack the compiler runs on. Its recursive parts (the PEG, the Pratt
+/// parser, resolve, folding) take input up to the parser's ceilings
+/// (`parse::MAX_NESTING_CEILING`) with room to spare on it; the binary, the
+/// studio and grammar components built ahead run on threads this deep.
+pub const WORKER_STACK: usize = 256 << 20;
 
 /// Everything a build can be told besides the grammar: one value that
 /// travels from the front end into the grammar and every grammar
@@ -57,11 +64,13 @@ impl BuildOptions {
 /// build's options (see [`BuildOptions::for_component`]).
 struct SubGrammars<'a> {
     opts: &'a BuildOptions,
+    /// Scenes built ahead (see [`mesh::GrammarComponents::ahead`]), by name.
+    built: HashMap<String, Result<Scene, String>>,
 }
 
-impl mesh::GrammarComponents for SubGrammars<'_> {
-    fn scene(
-        &mut self,
+impl SubGrammars<'_> {
+    fn build(
+        &self,
         name: &str,
         input: &crate::load::Input,
         search: &ComponentSearch,
@@ -71,6 +80,57 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
         build(&comp, &opts)
             .map(|b| b.scene)
             .map_err(|e| crate::diag::render_plain(&e))
+    }
+}
+
+impl mesh::GrammarComponents for SubGrammars<'_> {
+    fn scene(
+        &mut self,
+        name: &str,
+        input: &crate::load::Input,
+        search: &ComponentSearch,
+    ) -> Result<Scene, String> {
+        match self.built.remove(name) {
+            Some(scene) => scene,
+            None => self.build(name, input, search),
+        }
+    }
+
+    /// Each grammar component is a whole build of its own (a Pailou's two
+    /// Toukungs: parse, derive, turtle, meshes): they are built at once, one
+    /// thread per core, each thread with the compiler's deep stack (see
+    /// [`WORKER_STACK`]). A failed one is reported when `scene` asks for
+    /// it, in placement order, as if built then.
+    fn ahead(&mut self, wanted: Vec<(String, crate::load::Input, ComponentSearch)>) {
+        let workers = crate::derive::threads().clamp(1, wanted.len());
+        let this = &*self;
+        let share = |first: usize| {
+            wanted
+                .iter()
+                .skip(first)
+                .step_by(workers)
+                .map(|(name, input, search)| (name.clone(), this.build(name, input, search)))
+                .collect::<Vec<_>>()
+        };
+        let built = std::thread::scope(|scope| {
+            let others: Vec<_> = (1..workers)
+                .map(|w| {
+                    std::thread::Builder::new()
+                        .stack_size(WORKER_STACK)
+                        .spawn_scoped(scope, move || share(w))
+                })
+                .collect();
+            let mut built = share(0);
+            for other in others {
+                // A thread that cannot start, or that panicked, leaves its
+                // components to be built when asked for.
+                if let Ok(Ok(more)) = other.map(|h| h.join()) {
+                    built.extend(more);
+                }
+            }
+            built
+        });
+        self.built.extend(built);
     }
 }
 
@@ -285,7 +345,10 @@ fn model(
     let t2 = Instant::now();
     observe(Stage::Mesh);
     let palette = Palette::new(&program.turtle.palette);
-    let mut grammars = SubGrammars { opts };
+    let mut grammars = SubGrammars {
+        opts,
+        built: HashMap::new(),
+    };
     let scene = mesh::assemble_scene(
         program,
         &drawing,

@@ -51,18 +51,18 @@ fn sample() -> Scene {
         ],
         ..Scene::default()
     };
-    s.components.push(Component {
-        name: "B".into(),
-        parts: vec![Part {
+    s.components.push(Component::new(
+        "B",
+        "test",
+        vec![Part {
             mesh: unit_box(),
             material: None,
         }],
-        origin: "test".into(),
-        nested: None,
-    });
-    s.components.push(Component {
-        name: "L".into(),
-        parts: vec![
+    ));
+    s.components.push(Component::new(
+        "L",
+        "test",
+        vec![
             Part {
                 mesh: unit_box(),
                 material: Some(2),
@@ -72,9 +72,7 @@ fn sample() -> Scene {
                 material: None,
             },
         ],
-        origin: "test".into(),
-        nested: None,
-    });
+    ));
     place(
         &mut s,
         0,
@@ -108,15 +106,14 @@ fn skewed() -> Scene {
         materials: vec![material("stone", [0.5, 0.5, 0.5])],
         ..Scene::default()
     };
-    s.components.push(Component {
-        name: "W".into(),
-        parts: vec![Part {
+    s.components.push(Component::new(
+        "W",
+        "test",
+        vec![Part {
             mesh: unit_box(),
             material: None,
         }],
-        origin: "test".into(),
-        nested: None,
-    });
+    ));
     place(&mut s, 0, Mat4::from_scale(Vec3::new(-1.0, 2.0, 1.0)), 0);
     let shear = Mat4::from_translation(Vec3::X * 4.0)
         * Mat4::from_scale(Vec3::new(3.0, 1.0, 1.0))
@@ -145,15 +142,14 @@ fn repaired() -> Scene {
         material: 0,
         mesh: broken_normals(),
     });
-    s.components.push(Component {
-        name: "T".into(),
-        parts: vec![Part {
+    s.components.push(Component::new(
+        "T",
+        "test",
+        vec![Part {
             mesh: broken_normals(),
             material: None,
         }],
-        origin: "test".into(),
-        nested: None,
-    });
+    ));
     place(&mut s, 0, Mat4::from_scale(Vec3::new(1.0, 1.0, -1.0)), 0);
     s
 }
@@ -532,7 +528,7 @@ fn export_instanced_internodes_use_gpu_instancing() {
     );
     // the cylinder once, then 40 bytes a segment
     let cylinder: usize = scene.components[0]
-        .parts
+        .parts()
         .iter()
         .map(|p| p.mesh.positions.len() * 24 + p.mesh.indices.len() * 2)
         .sum();

@@ -56,7 +56,7 @@ pub fn write_obj_only(scene: &Scene, mtl_file_name: &str, obj: &mut dyn Write) -
         // Written even when the component draws nothing, so that every
         // placement can be found by name.
         w.group(&name)?;
-        for part in &component.parts {
+        for part in component.parts() {
             if !part.mesh.is_empty() {
                 w.usemtl(&names, part.material.unwrap_or(instance.material))?;
                 w.mesh(&name, &part.mesh, instance.transform)?;

@@ -162,6 +162,23 @@ pub fn assemble_scene(
         let added = mesh.triangle_count() - before;
         check(added)?;
     }
+    // Grammar components take most of a Pailou's meshing (each is a whole
+    // build of its own): let them be built at once, on both cores.
+    let mut placed: Vec<SymId> = drawing.placements.iter().map(|p| p.symbol).collect();
+    placed.sort_unstable();
+    placed.dedup();
+    let names = placed
+        .iter()
+        .map(|&s| {
+            program.symbols.list[s as usize]
+                .name
+                .trim_start_matches('~')
+        })
+        .filter(|name| !program.cpfg_surfaces.iter().any(|s| s.name == *name));
+    let wanted = search.grammars_among(names);
+    if wanted.len() > 1 {
+        grammars.ahead(wanted);
+    }
     // Symbol -> component index, loaded on first placement.
     let mut loaded: HashMap<SymId, usize> = HashMap::new();
     // Placements so far per component index (`--instanced` has already

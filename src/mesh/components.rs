@@ -90,6 +90,25 @@ impl ComponentSearch {
             .ok_or(candidates)
     }
 
+    /// Of the components `names`, the grammar components and the search
+    /// each is built with (for [`super::GrammarComponents::ahead`]); a
+    /// name that is not one, or would nest in a cycle, is left to `load`.
+    pub fn grammars_among<'n>(
+        &self,
+        names: impl IntoIterator<Item = &'n str>,
+    ) -> Vec<(String, crate::load::Input, ComponentSearch)> {
+        names
+            .into_iter()
+            .filter_map(|name| match self.find(name) {
+                Ok(Found::Grammar(input)) => {
+                    let inner = super::subgrammar::inner_search(name, &input, self).ok()?;
+                    Some((name.to_string(), input, inner))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Finds every component `program` names (its `~X` symbols) without
     /// reading or building any: `lsys check`'s look-up. One error, with
     /// the places searched, for each component found nowhere.
@@ -155,18 +174,7 @@ impl ComponentSearch {
                 }),
             },
             Found::BuiltIn(mesh) => Ok(built_in(name, mesh)),
-            Found::Roof(kind) => {
-                let (mesh, nested) = super::roof::roof_component(kind, self.detail);
-                Ok(Component {
-                    name: name.to_string(),
-                    parts: vec![Part {
-                        mesh,
-                        material: None,
-                    }],
-                    origin: "built-in (procedural)".to_string(),
-                    nested: nested.map(Box::new),
-                })
-            }
+            Found::Roof(kind) => Ok(super::roof::roof_component(name, kind, self.detail)),
             Found::Grammar(input) => {
                 super::subgrammar::grammar_component(name, &input, self, materials, grammars)
             }
@@ -317,12 +325,7 @@ fn component_of(
         return Err("it has no faces (`f` lines)".to_string());
     }
     normalise(&mut parts);
-    Ok(Component {
-        name: name.to_string(),
-        parts,
-        origin: origin.to_string(),
-        nested: None,
-    })
+    Ok(Component::new(name, origin, parts))
 }
 
 /// Centres the parts at the origin and scales each axis to extent 1. An
@@ -339,20 +342,45 @@ pub(super) fn normalise_meshes(mut meshes: Vec<&mut TriMesh>) -> Mat4 {
     else {
         return Mat4::IDENTITY;
     };
-    let extent = hi - lo;
-    let centre = (lo + hi) * 0.5;
-    let scale = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent.recip(), Vec3::ONE);
-    // Normals scale by the inverse: multiply by the extent.
-    let inv = Vec3::select(extent.cmpgt(Vec3::splat(1e-9)), extent, Vec3::ONE);
+    let unit = UnitBox::of(lo, hi);
     for m in &mut meshes {
-        for v in &mut m.positions {
-            *v = (*v - centre) * scale;
-        }
-        for n in &mut m.normals {
-            *n = (*n * inv).normalize_or(*n);
+        unit.apply(m);
+    }
+    unit.matrix()
+}
+
+/// The map of geometry bounded by `lo..hi` into the unit box centred at
+/// the origin (an axis without extent keeps its scale).
+pub(super) struct UnitBox {
+    centre: Vec3,
+    scale: Vec3,
+    /// Normals scale by the inverse: multiply by the extent.
+    inv: Vec3,
+}
+
+impl UnitBox {
+    pub(super) fn of(lo: Vec3, hi: Vec3) -> UnitBox {
+        let extent = hi - lo;
+        let wide = extent.cmpgt(Vec3::splat(1e-9));
+        UnitBox {
+            centre: (lo + hi) * 0.5,
+            scale: Vec3::select(wide, extent.recip(), Vec3::ONE),
+            inv: Vec3::select(wide, extent, Vec3::ONE),
         }
     }
-    Mat4::from_scale(scale) * Mat4::from_translation(-centre)
+
+    pub(super) fn apply(&self, m: &mut TriMesh) {
+        for v in &mut m.positions {
+            *v = (*v - self.centre) * self.scale;
+        }
+        for n in &mut m.normals {
+            *n = (*n * self.inv).normalize_or(*n);
+        }
+    }
+
+    pub(super) fn matrix(&self) -> Mat4 {
+        Mat4::from_scale(self.scale) * Mat4::from_translation(-self.centre)
+    }
 }
 
 /// tobj's errors carry no position; find the offending line ourselves for
@@ -400,12 +428,12 @@ mod tests {
     #[test]
     fn obj_is_normalised_to_the_unit_box() {
         let c = parse_obj("T", TETRA.as_bytes(), "t.obj", None, &mut Vec::new()).unwrap();
-        let (lo, hi) = c.parts[0].mesh.bounds().unwrap();
+        let (lo, hi) = c.parts()[0].mesh.bounds().unwrap();
         assert_eq!(lo, Vec3::splat(-0.5));
         assert_eq!(hi, Vec3::splat(0.5));
         assert_eq!(c.triangle_count(), 4);
         // flat normals were computed: unit length
-        assert!(c.parts[0]
+        assert!(c.parts()[0]
             .mesh
             .normals
             .iter()
@@ -428,8 +456,8 @@ mod tests {
                 let read = parse_obj(name, text.as_bytes(), "built-in", None, &mut Vec::new())
                     .expect("reads");
                 let built = built_in(name, mesh);
-                assert_eq!(read.parts.len(), built.parts.len(), "{name}");
-                for (r, b) in read.parts.iter().zip(&built.parts) {
+                assert_eq!(read.parts().len(), built.parts().len(), "{name}");
+                for (r, b) in read.parts().iter().zip(built.parts()) {
                     assert_eq!(r.material, b.material, "{name}");
                     let bits = |m: &TriMesh| {
                         let v = |vs: &[Vec3]| {

@@ -30,15 +30,14 @@ pub fn unit_cylinder(sides: u32) -> Component {
         points: vec![point(0.0), point(1.0)],
     };
     tube(&chain, sides, &mut mesh);
-    Component {
-        name: NAME.into(),
-        parts: vec![Part {
+    Component::new(
+        NAME,
+        "built-in",
+        vec![Part {
             mesh,
             material: None,
         }],
-        origin: "built-in".into(),
-        nested: None,
-    }
+    )
 }
 
 /// The facets of the one cylinder all segments share: those of the widest.

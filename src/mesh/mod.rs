@@ -1,6 +1,7 @@
 //! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
 //! spheres and discs, and components loaded once and placed by transform.
 pub mod assemble;
+pub mod component;
 pub mod components;
 pub mod error;
 pub mod internodes;

@@ -7,10 +7,12 @@
 //! default) adds rows of round tiles (tongwa) down the front and back
 //! slopes with a disc (wadang) at each eave end; detail 2 doubles them.
 
+use std::sync::Arc;
+
 use glam::{Mat4, Vec3};
 
-use super::components::normalise_meshes;
-use super::scene::{Component, Instance, Nested, Part, TriMesh};
+use super::components::{normalise_meshes, UnitBox};
+use super::scene::{bounds_from, bounds_of, Component, Instance, Later, Nested, Part, TriMesh};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RoofKind {
@@ -70,63 +72,99 @@ fn surface(kind: RoofKind, x: f32, z: f32) -> f32 {
 /// The roof's mesh at a level of detail (0 to [`MAX_DETAIL`]), normalised
 /// to the unit box.
 pub fn roof(kind: RoofKind, detail: u8) -> TriMesh {
-    roof_component(kind, detail).0
+    let mut m = unnormalised(kind, detail);
+    normalise_meshes(vec![&mut m]);
+    m
 }
 
-/// The roof's mesh (as [`roof`]) and, for a clipped roof with tiles, the
-/// same geometry as a shell and placements of one row of tiles: a clipped
-/// roof's profile does not change along the ridge, so every row is the
-/// same mesh moved (and mirrored for the back slope), and a file that
-/// keeps placements (glTF) stores it once.
-pub fn roof_component(kind: RoofKind, detail: u8) -> (TriMesh, Option<Nested>) {
-    let shell = shell(kind, detail);
-    let mut m = shell.clone();
-    let mut rows = Vec::new();
-    if detail > 0 {
-        let n = 28 * usize::from(detail);
-        for side in [-1.0f32, 1.0] {
-            for t in 0..n {
-                let x = -0.5 + (t as f32 + 0.5) / n as f32;
-                if let Some(row) = tile_row(kind, detail, x, side) {
-                    m.append(&row);
-                    rows.push((x, side));
-                }
-            }
+/// The shell and every row of tiles, before normalisation.
+fn unnormalised(kind: RoofKind, detail: u8) -> TriMesh {
+    let mut m = shell(kind, detail);
+    for (x, side) in row_places(detail) {
+        if let Some(row) = tile_row(kind, detail, x, side) {
+            m.append(&row);
         }
     }
-    let frame = normalise_meshes(vec![&mut m]);
-    let nested = (kind == RoofKind::Clipped && !rows.is_empty()).then(|| {
-        let row = tile_row(kind, detail, 0.0, 1.0).unwrap_or_default();
-        Nested {
-            frame,
-            parts: vec![Part {
-                mesh: shell,
+    m
+}
+
+/// Where rows of tiles may go: (x along the ridge, the slope's side).
+fn row_places(detail: u8) -> impl Iterator<Item = (f32, f32)> {
+    let n = 28 * usize::from(detail);
+    [-1.0f32, 1.0]
+        .into_iter()
+        .flat_map(move |side| (0..n).map(move |t| (-0.5 + (t as f32 + 0.5) / n as f32, side)))
+}
+
+/// The roof as a component named `name`. A clipped roof with tiles is
+/// kept as a shell and placements of one row of tiles: its profile does
+/// not change along the ridge, so every row is the same mesh moved (and
+/// mirrored for the back slope), and a file that keeps placements (glTF)
+/// stores it once. Its flattened mesh ([`roof`]) is built only when read.
+pub fn roof_component(name: &str, kind: RoofKind, detail: u8) -> Component {
+    const ORIGIN: &str = "built-in (procedural)";
+    let whole = |mesh: TriMesh| {
+        vec![Part {
+            mesh,
+            material: None,
+        }]
+    };
+    if kind != RoofKind::Clipped || detail == 0 {
+        return Component::new(name, ORIGIN, whole(roof(kind, detail)));
+    }
+    // The normalisation needs the bounds of the flattened mesh, in its
+    // vertex order (so that the frame is the one `roof` applies); the rows
+    // are measured one at a time and dropped.
+    let shell = shell(kind, detail);
+    let mut bounds = bounds_of(shell.positions.iter().copied());
+    let (mut vertices, mut triangles) = (shell.vertex_count(), shell.triangle_count());
+    let mut rows = Vec::new();
+    for (x, side) in row_places(detail) {
+        if let Some(row) = tile_row(kind, detail, x, side) {
+            bounds = bounds_from(bounds, row.positions.iter().copied());
+            vertices += row.vertex_count();
+            triangles += row.triangle_count();
+            rows.push((x, side));
+        }
+    }
+    let Some((lo, hi)) = bounds.filter(|_| !rows.is_empty()) else {
+        return Component::new(name, ORIGIN, whole(roof(kind, detail)));
+    };
+    let row = tile_row(kind, detail, 0.0, 1.0).unwrap_or_default();
+    let nested = Nested {
+        frame: UnitBox::of(lo, hi).matrix(),
+        parts: vec![Part {
+            mesh: shell,
+            material: None,
+        }],
+        components: vec![Component::new(
+            "tiles",
+            ORIGIN,
+            vec![Part {
+                mesh: row,
                 material: None,
             }],
-            components: vec![Component {
-                name: "tiles".into(),
-                parts: vec![Part {
-                    mesh: row,
-                    material: None,
-                }],
-                origin: "built-in (procedural)".into(),
-                nested: None,
-            }],
-            instances: rows
-                .iter()
-                .enumerate()
-                .map(|(number, &(x, side))| Instance {
-                    component: 0,
-                    transform: Mat4::from_translation(Vec3::X * x)
-                        * Mat4::from_scale(Vec3::new(1.0, 1.0, side)),
-                    material: 0,
-                    number: number as u32,
-                })
-                .collect(),
-            placement_colour: true,
-        }
-    });
-    (m, nested)
+        )],
+        instances: rows
+            .iter()
+            .enumerate()
+            .map(|(number, &(x, side))| Instance {
+                component: 0,
+                transform: Mat4::from_translation(Vec3::X * x)
+                    * Mat4::from_scale(Vec3::new(1.0, 1.0, side)),
+                material: 0,
+                number: number as u32,
+            })
+            .collect(),
+        placement_colour: true,
+    };
+    let later = Later {
+        vertices,
+        triangles,
+        placement_colour: true,
+        build: Arc::new(move |_| whole(roof(kind, detail))),
+    };
+    Component::built_later(name, ORIGIN, nested, later)
 }
 
 /// The shell (a smooth top and underside, walls all around) and the ridge.

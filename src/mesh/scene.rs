@@ -7,6 +7,8 @@ use std::collections::BTreeMap;
 
 use glam::{Mat3, Mat4, Vec3};
 
+pub use super::component::{Component, Later, Nested};
+
 /// An indexed triangle mesh with one normal per vertex.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
@@ -84,7 +86,17 @@ impl TriMesh {
 
 /// Smallest box around `points`.
 pub fn bounds_of(points: impl Iterator<Item = Vec3>) -> Option<(Vec3, Vec3)> {
-    points.fold(None, |acc, p| match acc {
+    bounds_from(None, points)
+}
+
+/// Smallest box around `start` and `points`, grown a point at a time in
+/// order (so that measuring meshes one by one gives the box, to the sign
+/// of a zero, that measuring them appended would).
+pub fn bounds_from(
+    start: Option<(Vec3, Vec3)>,
+    points: impl Iterator<Item = Vec3>,
+) -> Option<(Vec3, Vec3)> {
+    points.fold(start, |acc, p| match acc {
         None => Some((p, p)),
         Some((lo, hi)) => Some((lo.min(p), hi.max(p))),
     })
@@ -104,56 +116,6 @@ pub struct Part {
     /// The component's own material (from its `.mtl`), or `None` to take the
     /// turtle's colour at each placement.
     pub material: Option<usize>,
-}
-
-/// A distinct component mesh, stored once however often it is placed. Its
-/// geometry is normalised to the unit box centred at the origin: width x,
-/// height y, depth z, front facing -z.
-#[derive(Clone, Debug)]
-pub struct Component {
-    /// The symbol that places it, e.g. `MCa` for `~MCa`.
-    pub name: String,
-    pub parts: Vec<Part>,
-    /// Where it came from: a file path or `built-in`.
-    pub origin: String,
-    /// The same geometry as `parts`, kept as placements of smaller
-    /// components, when it was built from them (a grammar component, a
-    /// tiled roof). Everything that draws or measures reads `parts`;
-    /// exporters that keep a node hierarchy (glTF) write this instead, so
-    /// each smaller component is stored once in the file.
-    pub nested: Option<Box<Nested>>,
-}
-
-/// A component as a small scene of its own (see [`Component::nested`]).
-/// Material indices are the outer scene's.
-#[derive(Clone, Debug)]
-pub struct Nested {
-    /// Inner space -> the component's unit box (its normalisation).
-    pub frame: Mat4,
-    /// Geometry drawn directly, in inner space, each part with its material.
-    pub parts: Vec<Part>,
-    pub components: Vec<Component>,
-    /// Placements of `components`, in inner space.
-    pub instances: Vec<Instance>,
-    /// Whether parts without a material of their own take the colour of
-    /// the outer placement (a roof's tiles) instead of the inner
-    /// placement's (a grammar's own colours).
-    pub placement_colour: bool,
-}
-
-impl Component {
-    pub fn vertex_count(&self) -> usize {
-        self.parts.iter().map(|p| p.mesh.vertex_count()).sum()
-    }
-
-    pub fn triangle_count(&self) -> usize {
-        self.parts.iter().map(|p| p.mesh.triangle_count()).sum()
-    }
-
-    /// True when some part takes the colour of the placement.
-    pub fn uses_placement_colour(&self) -> bool {
-        self.parts.iter().any(|p| p.material.is_none())
-    }
 }
 
 /// One placement of a component.
@@ -244,7 +206,7 @@ impl Scene {
             grow(s.mesh.bounds());
         }
         for i in &self.instances {
-            for p in &self.components[i.component].parts {
+            for p in self.components[i.component].parts() {
                 grow(bounds_of(
                     p.mesh
                         .positions
@@ -281,7 +243,7 @@ impl Scene {
                 "component {} ({}): parts {}, {} triangles",
                 c.name,
                 c.origin,
-                c.parts.len(),
+                c.parts().len(),
                 c.triangle_count()
             );
         }
@@ -321,7 +283,7 @@ impl Scene {
             emit(&s.mesh, Mat4::IDENTITY, s.material, &mut f);
         }
         for i in &self.instances {
-            for p in &self.components[i.component].parts {
+            for p in self.components[i.component].parts() {
                 emit(
                     &p.mesh,
                     i.transform,
@@ -377,15 +339,14 @@ mod tests {
             name: "m".into(),
             rgb: [1.0, 0.0, 0.0],
         });
-        s.components.push(Component {
-            name: "B".into(),
-            parts: vec![Part {
+        s.components.push(Component::new(
+            "B",
+            "test",
+            vec![Part {
                 mesh: TriMesh::cuboid(Vec3::splat(-0.5), Vec3::splat(0.5)),
                 material: None,
             }],
-            origin: "test".into(),
-            nested: None,
-        });
+        ));
         for x in [0.0, 10.0] {
             s.instances.push(Instance {
                 component: 0,

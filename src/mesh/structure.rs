@@ -399,15 +399,14 @@ mod tests {
             let c = match s.components.iter().position(|c| c.name == sym) {
                 Some(c) => c,
                 None => {
-                    s.components.push(Component {
-                        name: sym.into(),
-                        parts: vec![MeshPart {
+                    s.components.push(Component::new(
+                        sym,
+                        "test",
+                        vec![MeshPart {
                             mesh: TriMesh::cuboid(Vec3::splat(-0.5), Vec3::splat(0.5)),
                             material: None,
                         }],
-                        origin: "test".into(),
-                        nested: None,
-                    });
+                    ));
                     s.components.len() - 1
                 }
             };

@@ -19,15 +19,14 @@ pub fn surface_component(surface: &CpfgSurface, patches: &[SurfacePatch]) -> Com
     for p in patches {
         patch(p, surface.s, surface.t, &mut mesh);
     }
-    Component {
-        name: surface.name.clone(),
-        parts: vec![Part {
+    Component::new(
+        surface.name.clone(),
+        format!("cpfg surface {}", surface.file),
+        vec![Part {
             mesh,
             material: None,
         }],
-        origin: format!("cpfg surface {}", surface.file),
-        nested: None,
-    }
+    )
 }
 
 /// The Bernstein weights of a cubic at `u` and their derivatives.
@@ -127,10 +126,10 @@ mod tests {
         };
         let c = surface_component(&surface, surface.patches.as_ref().unwrap());
         assert_eq!(c.triangle_count(), 2 * 3 * 2 * 2);
-        let (lo, hi) = c.parts[0].mesh.bounds().unwrap();
+        let (lo, hi) = c.parts()[0].mesh.bounds().unwrap();
         assert!((lo - Vec3::new(-0.5, -0.5, 0.0)).length() < 1e-6, "{lo}");
         assert!((hi - Vec3::new(0.5, 0.5, 0.0)).length() < 1e-6, "{hi}");
         // A flat patch in z = 0: normals along ±z.
-        assert!(c.parts[0].mesh.normals.iter().all(|n| n.z.abs() > 0.999));
+        assert!(c.parts()[0].mesh.normals.iter().all(|n| n.z.abs() > 0.999));
     }
 }

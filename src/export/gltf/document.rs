@@ -43,6 +43,15 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Bin<'_>), ExportError>
         nested_meshes: HashMap::new(),
         nested_geometry: HashMap::new(),
     };
+    // Room for every node at once: a Pailou has ~3,600, and growing the
+    // list by doubling copied it and touched fresh memory each time.
+    let per_component: Vec<usize> = scene.components.iter().map(nodes::bound).collect();
+    let placed: usize = scene
+        .instances
+        .iter()
+        .map(|i| per_component[i.component])
+        .sum();
+    b.root.nodes.reserve(placed + 2);
     let mut nodes = Vec::new();
     nodes.extend(b.strokes()?);
     let mut each = scene.instances.iter().collect::<Vec<_>>();
@@ -184,7 +193,7 @@ impl<'s> Builder<'s> {
     ) -> Result<Vec<Primitive>, ExportError> {
         let id = self.id(component);
         let mut primitives = Vec::new();
-        for (i, part) in component.parts.iter().enumerate() {
+        for (i, part) in component.parts().iter().enumerate() {
             let geometry = match baked {
                 Some((name, transform)) => self.geometry(name, &part.mesh, Some(transform))?,
                 None => match self.parts.get(&(id, i)) {

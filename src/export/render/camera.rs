@@ -77,7 +77,7 @@ impl Camera {
             let Some(c) = scene.components.get(i.component) else {
                 continue;
             };
-            for part in &c.parts {
+            for part in c.parts() {
                 for &p in &part.mesh.positions {
                     grow(i.transform.transform_point3(p));
                 }

@@ -26,15 +26,14 @@ fn stroke(scene: &mut Scene, mesh: TriMesh, rgb: [f32; 3]) {
 fn cube_scene(rgb: [f32; 3], transform: Mat4) -> Scene {
     let mut scene = Scene::default();
     let material = material(&mut scene, rgb);
-    scene.components.push(Component {
-        name: "C".into(),
-        parts: vec![Part {
+    scene.components.push(Component::new(
+        "C",
+        "test",
+        vec![Part {
             mesh: TriMesh::cuboid(Vec3::splat(-0.5), Vec3::splat(0.5)),
             material: None,
         }],
-        origin: "test".into(),
-        nested: None,
-    });
+    ));
     scene.instances.push(Instance {
         component: 0,
         transform,
@@ -497,9 +496,10 @@ fn bench_render_1m_triangles() {
     // placements of a 1000-triangle tube in a random-ish bush
     let mut scene = Scene::default();
     let material = material(&mut scene, GREEN);
-    scene.components.push(Component {
-        name: "T".into(),
-        parts: vec![Part {
+    scene.components.push(Component::new(
+        "T",
+        "test",
+        vec![Part {
             mesh: {
                 let mut m = TriMesh::default();
                 for k in 0..50 {
@@ -515,9 +515,7 @@ fn bench_render_1m_triangles() {
             },
             material: None,
         }],
-        origin: "test".into(),
-        nested: None,
-    });
+    ));
     let mut seed = 12345u32;
     let mut rnd = || {
         seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);

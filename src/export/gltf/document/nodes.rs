@@ -12,6 +12,18 @@ use super::{Builder, ExportError};
 use crate::mesh::scene::Nested;
 use crate::mesh::{Component, Instance};
 
+/// At most how many nodes one placement of `component` adds (its own, and
+/// for a nested component its frame, its strokes and each inner placement's).
+pub(super) fn bound(component: &Component) -> usize {
+    1 + component.nested.as_ref().map_or(0, |n| {
+        2 + n
+            .instances
+            .iter()
+            .map(|i| bound(&n.components[i.component]))
+            .sum::<usize>()
+    })
+}
+
 impl<'s> Builder<'s> {
     pub(super) fn instance(
         &mut self,
@@ -155,10 +167,10 @@ impl<'s> Builder<'s> {
         let same = |a: &Component, b: &Component| {
             a.name == b.name
                 && a.origin == b.origin
-                && a.parts.len() == b.parts.len()
-                && a.parts
+                && a.parts().len() == b.parts().len()
+                && a.parts()
                     .iter()
-                    .zip(&b.parts)
+                    .zip(b.parts())
                     .all(|(p, q)| p.material == q.material && p.mesh == q.mesh)
         };
         let id = match self.distinct.iter().position(|&c| same(c, component)) {
