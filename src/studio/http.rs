@@ -29,7 +29,7 @@ pub fn serve(server: &Server, shared: &Arc<Shared>) {
         busy.fetch_add(1, SeqCst);
         let (sh, b) = (shared.clone(), busy.clone());
         let spawned = std::thread::Builder::new()
-            .stack_size(256 << 20)
+            .stack_size(crate::build::WORKER_STACK)
             .spawn(move || {
                 handle(req, &sh);
                 b.fetch_sub(1, SeqCst);
