@@ -75,7 +75,12 @@ impl Lower<'_> {
         self.climb(flat)
     }
 
-    fn climb(&self, parts: Vec<Pair<Rule>>) -> PResult<Expr> {
+    fn climb(&self, mut parts: Vec<Pair<Rule>>) -> PResult<Expr> {
+        // A lone operand (most arguments are one name or number) is what
+        // the Pratt parser would make of it, without its set-up.
+        if parts.len() == 1 {
+            return self.primary(parts.pop().expect("one part"));
+        }
         PRATT
             .map_primary(|p| self.primary(p))
             .map_prefix(|op, rhs| {
