@@ -570,7 +570,8 @@ fn describe(rule: Rule) -> Option<&'static str> {
         c_init | c_init_item => "array values `{...}`",
         c_assign | c_lvalue => "an assignment",
         c_assign_op => "`=`",
-        WHITESPACE | COMMENT | block_comment | line_comment | cont | blank_line | indent
-        | line_has_arrow | lctx_marker | nl_indent | keyword | word_char => return None,
+        WHITESPACE | comment | block_comment | line_comment | block_rest | line_rest
+        | plain_char | cont | blank_line | indent | may_start | line_has_arrow | lctx_marker
+        | nl_indent | keyword | word_char | statement_fast | exact | op_stop => return None,
     })
 }

@@ -35,7 +35,12 @@ static PRATT: LazyLock<PrattParser<Rule>> = LazyLock::new(|| {
 impl Lower<'_> {
     /// Lowers an `expr` pair.
     pub fn expr(&self, e: Pair<Rule>) -> PResult<Expr> {
-        let mut parts: Vec<Pair<Rule>> = e.into_inner().collect();
+        let mut inner = e.into_inner();
+        // A lone operand, as most arguments are: no list of parts.
+        if inner.len() == 1 {
+            return self.primary(super::lower::next(&mut inner));
+        }
+        let mut parts: Vec<Pair<Rule>> = inner.collect();
         let ternary = match parts.last() {
             Some(p) if p.as_rule() == Rule::ternary => parts.pop(),
             _ => None,
@@ -75,7 +80,12 @@ impl Lower<'_> {
         self.climb(flat)
     }
 
-    fn climb(&self, parts: Vec<Pair<Rule>>) -> PResult<Expr> {
+    fn climb(&self, mut parts: Vec<Pair<Rule>>) -> PResult<Expr> {
+        // A lone operand (a ternary's condition) is what the Pratt parser
+        // would make of it, without its set-up.
+        if parts.len() == 1 {
+            return self.primary(parts.pop().expect("one part"));
+        }
         PRATT
             .map_primary(|p| self.primary(p))
             .map_prefix(|op, rhs| {

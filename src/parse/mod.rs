@@ -14,6 +14,7 @@ mod headers;
 mod lower;
 mod print;
 
+use pest::iterators::Pairs;
 use pest::Parser;
 use pest_derive::Parser;
 
@@ -217,7 +218,7 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
             break;
         }
         let rest = &text[pos..];
-        match LsysParser::parse(Rule::statement, rest) {
+        match parse_statement(rest) {
             Ok(mut pairs) => {
                 let pair = pairs.next().expect("statement rule yields one pair");
                 let end = pos + pair.as_span().end();
@@ -258,6 +259,21 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
         }
     }
     (ast::File { items, broken }, errors)
+}
+
+/// Parses the statement at the start of `rest`: first by `statement_fast`,
+/// which skips alternatives that cannot match (see the grammar); when that
+/// fails, again by `statement`, which tries them all so that the error
+/// names everything that was expected. (`statement_fast` skips white space
+/// before the statement: a `\` line join, the only white space left at
+/// the start of `rest`, is parsed by `statement` alone.)
+fn parse_statement(rest: &str) -> Result<Pairs<'_, Rule>, pest::error::Error<Rule>> {
+    if !rest.starts_with('\\') {
+        if let Ok(pairs) = LsysParser::parse(Rule::statement_fast, rest) {
+            return Ok(pairs);
+        }
+    }
+    LsysParser::parse(Rule::statement, rest)
 }
 
 /// Whether the unindented line at `pos`, which failed as a statement, is
