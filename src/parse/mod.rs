@@ -463,6 +463,69 @@ mod tests {
         assert_eq!(heads("A(x) : x > 1 B C\n"), vec![(0, 1, 2)]);
     }
 
+    /// An indented line that is a header ends the successor above it.
+    /// `may_start` (grammar/lsys.pest) tests a continuation line for a
+    /// statement only if it holds a `:`, `>` or arrow or begins with the
+    /// letter of a header that needs no `:`: each header of the grammar is
+    /// listed here as one or the other, so that a new one must be too.
+    #[test]
+    fn indented_headers_end_a_successor() {
+        let grammar = include_str!("../../grammar/lsys.pest");
+        let alternatives: String = grammar
+            .lines()
+            .skip_while(|l| !l.starts_with("header = _{"))
+            .skip(1)
+            .take_while(|l| !l.starts_with('}'))
+            .collect();
+        let mut headers: Vec<&str> = alternatives
+            .split(|c: char| c == '|' || c.is_whitespace())
+            .filter(|w| !w.is_empty())
+            .collect();
+        headers.sort_unstable();
+        let without_colon = [
+            ("decomposition_h", "decomposition"),
+            ("endlsystem_h", "endlsystem"),
+            ("homomorphism_h", "homomorphism"),
+            ("module_h", "module X(a)"),
+            ("ring_h", "ring lsystem"),
+        ];
+        let with_colon = [
+            "angle_h",
+            "axiom_h",
+            "block_h",
+            "colour_h",
+            "consider_h",
+            "dialect_h",
+            "dlength_h",
+            "environment_h",
+            "ignore_h",
+            "lsystem_h",
+            "maxdepth_h",
+            "seed_h",
+            "step_h",
+            "width_h",
+        ];
+        let mut listed: Vec<&str> = without_colon.iter().map(|h| h.0).collect();
+        listed.extend(with_colon);
+        listed.sort_unstable();
+        assert_eq!(headers, listed, "classify the new header here and, if it needs no `:`, add its first letter to `may_start`");
+        for (_, header) in without_colon {
+            let mut upper = header.to_string();
+            upper[..1].make_ascii_uppercase();
+            for h in [header.to_string(), upper] {
+                let text = format!("A --> B C\n    {h}\n");
+                let file = SourceFile::new("t.lsys", Origin::Memory, text.clone());
+                let (ast, _) = parse(0, &file);
+                let succ = ast.items.iter().find_map(|item| match item {
+                    ast::Item::Production(p) => Some(p.succ.len()),
+                    _ => None,
+                });
+                assert_eq!(succ, Some(2), "{text:?}: the header joined the successor");
+                assert!(ast.items.len() >= 2, "{text:?}: {:?}", ast.items.len());
+            }
+        }
+    }
+
     /// A table's plain numbers (taken without the expression rule) are
     /// the numbers their expressions were, spanning only their text; any
     /// other value is an expression as before.
