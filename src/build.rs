@@ -3,6 +3,9 @@
 //! the tests and the REPL all go through here.
 
 use std::collections::HashMap;
+use std::fmt;
+use std::sync::mpsc::Receiver;
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use miette::Diagnostic;
@@ -39,6 +42,8 @@ pub struct BuildOptions {
     pub width: Option<f64>,
     pub components: ComponentSearch,
     pub mesh: MeshOptions,
+    /// Grammar components already being built (see [`Early`]).
+    pub early: Early,
 }
 
 impl BuildOptions {
@@ -55,8 +60,114 @@ impl BuildOptions {
             step: None,
             width: None,
             components: search,
+            // What was started is the outer grammar's own components.
+            early: Early::default(),
             ..self.clone()
         }
+    }
+}
+
+/// A grammar component's scene, or its rendered diagnostics.
+type SceneOrDiagnostics = Result<Scene, String>;
+
+/// Grammar components started before the grammar that places them is
+/// compiled: a Pailou's Toukungs are whole builds of their own that need
+/// nothing of the Pailou but the command line's options, so they are built
+/// on the other core while the Pailou is parsed, resolved and derived. Each
+/// is built exactly as [`mesh::GrammarComponents::scene`] would build it
+/// then; one the grammar never places is dropped.
+#[derive(Clone, Default)]
+pub struct Early {
+    started: Arc<Mutex<HashMap<String, Receiver<SceneOrDiagnostics>>>>,
+}
+
+impl fmt::Debug for Early {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let started = self.started.lock().map(|s| s.len()).unwrap_or(0);
+        f.debug_struct("Early").field("started", &started).finish()
+    }
+}
+
+impl Early {
+    /// Starts the grammar components that `text` (the grammar's own
+    /// source, not its includes) places with `~NAME` and `opts` finds as
+    /// grammars, one after the other on one thread beside the compiler's
+    /// (so that the two cores are busy with no third thread taking turns
+    /// with the compiler: three made the Pailou slower). Nothing on one
+    /// core. A name in a comment or a placement never reached costs a build
+    /// on the other core, and nothing else.
+    pub fn start(text: &str, opts: &BuildOptions) -> Early {
+        let early = Early::default();
+        if crate::derive::threads() < 2 {
+            return early;
+        }
+        let mut names: Vec<&str> = text
+            .split(['~', '∼'])
+            .skip(1)
+            .map(|rest| {
+                let end = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                &rest[..end]
+            })
+            .filter(|name| !name.is_empty())
+            .collect();
+        names.sort_unstable();
+        names.dedup();
+        let wanted = opts.components.grammars_among(names);
+        if wanted.is_empty() {
+            return early;
+        }
+        let mut started = early.started.lock().expect("not shared yet");
+        let mut sends = Vec::new();
+        for (name, _, _) in &wanted {
+            let (send, receive) = std::sync::mpsc::sync_channel(1);
+            started.insert(name.clone(), receive);
+            sends.push(send);
+        }
+        drop(started);
+        let opts = opts.clone();
+        let task = move || {
+            let sub = SubGrammars {
+                opts: &opts,
+                built: HashMap::new(),
+            };
+            for ((name, input, search), send) in wanted.iter().zip(sends) {
+                // A receiver gone (the build ended early) stops nothing
+                // else: the rest still run to their own end.
+                let _ = send.send(sub.build(name, input, search));
+            }
+        };
+        let thread = std::thread::Builder::new()
+            .stack_size(WORKER_STACK)
+            .spawn(task);
+        if thread.is_err() {
+            // Built when asked for instead.
+            early.started.lock().expect("not shared yet").clear();
+        }
+        early
+    }
+
+    /// The components started and not yet taken by a build, by name.
+    pub fn waiting(&self) -> Vec<String> {
+        let mut names: Vec<String> = self
+            .started
+            .lock()
+            .map(|s| s.keys().cloned().collect())
+            .unwrap_or_default();
+        names.sort_unstable();
+        names
+    }
+
+    fn has(&self, name: &str) -> bool {
+        self.started.lock().is_ok_and(|s| s.contains_key(name))
+    }
+
+    /// The scene of `name` if it was started (waiting for it); `None` if
+    /// not, or if its thread panicked (it is then built when asked for).
+    fn take(&self, name: &str) -> Option<Result<Scene, String>> {
+        let receive = self.started.lock().ok()?.remove(name)?;
+        receive.recv().ok()
     }
 }
 
@@ -90,10 +201,13 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
         input: &crate::load::Input,
         search: &ComponentSearch,
     ) -> Result<Scene, String> {
-        match self.built.remove(name) {
-            Some(scene) => scene,
-            None => self.build(name, input, search),
+        if let Some(scene) = self.built.remove(name) {
+            return scene;
         }
+        if let Some(scene) = self.opts.early.take(name) {
+            return scene;
+        }
+        self.build(name, input, search)
     }
 
     /// Each grammar component is a whole build of its own (a Pailou's two
@@ -101,7 +215,11 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
     /// thread per core, each thread with the compiler's deep stack (see
     /// [`WORKER_STACK`]). A failed one is reported when `scene` asks for
     /// it, in placement order, as if built then.
-    fn ahead(&mut self, wanted: Vec<(String, crate::load::Input, ComponentSearch)>) {
+    fn ahead(&mut self, mut wanted: Vec<(String, crate::load::Input, ComponentSearch)>) {
+        wanted.retain(|(name, _, _)| !self.opts.early.has(name));
+        if wanted.is_empty() {
+            return;
+        }
         let workers = crate::derive::threads().clamp(1, wanted.len());
         let this = &*self;
         let share = |first: usize| {

@@ -56,3 +56,72 @@ fn nested_components_are_flattened_only_when_read() {
         }
     }
 }
+
+/// Compiles `input` as `lsys build` does (`-D` defines none).
+fn compile(input: &lsys::load::Input) -> lsys::pipeline::Compilation {
+    lsys::pipeline::compile(input, &Default::default()).unwrap()
+}
+
+/// What a build gives: the GLB's bytes, or the rendered diagnostics.
+fn glb_or_error(c: &lsys::pipeline::Compilation, opts: &lsys::build::BuildOptions) -> String {
+    match lsys::build::build(c, opts) {
+        Ok(b) => format!("{:?}", lsys::export::gltf::to_glb(&b.scene).unwrap()),
+        Err(e) => lsys::diag::render_plain(&e),
+    }
+}
+
+/// Grammar components started before their grammar compiles (what `lsys
+/// build` does on two cores, `build::Early`) are the ones the build then
+/// takes, and give the same file, or the same diagnostics when one fails,
+/// as components built when placed.
+#[test]
+fn components_started_early_give_the_same_model_and_errors() {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let pailou = lsys::load::Input::Std("pailou".into());
+        let text = lsys::stdlib::get("pailou").unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("components")).unwrap();
+        std::fs::write(
+            dir.path().join("components/Bad.lsys"),
+            "axiom: F(1\nderivation length: 1\n",
+        )
+        .unwrap();
+        let bad_text = "axiom: ~Bad(1, 1, 1)\n";
+        let bad = lsys::load::Input::Text {
+            name: "bad.lsys".into(),
+            text: bad_text.into(),
+        };
+        for (input, text, search) in [
+            (pailou, text, lsys::mesh::ComponentSearch::default()),
+            (
+                bad,
+                bad_text,
+                lsys::mesh::ComponentSearch {
+                    grammar_dir: Some(dir.path().to_path_buf()),
+                    ..Default::default()
+                },
+            ),
+        ] {
+            let c = compile(&input);
+            let opts = lsys::build::BuildOptions {
+                components: search,
+                ..Default::default()
+            };
+            let placed = glb_or_error(&c, &opts);
+            let mut early = opts.clone();
+            early.early = lsys::build::Early::start(text, &early);
+            let started = early.early.waiting();
+            assert!(!started.is_empty(), "nothing started for {text:.40}");
+            let taken = glb_or_error(&c, &early);
+            assert_eq!(early.early.waiting(), Vec::<String>::new(), "not taken");
+            assert!(
+                taken == placed,
+                "{started:?}: {taken:.300}\nagainst\n{placed:.300}"
+            );
+        }
+    });
+}

@@ -273,6 +273,7 @@ fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
         width: m.look.width,
         components: component_search(m.look, grammar_dir),
         mesh: mesh_options(m.look),
+        early: Default::default(),
     }
 }
 
@@ -341,6 +342,12 @@ pub(super) fn build_once(
 ) -> Outcome {
     let t0 = Instant::now();
     let opts = source_options(m);
+    let mut build_opts = options(m, opts.clone());
+    // The grammar components its text places are built on the other core
+    // while it compiles (a Pailou's Toukungs; see `build::Early`).
+    if let Some(text) = root_text(&m.input) {
+        build_opts.early = build::Early::start(&text, &build_opts);
+    }
     let comp = match compile_reporting(&m.input, m.name, &opts, color) {
         Ok(c) => c,
         Err((code, files)) => {
@@ -353,14 +360,34 @@ pub(super) fn build_once(
         }
     };
     let sources = Some(comp.program.sources.disk_paths());
-    let code = build_compiled(m, &comp, (out, pic, format), color, report_as, t0);
+    let code = build_compiled(
+        m,
+        &comp,
+        &build_opts,
+        (out, pic, format),
+        color,
+        report_as,
+        t0,
+    );
     Outcome { code, sources }
+}
+
+/// The text of the grammar's own file, if it can be had without a
+/// diagnostic (compiling reads it again, and reports what is wrong).
+fn root_text(input: &crate::load::Input) -> Option<std::borrow::Cow<'static, str>> {
+    use crate::load::Input;
+    match input {
+        Input::Std(name) => crate::stdlib::get(name).map(Into::into),
+        Input::Path(path) => std::fs::read_to_string(path).ok().map(Into::into),
+        Input::Text { text, .. } | Input::Edited { text, .. } => Some(text.clone().into()),
+    }
 }
 
 /// Builds the compiled grammar and writes `out` as `format`; the exit code.
 fn build_compiled(
     m: &Job,
     comp: &crate::pipeline::Compilation,
+    opts: &BuildOptions,
     (out, pic, format): (&Path, &PictureArgs, Format),
     color: bool,
     report_as: Report,
@@ -368,9 +395,7 @@ fn build_compiled(
 ) -> i32 {
     let parse = t0.elapsed();
     let progress = Progress::new(true);
-    let built = match build::build_observed(comp, &options(m, source_options(m)), &mut |s| {
-        progress.stage(s)
-    }) {
+    let built = match build::build_observed(comp, opts, &mut |s| progress.stage(s)) {
         Ok(b) => b,
         Err(e) => {
             drop(progress);

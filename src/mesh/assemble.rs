@@ -8,7 +8,7 @@ use super::components::ComponentSearch;
 use super::error::MeshError;
 use super::internodes;
 use super::palette::Palette;
-use super::scene::{Instance, Material, Scene, Stroke, TriMesh};
+use super::scene::{Component, Instance, Material, Scene, Stroke, TriMesh};
 use super::shapes;
 use super::tubes::{Facets, Tubes};
 use crate::resolve::ir::{Program, SymId};
@@ -167,18 +167,23 @@ pub fn assemble_scene(
     let mut placed: Vec<SymId> = drawing.placements.iter().map(|p| p.symbol).collect();
     placed.sort_unstable();
     placed.dedup();
-    let names = placed
+    let names: Vec<&str> = placed
         .iter()
         .map(|&s| {
             program.symbols.list[s as usize]
                 .name
                 .trim_start_matches('~')
         })
-        .filter(|name| !program.cpfg_surfaces.iter().any(|s| s.name == *name));
-    let wanted = search.grammars_among(names);
+        .filter(|name| !program.cpfg_surfaces.iter().any(|s| s.name == *name))
+        .collect();
+    let wanted = search.grammars_among(names.iter().copied());
     if wanted.len() > 1 {
         grammars.ahead(wanted);
     }
+    let mut roofs: HashMap<String, Component> = search
+        .roofs_among(names.iter().copied())
+        .into_iter()
+        .collect();
     // Symbol -> component index, loaded on first placement.
     let mut loaded: HashMap<SymId, usize> = HashMap::new();
     // Placements so far per component index (`--instanced` has already
@@ -199,6 +204,7 @@ pub fn assemble_scene(
                         Ok(patches) => super::surface::surface_component(s, patches),
                         Err(_) => continue,
                     },
+                    None if roofs.contains_key(name) => roofs.remove(name).expect("a roof"),
                     None => match search.load(name, &mut b.scene.materials, grammars, |searched| {
                         missing(program, p.symbol, name, searched)
                     }) {

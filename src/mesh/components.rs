@@ -109,6 +109,25 @@ impl ComponentSearch {
             .collect()
     }
 
+    /// Of the components `names`, the procedural roofs, built now (they
+    /// need nothing of the scene, so they are built while grammar
+    /// components started earlier finish on the other core).
+    pub fn roofs_among<'n>(
+        &self,
+        names: impl IntoIterator<Item = &'n str>,
+    ) -> Vec<(String, Component)> {
+        names
+            .into_iter()
+            .filter_map(|name| match self.find(name) {
+                Ok(Found::Roof(kind)) => Some((
+                    name.to_string(),
+                    super::roof::roof_component(name, kind, self.detail),
+                )),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Finds every component `program` names (its `~X` symbols) without
     /// reading or building any: `lsys check`'s look-up. One error, with
     /// the places searched, for each component found nowhere.
