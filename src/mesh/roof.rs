@@ -219,6 +219,16 @@ fn shell(kind: RoofKind, detail: u8) -> TriMesh {
             }
         }
     }
+    // Room for everything below at once (grown a vertex at a time, the
+    // lists were copied a dozen times).
+    let (surfaces, surface_indices) = match kind {
+        RoofKind::Eaves => (2 * cells.len() * 3, 2 * cells.len() * 3),
+        RoofKind::Clipped => (2 * points.len(), 2 * cells.len() * 3),
+    };
+    let (rim, ridge) = (2 * (nx + nz) * 6, 3 * 24);
+    m.positions.reserve_exact(surfaces + rim + ridge);
+    m.normals.reserve_exact(surfaces + rim + ridge);
+    m.indices.reserve_exact(surface_indices + rim + 3 * 36);
     for (offset, sign) in [(Vec3::ZERO, 1.0f32), (down, -1.0)] {
         if kind == RoofKind::Eaves {
             for t in &cells {
@@ -299,28 +309,36 @@ fn tile_row(kind: RoofKind, detail: u8, x: f32, side: f32) -> Option<TriMesh> {
     if z0 >= 0.46 {
         return None;
     }
+    // Every ring has the same directions around the tile (computed once:
+    // a row is built 113 times a Pailou).
+    let around: Vec<Vec3> = (0..=facets)
+        .map(|f| {
+            let a = std::f32::consts::PI * f as f32 / facets as f32;
+            Vec3::new(a.cos(), a.sin(), 0.0)
+        })
+        .collect();
+    let ring_vertices = (segments + 2) * (facets + 1) + 1;
+    m.positions.reserve_exact(ring_vertices);
+    m.normals.reserve_exact(ring_vertices);
+    m.indices.reserve_exact(segments * facets * 6 + facets * 3);
     let ring = |k: usize| {
         let z = side * (z0 + (0.5 - z0) * k as f32 / segments as f32);
         let c = Vec3::new(x, surface(kind, x, z), z);
-        (0..=facets)
-            .map(|f| {
-                let a = std::f32::consts::PI * f as f32 / facets as f32;
-                let n = Vec3::new(a.cos(), a.sin(), 0.0);
-                (c + n * r, n)
-            })
-            .collect::<Vec<_>>()
+        move |n: Vec3| (c + n * r, n)
     };
     // Rings of shared vertices (smooth round tiles), quads between.
     let mut prev = ring(0);
     let mut prev_at = 0;
-    for (p, n) in &prev {
-        m.vertex(*p, *n);
+    for &n in &around {
+        let (p, n) = prev(n);
+        m.vertex(p, n);
     }
     for k in 1..=segments {
         let next = ring(k);
         let next_at = m.vertex_count() as u32;
-        for (p, n) in &next {
-            m.vertex(*p, *n);
+        for &n in &around {
+            let (p, n) = next(n);
+            m.vertex(p, n);
         }
         for f in 0..facets as u32 {
             let (a, b) = (prev_at + f, prev_at + f + 1);
@@ -342,8 +360,8 @@ fn tile_row(kind: RoofKind, detail: u8, x: f32, side: f32) -> Option<TriMesh> {
     let centre = Vec3::new(x, surface(kind, x, side * 0.5), side * 0.5);
     let c = m.vertex(centre, n);
     let first = m.vertex_count() as u32;
-    for (p, _) in &prev {
-        m.vertex(*p, n);
+    for &d in &around {
+        m.vertex(prev(d).0, n);
     }
     for f in 0..facets as u32 {
         if side > 0.0 {
