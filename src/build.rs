@@ -101,41 +101,24 @@ impl Early {
         if crate::derive::threads() < 2 {
             return early;
         }
-        let mut names: Vec<&str> = text
-            .split(['~', '∼'])
-            .skip(1)
-            .map(|rest| {
-                let end = rest
-                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-                    .unwrap_or(rest.len());
-                &rest[..end]
-            })
-            .filter(|name| !name.is_empty())
-            .collect();
-        names.sort_unstable();
-        names.dedup();
-        let wanted = opts.components.grammars_among(names);
+        let wanted = opts.components.grammars_among(placed_names(text));
         if wanted.is_empty() {
             return early;
         }
         let mut started = early.started.lock().expect("not shared yet");
         let mut sends = Vec::new();
-        for (name, _, _) in &wanted {
+        for w in &wanted {
             let (send, receive) = std::sync::mpsc::sync_channel(1);
-            started.insert(name.clone(), receive);
+            started.insert(w.name.clone(), receive);
             sends.push(send);
         }
         drop(started);
         let opts = opts.clone();
         let task = move || {
-            let sub = SubGrammars {
-                opts: &opts,
-                built: HashMap::new(),
-            };
-            for ((name, input, search), send) in wanted.iter().zip(sends) {
+            for (w, send) in wanted.iter().zip(sends) {
                 // A receiver gone (the build ended early) stops nothing
                 // else: the rest still run to their own end.
-                let _ = send.send(sub.build(name, input, search));
+                let _ = send.send(build_component(&opts, w));
             }
         };
         let thread = std::thread::Builder::new()
@@ -165,10 +148,39 @@ impl Early {
 
     /// The scene of `name` if it was started (waiting for it); `None` if
     /// not, or if its thread panicked (it is then built when asked for).
-    fn take(&self, name: &str) -> Option<Result<Scene, String>> {
+    fn take(&self, name: &str) -> Option<SceneOrDiagnostics> {
         let receive = self.started.lock().ok()?.remove(name)?;
         receive.recv().ok()
     }
+}
+
+/// The names `text` places as components (`~NAME`, `∼NAME`), sorted, each
+/// once; a name in a comment is found too.
+fn placed_names(text: &str) -> Vec<&str> {
+    let mut names: Vec<&str> = text
+        .split(['~', '∼'])
+        .skip(1)
+        .map(|rest| {
+            let end = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            &rest[..end]
+        })
+        .filter(|name| !name.is_empty())
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names
+}
+
+/// Compiles and builds grammar component `w` with the outer build's
+/// options (see [`BuildOptions::for_component`]).
+fn build_component(opts: &BuildOptions, w: &mesh::Wanted) -> SceneOrDiagnostics {
+    let opts = opts.for_component(&w.name, w.search.clone());
+    let comp = crate::pipeline::compile(&w.input, &opts.source).map_err(|f| f.render_plain())?;
+    build(&comp, &opts)
+        .map(|b| b.scene)
+        .map_err(|e| crate::diag::render_plain(&e))
 }
 
 /// Grammar components built by this crate's own pipeline, with the outer
@@ -176,22 +188,7 @@ impl Early {
 struct SubGrammars<'a> {
     opts: &'a BuildOptions,
     /// Scenes built ahead (see [`mesh::GrammarComponents::ahead`]), by name.
-    built: HashMap<String, Result<Scene, String>>,
-}
-
-impl SubGrammars<'_> {
-    fn build(
-        &self,
-        name: &str,
-        input: &crate::load::Input,
-        search: &ComponentSearch,
-    ) -> Result<Scene, String> {
-        let opts = self.opts.for_component(name, search.clone());
-        let comp = crate::pipeline::compile(input, &opts.source).map_err(|f| f.render_plain())?;
-        build(&comp, &opts)
-            .map(|b| b.scene)
-            .map_err(|e| crate::diag::render_plain(&e))
-    }
+    built: HashMap<String, SceneOrDiagnostics>,
 }
 
 impl mesh::GrammarComponents for SubGrammars<'_> {
@@ -200,14 +197,19 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
         name: &str,
         input: &crate::load::Input,
         search: &ComponentSearch,
-    ) -> Result<Scene, String> {
+    ) -> SceneOrDiagnostics {
         if let Some(scene) = self.built.remove(name) {
             return scene;
         }
         if let Some(scene) = self.opts.early.take(name) {
             return scene;
         }
-        self.build(name, input, search)
+        let wanted = mesh::Wanted {
+            name: name.to_string(),
+            input: input.clone(),
+            search: search.clone(),
+        };
+        build_component(self.opts, &wanted)
     }
 
     /// Each grammar component is a whole build of its own (a Pailou's two
@@ -215,19 +217,19 @@ impl mesh::GrammarComponents for SubGrammars<'_> {
     /// thread per core, each thread with the compiler's deep stack (see
     /// [`WORKER_STACK`]). A failed one is reported when `scene` asks for
     /// it, in placement order, as if built then.
-    fn ahead(&mut self, mut wanted: Vec<(String, crate::load::Input, ComponentSearch)>) {
-        wanted.retain(|(name, _, _)| !self.opts.early.has(name));
+    fn ahead(&mut self, mut wanted: Vec<mesh::Wanted>) {
+        wanted.retain(|w| !self.opts.early.has(&w.name));
         if wanted.is_empty() {
             return;
         }
         let workers = crate::derive::threads().clamp(1, wanted.len());
-        let this = &*self;
+        let opts = self.opts;
         let share = |first: usize| {
             wanted
                 .iter()
                 .skip(first)
                 .step_by(workers)
-                .map(|(name, input, search)| (name.clone(), this.build(name, input, search)))
+                .map(|w| (w.name.clone(), build_component(opts, w)))
                 .collect::<Vec<_>>()
         };
         let built = std::thread::scope(|scope| {

@@ -96,14 +96,15 @@ impl ComponentSearch {
     pub fn grammars_among<'n>(
         &self,
         names: impl IntoIterator<Item = &'n str>,
-    ) -> Vec<(String, crate::load::Input, ComponentSearch)> {
+    ) -> Vec<super::Wanted> {
         names
             .into_iter()
             .filter_map(|name| match self.find(name) {
-                Ok(Found::Grammar(input)) => {
-                    let inner = super::subgrammar::inner_search(name, &input, self).ok()?;
-                    Some((name.to_string(), input, inner))
-                }
+                Ok(Found::Grammar(input)) => Some(super::Wanted {
+                    name: name.to_string(),
+                    search: super::subgrammar::inner_search(name, &input, self).ok()?,
+                    input,
+                }),
                 _ => None,
             })
             .collect()

@@ -21,4 +21,4 @@ pub use components::ComponentSearch;
 pub use error::MeshError;
 pub use palette::Palette;
 pub use scene::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};
-pub use subgrammar::{GrammarComponents, NoGrammars};
+pub use subgrammar::{GrammarComponents, NoGrammars, Wanted};

@@ -31,12 +31,23 @@ pub trait GrammarComponents {
         search: &ComponentSearch,
     ) -> Result<Scene, String>;
 
-    /// Told which grammar components a build will ask [`Self::scene`] for
-    /// (name, input, the search each is built with), so that it can build
-    /// them ahead, at once. The default builds nothing ahead.
-    fn ahead(&mut self, wanted: Vec<(String, Input, ComponentSearch)>) {
+    /// Told which grammar components a build will ask [`Self::scene`] for,
+    /// so that it can build them ahead, at once. The default builds
+    /// nothing ahead.
+    fn ahead(&mut self, wanted: Vec<Wanted>) {
         let _ = wanted;
     }
+}
+
+/// A grammar component a build will ask for: what [`GrammarComponents::
+/// scene`] is given for it.
+#[derive(Clone, Debug)]
+pub struct Wanted {
+    /// The symbol that places it, without the `~`.
+    pub name: String,
+    pub input: Input,
+    /// The search it is built with (see [`inner_search`]).
+    pub search: ComponentSearch,
 }
 
 /// For builds that must not nest grammars (none is found).
