@@ -12,6 +12,8 @@ use std::path::{Path, PathBuf};
 
 use tempfile::NamedTempFile;
 
+use super::write_behind::WriteBehind;
+
 /// A set of files being written; nothing is visible until [`commit`].
 ///
 /// [`commit`]: AtomicFiles::commit
@@ -44,9 +46,14 @@ impl AtomicFiles {
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let tmp = temporary_in(dir)?;
-        let mut out = BufWriter::with_capacity(1 << 16, tmp);
+        #[cfg(unix)]
+        let fd = Some(std::os::fd::AsRawFd::as_raw_fd(&tmp));
+        #[cfg(not(unix))]
+        let fd = None;
+        let mut out = BufWriter::with_capacity(1 << 16, WriteBehind::new(tmp, fd));
         body(&mut out)?;
-        let tmp = out.into_inner().map_err(|e| e.into_error())?;
+        let tmp = out.into_inner().map_err(|e| e.into_error())?.finish();
+        let tmp = tmp.ok_or_else(|| io::Error::other("the temporary file was already finished"))?;
         self.pending.push((path.to_path_buf(), tmp));
         Ok(())
     }

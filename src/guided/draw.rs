@@ -11,7 +11,7 @@ use super::scene::SceneSpec;
 use crate::bytecode::Compiled;
 use crate::derive::{self, DeriveOptions, ModuleStore};
 use crate::resolve::Program;
-use crate::turtle::drawing::{Chain, TubePoint};
+use crate::turtle::drawing::{Chain, ChainPoints, TubePoint};
 use crate::turtle::{self, Drawing, TurtleError, TurtleOptions};
 
 fn plane(v: Vec3) -> DVec2 {
@@ -62,7 +62,7 @@ pub fn place_and_clip(d: &Drawing, at: &Placement, guide: &[DVec2]) -> Drawing {
                 up: turned(at, p.up),
             })
             .collect();
-        let mut run: Vec<TubePoint> = Vec::new();
+        let mut run = ChainPoints::new();
         for w in pts.windows(2) {
             if keep((w[0].pos + w[1].pos) * 0.5) {
                 if run.is_empty() {
@@ -145,7 +145,7 @@ pub fn overlay(spec: &SceneSpec, width: f32, guide_colour: u32, link_colour: u32
     };
     let chain = |pts: Vec<TubePoint>, colour| Chain {
         colour,
-        points: pts,
+        points: pts.into(),
     };
     for g in &spec.guides {
         for z in [0.0, g.height]

@@ -8,6 +8,7 @@ use super::components::ComponentSearch;
 use super::error::MeshError;
 use super::internodes;
 use super::palette::Palette;
+use super::prefault::Prefault;
 use super::scene::{Component, Instance, Material, Scene, Stroke, TriMesh};
 use super::shapes;
 use super::tubes::{Facets, Tubes};
@@ -128,14 +129,20 @@ pub fn assemble_scene(
         // Chains come in long runs of one colour: two hash lookups per
         // chain were a sixth of the meshing time.
         let mut last: Option<(u32, usize)> = None;
+        // The second core backs the pages of a big mesh while this one
+        // fills it: one helper at a time, for a mesh just reserved.
+        let mut prefault: Option<Prefault> = None;
+        let threads = crate::derive::threads();
         for (i, c) in drawing.chains.iter().enumerate() {
             let k = match last {
                 Some((colour, k)) if colour == c.colour => k,
                 _ => {
+                    prefault = None;
                     let k = b.stroke(c.colour);
                     let mesh = &mut b.scene.strokes[k].mesh;
                     if mesh.positions.is_empty() {
                         tubes.reserve(c.colour, mesh);
+                        prefault = Prefault::start(mesh, threads);
                     }
                     k
                 }
@@ -144,6 +151,9 @@ pub fn assemble_scene(
             let mesh = &mut b.scene.strokes[k].mesh;
             let before = mesh.triangle_count();
             tubes.add(i, c, mesh);
+            if let Some(p) = &mut prefault {
+                p.progress(mesh);
+            }
             let added = mesh.triangle_count() - before;
             check(added)?;
         }

@@ -27,7 +27,7 @@ pub fn unit_cylinder(sides: u32) -> Component {
     let mut mesh = TriMesh::default();
     let chain = Chain {
         colour: 0,
-        points: vec![point(0.0), point(1.0)],
+        points: smallvec::smallvec![point(0.0), point(1.0)],
     };
     tube(&chain, sides, &mut mesh);
     Component::new(

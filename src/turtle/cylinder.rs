@@ -46,12 +46,12 @@ pub(super) fn control_point(
         chain: None,
         contour: s.contour,
     };
-    let prev = match (act, s.cylinder) {
+    let prev = match (act, s.cylinder.as_deref()) {
         (Action::CylStart, _) | (_, None) => {
-            s.cylinder = Some(here);
+            s.cylinder = Some(Box::new(here));
             return;
         }
-        (_, Some(prev)) => prev,
+        (_, Some(&prev)) => prev,
     };
     let segments = args
         .first()
@@ -73,7 +73,7 @@ pub(super) fn control_point(
         }
         None => draw_segment(d, &prev, &here, segments, s.colour),
     };
-    s.cylinder = (act != Action::CylEnd).then_some(Open { chain, ..here });
+    s.cylinder = (act != Action::CylEnd).then(|| Box::new(Open { chain, ..here }));
 }
 
 /// Samples the cubic Hermite curve from `a` to `b` (tangents along each
@@ -117,7 +117,7 @@ fn draw_segment(
         None => {
             d.chains.push(Chain {
                 colour,
-                points: vec![sample(0.0)],
+                points: smallvec::smallvec![sample(0.0)],
             });
             d.chains.len() - 1
         }

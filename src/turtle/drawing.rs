@@ -25,8 +25,13 @@ pub struct TubePoint {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Chain {
     pub colour: u32,
-    pub points: Vec<TubePoint>,
+    pub points: ChainPoints,
 }
+
+/// A chain's points. Most chains of a branching model are a single
+/// segment: two points are kept inline, not in an allocation of their own
+/// (W2 draws 262,143 chains).
+pub type ChainPoints = smallvec::SmallVec<[TubePoint; 2]>;
 
 /// Where a chain starts: the point of an earlier chain the turtle stood
 /// on when it drew the chain's first segment (a branch leaving its

@@ -77,7 +77,10 @@ fn act_of(name: &str, kind: SymbolKind, dialect: Dialect) -> Act {
     }
 }
 
-#[derive(Clone, Copy, Debug)]
+/// Pushed and popped at every bracket: a W2 tree copies it 2 × 262,143
+/// times, so what few models use (an open generalized cylinder, with a
+/// frame of its own) is boxed.
+#[derive(Clone, Debug)]
 pub(super) struct State {
     pub(super) frame: Frame,
     /// The scope's size (docs/shapes.md); its origin and axes are the
@@ -96,12 +99,25 @@ pub(super) struct State {
     /// The open generalized cylinder: its last control point, and the
     /// chain its last segment extended. A branch copies it and goes on
     /// from the branch point, as cpfg's spline stack does.
-    pub(super) cylinder: Option<super::cylinder::Open>,
+    pub(super) cylinder: Option<Box<super::cylinder::Open>>,
     /// cpfg's `@#(id)`: the cross-section of the cylinders drawn from
     /// here, an index into the program's contours; `None`: round.
     pub(super) contour: Option<usize>,
     tropism: Vec3,
     elasticity: f32,
+}
+
+impl State {
+    /// Whether the frame (as the f32 the model is stored in) and the width
+    /// are finite. The frame computes in f64.
+    fn is_finite(&self) -> bool {
+        let f = &self.frame;
+        f.pos.as_vec3().is_finite()
+            && f.h.is_finite()
+            && f.u.is_finite()
+            && f.l.is_finite()
+            && self.width.is_finite()
+    }
 }
 
 pub(super) struct Turtle<'a> {
@@ -306,15 +322,11 @@ impl Turtle<'_> {
                     Act::Place => t.place(sym, args, i),
                 }
                 // The model is in 32-bit floats: steps that add up past their
-                // range would reach the exporter as infinities.
-                let f = &t.state.frame;
-                // The frame computes in f64; the model is stored in f32.
-                let finite = f.pos.as_vec3().is_finite()
-                    && f.h.is_finite()
-                    && f.u.is_finite()
-                    && f.l.is_finite()
-                    && t.state.width.is_finite();
-                if !finite {
+                // range would reach the exporter as infinities. A bracket
+                // changes nothing or brings back a state checked when it
+                // was current (a third of W2's interpretation was checks).
+                if !matches!(act, Act::Command(Action::Push | Action::Pop)) && !t.state.is_finite()
+                {
                     return Err(TurtleError::Overflow {
                         index: i + 1,
                         text: module_text(&program.symbols, sym, args),
@@ -366,7 +378,7 @@ impl Turtle<'_> {
             HeadingUp => s.frame.rotate_heading_to(DVec3::Y),
             Mirror => s.frame.mirror(),
             Push => {
-                self.stack.push(self.state);
+                self.stack.push(self.state.clone());
                 // A branch draws its own tubes; the parent's chain resumes
                 // after the matching `]`. An open generalized cylinder
                 // goes on in the branch.
@@ -543,7 +555,7 @@ impl Turtle<'_> {
                     s.at = Some((chains.len() as u32, 1));
                     chains.push(Chain {
                         colour: s.colour,
-                        points: vec![
+                        points: smallvec::smallvec![
                             TubePoint {
                                 pos: from,
                                 radius,

@@ -191,7 +191,7 @@ impl Turtle<'_> {
         // Walk the branch with its own `[` and `]` (parameterless), so the
         // branch starts its own tubes as any branch does; the `[` saves
         // the sub-scope set here and the `]` brings it back.
-        let saved = self.state;
+        let saved = self.state.clone();
         self.state.frame = frame;
         self.state.scope = Some(size);
         let r = self.walk(w, q, b.start - 1, b.end + 1, b.offset);
