@@ -36,6 +36,11 @@ const MIN_SPARE: usize = 8 << 20;
 
 const PAGE: usize = 4096;
 
+/// Indices written between two looks at the buffers (a tube writes
+/// vertices and indices together: 16 Ki indices are 64 KiB, with a few
+/// dozen KiB of vertices).
+const LOOK_EVERY: usize = 16 << 10;
+
 /// One buffer's spare capacity (addresses) and the address up to which the
 /// mesher has written it.
 struct Buffer {
@@ -56,6 +61,8 @@ pub(super) struct Prefault {
     at: [(usize, usize); 3],
     /// The written addresses last told to the helper.
     told: [usize; 3],
+    /// The length of the indices at which `progress` next looks.
+    look_at: usize,
     helper: Option<JoinHandle<()>>,
 }
 
@@ -98,14 +105,27 @@ impl Prefault {
             shared,
             at: now.map(|(ptr, cap, _)| (ptr, cap)),
             told: now.map(|(ptr, _, len)| ptr + len),
+            look_at: 0,
             helper: Some(helper),
         })
     }
 
-    /// Tells the helper how far the mesher has written `mesh`, once it is a
-    /// [`CHUNK`] further in some buffer (waking the helper once a tube
-    /// was a system call each); stops the helper when a buffer has moved.
+    /// Tells the helper how far the mesher has written `mesh`: looks every
+    /// [`LOOK_EVERY`] indices, and tells once a buffer is a [`CHUNK`]
+    /// further (waking the helper after every tube was a system call
+    /// each). Stops the helper when a buffer has moved.
+    #[inline]
     pub(super) fn progress(&mut self, mesh: &TriMesh) {
+        // Cheap enough to call after every tube: most calls end here.
+        if mesh.indices.len() < self.look_at {
+            return;
+        }
+        self.look_at = mesh.indices.len() + LOOK_EVERY;
+        self.tell(mesh);
+    }
+
+    #[cold]
+    fn tell(&mut self, mesh: &TriMesh) {
         let Some(helper) = &self.helper else { return };
         let now = buffers(mesh);
         if now.iter().zip(&self.at).any(|(n, a)| (n.0, n.1) != *a) {

@@ -132,15 +132,11 @@ pub struct Scratch {
     kdirs: Vec<Vec3>,
     /// (sin, cos) of each facet's angle.
     around: Vec<(f32, f32)>,
-    /// The side wall between two rings: per index, which ring (0 the
-    /// earlier, 1 the later) and the facet, so that a wall is a copy of
-    /// this table plus the rings' first vertices.
-    wall: Vec<(usize, u32)>,
 }
 
 impl Scratch {
-    /// The angle and wall tables for `sides` facets, made once per facet
-    /// count in a row (a drawing's tubes mostly share one).
+    /// The angle table for `sides` facets, made once per facet count in a
+    /// row (a drawing's tubes mostly share one).
     fn tables(&mut self, sides: u32) {
         if self.around.len() == sides as usize {
             return;
@@ -148,13 +144,18 @@ impl Scratch {
         self.around.clear();
         self.around
             .extend((0..sides).map(|k| (TAU * k as f32 / sides as f32).sin_cos()));
-        self.wall.clear();
-        for k in 0..sides {
-            let k1 = (k + 1) % sides;
-            // (a0, a1, b0), (a1, b1, b0)
-            self.wall
-                .extend([(0, k), (0, k1), (1, k), (0, k1), (1, k1), (1, k)]);
-        }
+    }
+}
+
+/// Appends the side wall between the rings of `sides` vertices from `a`
+/// (the earlier) and `b`: per facet k, (a_k, a_k+1, b_k) and
+/// (a_k+1, b_k+1, b_k), six at a time: built from a table
+/// of (ring, facet) pairs, walls were a fifth of meshing W2.
+fn wall(a: u32, b: u32, sides: u32, indices: &mut Vec<u32>) {
+    indices.reserve(6 * sides as usize);
+    for k in 0..sides {
+        let k1 = if k + 1 == sides { 0 } else { k + 1 };
+        indices.extend_from_slice(&[a + k, a + k1, b + k, a + k1, b + k1, b + k]);
     }
 }
 
@@ -180,7 +181,6 @@ pub(super) fn piece(
         kept,
         kdirs,
         around,
-        wall,
     } = scratch;
     let n = pts.len();
     kept.clear();
@@ -230,7 +230,7 @@ pub(super) fn piece(
     let new_rings = m - usize::from(p.start.is_some());
     mesh.positions.reserve(new_rings * sides as usize);
     mesh.normals.reserve(new_rings * sides as usize);
-    mesh.indices.reserve((m - 1) * wall.len());
+    mesh.indices.reserve((m - 1) * 6 * sides as usize);
     let mut rings = [None::<Ring>; 2];
     let mut prev: Option<Ring> = None;
     for (j, &point) in kept.iter().enumerate() {
@@ -268,9 +268,7 @@ pub(super) fn piece(
             }
         };
         if let Some(r0) = prev {
-            let firsts = [r0.first, ring.first];
-            mesh.indices
-                .extend(wall.iter().map(|&(r, k)| firsts[r] + k));
+            wall(r0.first, ring.first, sides, &mut mesh.indices);
         }
         visit(p.offset + point, ring);
         if j == 0 {
