@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 const STAGES: &[&str] = &[
     "source",
     "diag",
+    "prefault",
     "stdlib",
     "lang",
     "preprocess",

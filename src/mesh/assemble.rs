@@ -8,10 +8,10 @@ use super::components::ComponentSearch;
 use super::error::MeshError;
 use super::internodes;
 use super::palette::Palette;
-use super::prefault::Prefault;
 use super::scene::{Component, Instance, Material, Scene, Stroke, TriMesh};
 use super::shapes;
 use super::tubes::{Facets, Tubes};
+use crate::prefault::{region, Prefault};
 use crate::resolve::ir::{Program, SymId};
 use crate::turtle::Drawing;
 
@@ -131,7 +131,7 @@ pub fn assemble_scene(
         let mut last: Option<(u32, usize)> = None;
         // The second core backs the pages of a big mesh while this one
         // fills it: one helper at a time, for a mesh just reserved.
-        let mut prefault: Option<Prefault> = None;
+        let mut prefault: Option<Prefault<3>> = None;
         let threads = crate::derive::threads();
         for (i, c) in drawing.chains.iter().enumerate() {
             let k = match last {
@@ -142,7 +142,7 @@ pub fn assemble_scene(
                     let mesh = &mut b.scene.strokes[k].mesh;
                     if mesh.positions.is_empty() {
                         tubes.reserve(c.colour, mesh);
-                        prefault = Prefault::start(mesh, threads);
+                        prefault = Prefault::start(stroke_regions(mesh), threads, LOOK_EVERY);
                     }
                     k
                 }
@@ -152,7 +152,7 @@ pub fn assemble_scene(
             let before = mesh.triangle_count();
             tubes.add(i, c, mesh);
             if let Some(p) = &mut prefault {
-                p.progress(mesh);
+                p.progress(mesh.indices.len(), || stroke_regions(mesh));
             }
             let added = mesh.triangle_count() - before;
             check(added)?;
@@ -318,4 +318,17 @@ pub(super) fn missing(
         src,
         span,
     }))
+}
+
+/// Indices written between two looks at a mesh's buffers by the prefault
+/// helper (a tube writes vertices and indices together: 16 Ki indices are
+/// 64 KiB, with a few dozen KiB of vertices).
+const LOOK_EVERY: usize = 16 << 10;
+
+fn stroke_regions(mesh: &TriMesh) -> [crate::prefault::Region; 3] {
+    [
+        region(&mesh.positions),
+        region(&mesh.normals),
+        region(&mesh.indices),
+    ]
 }

@@ -7,7 +7,6 @@ pub mod error;
 pub mod internodes;
 pub mod obj_options;
 pub mod palette;
-mod prefault;
 mod ring_slots;
 pub mod roof;
 pub mod scene;

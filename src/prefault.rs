@@ -1,19 +1,21 @@
-//! The fresh pages of a big stroke mesh, backed on the second core while
-//! the first fills them. Input: a [`TriMesh`] whose buffers were reserved
-//! up front, and how far the mesher has written them; output: nothing but
-//! pages the kernel has already backed when the mesher gets to them.
+//! The fresh pages of big buffers (`Vec`s reserved up front and filled from
+//! the front), backed on the second core while the first fills them. Input:
+//! the buffers' addresses, capacities and lengths as their writer goes;
+//! output: nothing but pages the kernel has already backed when the writer
+//! gets to them. The turtle uses it for a big drawing's chains, the mesher
+//! for a big mesh's positions, normals and indices.
 //!
 //! Why: on this kind of machine the first touch of a 4 KiB page costs
-//! 1.7 to 4.5 µs (backing and zeroing it), and a big mesh is mostly fresh
+//! 1.7 to 4.5 µs (backing and zeroing it), and a big model is mostly fresh
 //! pages: the faults in W2's 54 MB of positions, normals and indices were
 //! half its tube-meshing time. `MADV_POPULATE_WRITE` does that work for a
 //! range of addresses without reading or writing its bytes, so a helper
-//! thread can work in the same buffers a little ahead of the mesher. It
+//! thread can work in the same buffers a little ahead of the writer. It
 //! stays at most [`LEAD`] bytes ahead of each buffer's length, so the
-//! pages it backs are ones the mesher is about to fill (the capacity
+//! pages it backs are ones the writer is about to fill (the capacity
 //! reserved is an upper bound, several times what W2 uses).
 //!
-//! If a buffer outgrows its capacity it moves; the mesher then stops the
+//! If a buffer outgrows its capacity it moves; the writer then stops the
 //! helper. A range the helper is still working on may have been freed by
 //! then: populating it changes no byte of it (it only backs pages), and a
 //! range no longer mapped is an error the helper stops at.
@@ -23,76 +25,81 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-use super::scene::TriMesh;
-
-/// How far ahead of the mesher's writes, in bytes, the helper backs pages.
+/// How far ahead of the writer, in bytes, the helper backs pages.
 const LEAD: usize = 2 << 20;
 
 /// What the helper backs in one call.
 const CHUNK: usize = 256 << 10;
 
-/// Spare capacity below this (all three buffers) is not worth a thread.
+/// Spare capacity below this (all buffers) is not worth a thread.
 const MIN_SPARE: usize = 8 << 20;
 
 const PAGE: usize = 4096;
 
-/// Indices written between two looks at the buffers (a tube writes
-/// vertices and indices together: 16 Ki indices are 64 KiB, with a few
-/// dozen KiB of vertices).
-const LOOK_EVERY: usize = 16 << 10;
+/// One buffer as the helper sees it: the address of its first element, its
+/// capacity and its length, in bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Region {
+    ptr: usize,
+    cap: usize,
+    len: usize,
+}
 
-/// One buffer's spare capacity (addresses) and the address up to which the
-/// mesher has written it.
+/// `v` as a [`Region`].
+pub fn region<T>(v: &Vec<T>) -> Region {
+    let size = std::mem::size_of::<T>();
+    Region {
+        ptr: v.as_ptr() as usize,
+        cap: v.capacity() * size,
+        len: v.len() * size,
+    }
+}
+
+/// One buffer's end (address) and the address up to which the writer has
+/// written it.
 struct Buffer {
     end: usize,
     written: AtomicUsize,
 }
 
-struct Shared {
-    buffers: [Buffer; 3],
+struct Shared<const N: usize> {
+    buffers: [Buffer; N],
     stop: AtomicBool,
 }
 
-/// A helper backing the pages of one mesh's buffers ahead of the mesher.
+/// A helper backing the pages of `N` buffers ahead of their writer.
 /// Dropping it stops and joins the helper.
-pub(super) struct Prefault {
-    shared: Arc<Shared>,
+pub struct Prefault<const N: usize> {
+    shared: Arc<Shared<N>>,
     /// The buffers' addresses and capacities when the helper started.
-    at: [(usize, usize); 3],
+    at: [(usize, usize); N],
     /// The written addresses last told to the helper.
-    told: [usize; 3],
-    /// The length of the indices at which `progress` next looks.
+    told: [usize; N],
+    /// The writer's count at which `progress` next looks at the buffers,
+    /// and how far apart the looks are.
     look_at: usize,
+    look_every: usize,
     helper: Option<JoinHandle<()>>,
 }
 
-/// (address of the first element, capacity in bytes) and the length in
-/// bytes of each of `mesh`'s three buffers.
-fn buffers(mesh: &TriMesh) -> [(usize, usize, usize); 3] {
-    fn of<T>(v: &Vec<T>) -> (usize, usize, usize) {
-        let size = std::mem::size_of::<T>();
-        (v.as_ptr() as usize, v.capacity() * size, v.len() * size)
-    }
-    [of(&mesh.positions), of(&mesh.normals), of(&mesh.indices)]
-}
-
-impl Prefault {
-    /// Starts a helper over `mesh`'s spare capacity when there is enough of
-    /// it and `threads` (the threads the build may use) is at least two.
-    /// `None`: meshing runs as before.
-    pub(super) fn start(mesh: &TriMesh, threads: usize) -> Option<Prefault> {
+impl<const N: usize> Prefault<N> {
+    /// Starts a helper over the spare capacity of `now` (buffers reserved up
+    /// front) when there is enough of it and `threads` (the threads the work
+    /// may use) is at least two. The writer tells of its progress by a count
+    /// of its own (items written), at which the buffers are looked at every
+    /// `look_every`. `None`: the writer works alone, as before.
+    pub fn start(now: [Region; N], threads: usize, look_every: usize) -> Option<Prefault<N>> {
         if threads < 2 || !cfg!(all(target_os = "linux", target_env = "gnu")) {
             return None;
         }
-        let now = buffers(mesh);
-        let spare: usize = now.iter().map(|&(_, cap, len)| cap - len).sum();
+        let spare: usize = now.iter().map(|r| r.cap - r.len).sum();
         if spare < MIN_SPARE {
             return None;
         }
         let shared = Arc::new(Shared {
-            buffers: now.map(|(ptr, cap, len)| Buffer {
-                end: ptr + cap,
-                written: AtomicUsize::new(ptr + len),
+            buffers: now.map(|r| Buffer {
+                end: r.ptr + r.cap,
+                written: AtomicUsize::new(r.ptr + r.len),
             }),
             stop: AtomicBool::new(false),
         });
@@ -103,39 +110,40 @@ impl Prefault {
             .ok()?;
         Some(Prefault {
             shared,
-            at: now.map(|(ptr, cap, _)| (ptr, cap)),
-            told: now.map(|(ptr, _, len)| ptr + len),
+            at: now.map(|r| (r.ptr, r.cap)),
+            told: now.map(|r| r.ptr + r.len),
             look_at: 0,
+            look_every,
             helper: Some(helper),
         })
     }
 
-    /// Tells the helper how far the mesher has written `mesh`: looks every
-    /// [`LOOK_EVERY`] indices, and tells once a buffer is a [`CHUNK`]
-    /// further (waking the helper after every tube was a system call
+    /// Tells the helper how far the writer has got: `count` is the writer's
+    /// own measure of it; the buffers (`now()`) are looked at once every
+    /// `look_every` of it, and the helper is woken once a buffer is a
+    /// [`CHUNK`] further (waking it after every item was a system call
     /// each). Stops the helper when a buffer has moved.
     #[inline]
-    pub(super) fn progress(&mut self, mesh: &TriMesh) {
-        // Cheap enough to call after every tube: most calls end here.
-        if mesh.indices.len() < self.look_at {
+    pub fn progress(&mut self, count: usize, now: impl FnOnce() -> [Region; N]) {
+        // Cheap enough to call after every item: most calls end here.
+        if count < self.look_at {
             return;
         }
-        self.look_at = mesh.indices.len() + LOOK_EVERY;
-        self.tell(mesh);
+        self.look_at = count + self.look_every;
+        self.tell(now());
     }
 
     #[cold]
-    fn tell(&mut self, mesh: &TriMesh) {
+    fn tell(&mut self, now: [Region; N]) {
         let Some(helper) = &self.helper else { return };
-        let now = buffers(mesh);
-        if now.iter().zip(&self.at).any(|(n, a)| (n.0, n.1) != *a) {
+        if now.iter().zip(&self.at).any(|(n, a)| (n.ptr, n.cap) != *a) {
             self.finish();
             return;
         }
         let mut news = false;
-        for ((b, told), (ptr, _, len)) in self.shared.buffers.iter().zip(&mut self.told).zip(now) {
-            if ptr + len >= *told + CHUNK {
-                *told = ptr + len;
+        for ((b, told), r) in self.shared.buffers.iter().zip(&mut self.told).zip(now) {
+            if r.ptr + r.len >= *told + CHUNK {
+                *told = r.ptr + r.len;
                 b.written.store(*told, Ordering::Relaxed);
                 news = true;
             }
@@ -146,7 +154,7 @@ impl Prefault {
     }
 
     /// Stops and joins the helper.
-    pub(super) fn finish(&mut self) {
+    pub fn finish(&mut self) {
         self.shared.stop.store(true, Ordering::Relaxed);
         if let Some(h) = self.helper.take() {
             h.thread().unpark();
@@ -155,16 +163,16 @@ impl Prefault {
     }
 }
 
-impl Drop for Prefault {
+impl<const N: usize> Drop for Prefault<N> {
     fn drop(&mut self) {
         self.finish();
     }
 }
 
-/// The helper: backs each buffer up to [`LEAD`] bytes past what the mesher
+/// The helper: backs each buffer up to [`LEAD`] bytes past what the writer
 /// has written, a [`CHUNK`] at a time, the buffer it is least ahead in
-/// first; waits when it is ahead in all three.
-fn run(shared: &Shared) {
+/// first; waits when it is ahead in all.
+fn run<const N: usize>(shared: &Shared<N>) {
     let mut done = shared
         .buffers
         .each_ref()
@@ -183,7 +191,7 @@ fn run(shared: &Shared) {
             }
         }
         let Some((i, _)) = next else {
-            // Ahead everywhere: wait for the mesher's next progress.
+            // Ahead everywhere: wait for the writer's next progress.
             std::thread::park_timeout(Duration::from_millis(1));
             continue;
         };
@@ -217,6 +225,18 @@ fn populate(_addr: usize, _len: usize) -> bool {
 mod tests {
     use super::*;
     use glam::Vec3;
+
+    /// Three buffers, as a mesh has.
+    #[derive(Default)]
+    struct TriMesh {
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        indices: Vec<u32>,
+    }
+
+    fn regions(m: &TriMesh) -> [Region; 3] {
+        [region(&m.positions), region(&m.normals), region(&m.indices)]
+    }
 
     /// How many of the pages of `len` bytes from `addr` are resident.
     fn resident(addr: usize, len: usize) -> usize {
@@ -260,7 +280,7 @@ mod tests {
         mesh.positions.reserve(n);
         mesh.normals.reserve(16);
         mesh.indices.reserve(16);
-        let mut p = Prefault::start(&mesh, 2).expect("a helper for 48 MB");
+        let mut p = Prefault::start(regions(&mesh), 2, 1).expect("a helper for 48 MB");
         let base = mesh.positions.as_ptr() as usize;
         let far = base + 4 * LEAD;
         assert!(waits_for(|| resident(base, LEAD) * PAGE >= LEAD - PAGE));
@@ -269,7 +289,7 @@ mod tests {
         let count = (3 * LEAD) / 12;
         mesh.positions
             .extend((0..count).map(|i| Vec3::splat(i as f32)));
-        p.progress(&mesh);
+        p.progress(usize::MAX / 2, || regions(&mesh));
         let written_end = base + count * 12;
         assert!(waits_for(
             || resident(written_end, LEAD - CHUNK) * PAGE >= LEAD - CHUNK - PAGE
@@ -288,18 +308,18 @@ mod tests {
     fn a_buffer_that_moves_stops_the_helper() {
         let mut mesh = TriMesh::default();
         mesh.indices.reserve(4 << 20);
-        let mut p = Prefault::start(&mesh, 2).expect("a helper for 16 MB");
+        let mut p = Prefault::start(regions(&mesh), 2, 1).expect("a helper for 16 MB");
         mesh.indices.resize((4 << 20) + 1, 7);
-        p.progress(&mesh);
+        p.progress(usize::MAX / 2, || regions(&mesh));
         assert!(p.helper.is_none());
     }
 
     #[test]
     fn no_helper_for_one_thread_or_a_small_mesh() {
         let mut mesh = TriMesh::default();
-        assert!(Prefault::start(&mesh, 2).is_none());
+        assert!(Prefault::start(regions(&mesh), 2, 1).is_none());
         mesh.indices.reserve(4 << 20);
-        assert!(Prefault::start(&mesh, 1).is_none());
-        assert!(Prefault::start(&mesh, 2).is_some());
+        assert!(Prefault::start(regions(&mesh), 1, 1).is_none());
+        assert!(Prefault::start(regions(&mesh), 2, 1).is_some());
     }
 }
