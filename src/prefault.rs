@@ -26,10 +26,11 @@ use std::thread::JoinHandle;
 use std::time::Duration;
 
 /// How far ahead of the writer, in bytes, the helper backs pages.
-const LEAD: usize = 2 << 20;
+const LEAD: usize = 1 << 20;
 
-/// What the helper backs in one call.
-const CHUNK: usize = 256 << 10;
+/// What the helper backs in one call (and how much further a buffer must
+/// be before the helper is woken).
+const CHUNK: usize = 128 << 10;
 
 /// Spare capacity below this (all buffers) is not worth a thread.
 const MIN_SPARE: usize = 8 << 20;

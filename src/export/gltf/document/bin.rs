@@ -227,7 +227,7 @@ const BLOCK: usize = 1 << 16;
 const PIPELINE_FROM: usize = 8 << 20;
 
 /// Bytes a block the encoder thread hands over.
-const PIPELINE_BLOCK: usize = 1 << 20;
+const PIPELINE_BLOCK: usize = 512 << 10;
 
 /// Blocks encoded ahead of the writer, at most.
 const IN_FLIGHT: usize = 2;
