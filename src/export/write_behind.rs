@@ -4,12 +4,13 @@
 //!
 //! Why: [`super::atomic`] renames the finished file over the old one, and
 //! ext4 (its `auto_da_alloc` safeguard, which keeps a crash from leaving an
-//! empty file) then writes the whole new file back inside the rename. For
-//! W2's 54 MB GLB that was 21 ms of a 0.2 s build with the second core
-//! idle. Started while the file is still being written, that writeback is
-//! done (or under way) by the rename. `sync_file_range(WRITE)` only starts
-//! writeback: it neither waits for the disk nor changes the file, and
-//! what it cannot do is left to the rename as before.
+//! empty file) then starts writing the whole new file back inside the
+//! rename, with the second core idle: with freeing the old file, 21 ms
+//! of W2's 0.2 s build. Started while the file is still being written,
+//! that writeback is under way by the rename. `sync_file_range(WRITE)`
+//! only starts writeback: it neither waits for the disk nor changes the
+//! file, and what it cannot do is left to the rename as before. (Freeing
+//! the old file's blocks stays in the rename: see docs/performance.md.)
 
 use std::io::{self, Write};
 use std::sync::mpsc::{channel, Sender};

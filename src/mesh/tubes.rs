@@ -125,19 +125,7 @@ impl Tubes {
     /// The tubes of `chains`, whose `origins` the turtle may know.
     pub fn new(chains: &[Chain], origins: &[Option<Origin>], opts: &MeshOptions) -> Tubes {
         let facets = Facets::new(opts, chains);
-        // Neighbouring chains mostly have one width: an arccosine per
-        // chain was a tenth of setting up W2's tubes.
-        let mut last = (f32::NAN, 0);
-        let sides: Vec<u32> = chains
-            .iter()
-            .map(|c| {
-                let r = max_radius(c);
-                if r.to_bits() != last.0.to_bits() {
-                    last = (r, facets.sides(r));
-                }
-                last.1
-            })
-            .collect();
+        let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
         let Slots {
             first_chain,
             point_slots,

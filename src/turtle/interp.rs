@@ -337,7 +337,7 @@ impl Turtle<'_> {
                 // The model is in 32-bit floats: steps that add up past their
                 // range would reach the exporter as infinities. A bracket
                 // changes nothing or brings back a state checked when it
-                // was current (a third of W2's interpretation was checks).
+                // was current (checks were a fifth of W2's interpretation).
                 if !matches!(act, Act::Command(Action::Push | Action::Pop)) && !t.state.is_finite()
                 {
                     return Err(TurtleError::Overflow {
@@ -353,8 +353,10 @@ impl Turtle<'_> {
     }
 
     /// For a big string: room for as many chains (and origins) as it has
-    /// drawing moves, the most it can draw, with a helper backing their
-    /// pages ahead of the walk (W2: 19 MB of chains, 4,600 fresh pages).
+    /// drawing moves (each starts at most one; generalized cylinders may
+    /// add more, and then the chains outgrow the room and the helper
+    /// stops), with a helper backing their pages ahead of the walk (W2:
+    /// 19 MB of chains, 4,600 fresh pages).
     fn reserve_chains(&mut self, w: &Walk) {
         if w.heads.len() < PREFAULT_FROM {
             return;
