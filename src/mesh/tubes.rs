@@ -93,6 +93,40 @@ struct Start {
     sides: u32,
 }
 
+/// Drawings of this many chains work out their facets and room on a second
+/// core while the slots are found.
+const PARALLEL_FROM: usize = 1 << 16;
+
+/// Each chain's facets, and per colour the most vertices and indices its
+/// tubes can take.
+struct Sizes {
+    facets: Facets,
+    sides: Vec<u32>,
+    room: Vec<(u32, usize, usize)>,
+}
+
+impl Sizes {
+    fn new(chains: &[Chain], opts: &MeshOptions) -> Sizes {
+        let facets = Facets::new(opts, chains);
+        let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
+        let mut room: Vec<(u32, usize, usize)> = Vec::new();
+        for (c, &n) in chains.iter().zip(&sides) {
+            // A ring at every point and flat caps: the most a chain takes.
+            let (n, k) = (n.max(3) as usize, c.points.len());
+            let (v, i) = (k * n + 2 * (n + 1), k.saturating_sub(1) * 6 * n + 6 * n);
+            match room.iter_mut().find(|r| r.0 == c.colour) {
+                Some(r) => (r.1, r.2) = (r.1 + v, r.2 + i),
+                None => room.push((c.colour, v, i)),
+            }
+        }
+        Sizes {
+            facets,
+            sides,
+            room,
+        }
+    }
+}
+
 /// Most vertices or indices reserved up front for one stroke mesh (16 M:
 /// 192 MB of positions and normals).
 const MAX_ROOM: usize = 1 << 24;
@@ -124,13 +158,33 @@ pub struct Tubes {
 impl Tubes {
     /// The tubes of `chains`, whose `origins` the turtle may know.
     pub fn new(chains: &[Chain], origins: &[Option<Origin>], opts: &MeshOptions) -> Tubes {
-        let facets = Facets::new(opts, chains);
-        let sides: Vec<u32> = chains.iter().map(|c| facets.sides(max_radius(c))).collect();
+        // Facets and room read the chains only, as the slots do: for a big
+        // drawing they are worked out on the second core meanwhile (a third
+        // of setting up W2's tubes).
+        let (
+            Sizes {
+                facets,
+                sides,
+                room,
+            },
+            slots,
+        ) = if chains.len() >= PARALLEL_FROM && crate::derive::threads() >= 2 {
+            std::thread::scope(|scope| {
+                let sizes = scope.spawn(|| Sizes::new(chains, opts));
+                let slots = slots(chains, origins);
+                match sizes.join() {
+                    Ok(sizes) => (sizes, slots),
+                    Err(panic) => std::panic::resume_unwind(panic),
+                }
+            })
+        } else {
+            (Sizes::new(chains, opts), slots(chains, origins))
+        };
         let Slots {
             first_chain,
             point_slots,
             first_point,
-        } = slots(chains, origins);
+        } = slots;
         let starts: Vec<Start> = first_chain
             .into_iter()
             .map(|i| {
@@ -142,16 +196,6 @@ impl Tubes {
                 }
             })
             .collect();
-        let mut room: Vec<(u32, usize, usize)> = Vec::new();
-        for (c, &n) in chains.iter().zip(&sides) {
-            // A ring at every point and flat caps: the most a chain takes.
-            let (n, k) = (n.max(3) as usize, c.points.len());
-            let (v, i) = (k * n + 2 * (n + 1), k.saturating_sub(1) * 6 * n + 6 * n);
-            match room.iter_mut().find(|r| r.0 == c.colour) {
-                Some(r) => (r.1, r.2) = (r.1 + v, r.2 + i),
-                None => room.push((c.colour, v, i)),
-            }
-        }
         Tubes {
             room,
             facets,
