@@ -239,4 +239,53 @@ mod tests {
             ["dark_red", "dark_red_1", "material_2", "a_b", "dark_red_4"]
         );
     }
+
+    /// Chunked and threaded or not, the lines are those of one vertex,
+    /// normal and triangle at a time; a position that is not finite is an
+    /// error before anything of the mesh is written.
+    #[test]
+    fn lines_in_chunks_are_the_lines_one_at_a_time() {
+        let n = 2 * CHUNK + 7;
+        let mesh = TriMesh {
+            positions: (0..n)
+                .map(|i| Vec3::new(i as f32 * 0.1, -0.0, 1e-7))
+                .collect(),
+            normals: vec![Vec3::Y; n],
+            indices: (0..3 * n as u32).map(|i| i % n as u32).collect(),
+        };
+        let mut out = Vec::new();
+        let mut w = MeshWriter {
+            out: &mut out,
+            next: 5,
+            normals: Vec::new(),
+        };
+        w.mesh("m", &mesh, Mat4::IDENTITY).unwrap();
+        let mut expected = String::new();
+        for p in &mesh.positions {
+            // The identity turns -0 into 0, as before.
+            let p = Mat4::IDENTITY.transform_point3(*p);
+            expected += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+        expected += &"vn 0 1 0\n".repeat(n);
+        for t in mesh.indices.chunks(3) {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| 5 + i);
+            expected += &format!("f {a}//{a} {b}//{b} {c}//{c}\n");
+        }
+        assert!(String::from_utf8(out).unwrap() == expected);
+
+        let mut bad = mesh.clone();
+        bad.positions[CHUNK + 3].x = f32::NAN;
+        let mut out = Vec::new();
+        let mut w = MeshWriter {
+            out: &mut out,
+            next: 1,
+            normals: Vec::new(),
+        };
+        let e = w.mesh("m", &bad, Mat4::IDENTITY).unwrap_err();
+        assert!(
+            e.to_string().contains("a vertex position is not finite"),
+            "{e}"
+        );
+        assert!(out.is_empty());
+    }
 }
