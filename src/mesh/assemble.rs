@@ -214,9 +214,12 @@ pub fn assemble_scene(
                         Ok(patches) => super::surface::surface_component(s, patches),
                         Err(_) => continue,
                     },
-                    None if roofs.contains_key(name) => roofs.remove(name).expect("a roof"),
-                    None => match search.load(name, &mut b.scene.materials, grammars, |searched| {
-                        missing(program, p.symbol, name, searched)
+                    // A roof was built before the grammar components
+                    // were waited for.
+                    None => match roofs.remove(name).map(Ok).unwrap_or_else(|| {
+                        search.load(name, &mut b.scene.materials, grammars, |searched| {
+                            missing(program, p.symbol, name, searched)
+                        })
                     }) {
                         Ok(c) => c,
                         // cpfg draws nothing for a surface its view file

@@ -4,15 +4,17 @@
 
 use glam::{DVec3, Vec3};
 
-use super::drawing::{Chain, Drawing, Polygon, TubePoint};
+use super::drawing::{Drawing, Polygon};
 use super::error::TurtleError;
 use super::frame::{Frame, SinCosCache};
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
 use crate::lang::{Dialect, Profile};
-use crate::prefault::{region, Prefault};
+use crate::prefault::Prefault;
 use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols};
+
+mod chains;
 
 /// Defaults the turtle starts from.
 #[derive(Clone, Debug)]
@@ -149,12 +151,6 @@ pub(super) struct Walk<'s> {
     pub(super) params: &'s [f64],
     acts: &'s [Act],
 }
-
-/// Strings shorter than this draw too little for a prefault helper.
-const PREFAULT_FROM: usize = 1 << 16;
-
-/// Chains drawn between two looks at their buffers by the helper.
-const CHAINS_LOOK_EVERY: usize = 1024;
 
 /// Interprets `store` (normally the string after the homomorphism).
 pub fn interpret(
@@ -352,32 +348,6 @@ impl Turtle<'_> {
         Ok(())
     }
 
-    /// For a big string: room for as many chains (and origins) as it has
-    /// drawing moves (each starts at most one; generalized cylinders may
-    /// add more, and then the chains outgrow the room and the helper
-    /// stops), with a helper backing their pages ahead of the walk (W2:
-    /// 19 MB of chains, 4,600 fresh pages).
-    fn reserve_chains(&mut self, w: &Walk) {
-        if w.heads.len() < PREFAULT_FROM {
-            return;
-        }
-        let draws = w
-            .heads
-            .iter()
-            .filter(|&&h| {
-                matches!(
-                    w.acts[head_sym(h) as usize],
-                    Act::Command(Action::Move { draw: true, .. })
-                )
-            })
-            .count();
-        let d = &mut self.drawing;
-        d.chains.reserve(draws);
-        d.origins.reserve(draws);
-        let regions = [region(&d.chains), region(&d.origins)];
-        self.prefault = Prefault::start(regions, crate::derive::threads(), CHAINS_LOOK_EVERY);
-    }
-
     fn angle(&self, args: &[f64]) -> f32 {
         args.first().map_or(self.opts.angle, |&a| a as f32)
     }
@@ -548,80 +518,9 @@ impl Turtle<'_> {
         }
         Ok(())
     }
-
-    fn forward(&mut self, d: f32, draw: bool, vertex: bool) {
-        let s = &mut self.state;
-        let from = s.frame.pos.as_vec3();
-        s.frame.pos += s.frame.h * f64::from(d);
-        let to = s.frame.pos.as_vec3();
-        if !self.polygons.is_empty() {
-            // Inside a polygon moves trace its outline instead of drawing.
-            if vertex {
-                if let Some((_, poly)) = self.polygons.last_mut() {
-                    push_vertex(poly, to);
-                }
-            }
-        } else if draw
-            // cpfg's `F` draws inside a generalized cylinder too.
-            && (s.cylinder.is_none() || self.opts.profile.cpfg_turtle)
-            && s.width > 0.0
-            && d != 0.0
-        {
-            let radius = s.width * 0.5;
-            let point = TubePoint {
-                pos: to,
-                radius,
-                up: s.frame.u.as_vec3(),
-            };
-            let chains = &mut self.drawing.chains;
-            match s.chain {
-                Some(c)
-                    if chains[c].colour == s.colour
-                        && chains[c].points.last().map(|p| p.pos) == Some(from) =>
-                {
-                    chains[c].points.push(point);
-                    s.at = Some((c as u32, (chains[c].points.len() - 1) as u32));
-                }
-                _ => {
-                    let origin = s.at.filter(|&(c, k)| {
-                        chains[c as usize].points.get(k as usize).map(|p| p.pos) == Some(from)
-                    });
-                    let origins = &mut self.drawing.origins;
-                    if let Some((chain, point)) = origin {
-                        origins.resize(chains.len(), None);
-                        origins.push(Some(super::drawing::Origin { chain, point }));
-                    }
-                    s.at = Some((chains.len() as u32, 1));
-                    chains.push(Chain {
-                        colour: s.colour,
-                        points: smallvec::smallvec![
-                            TubePoint {
-                                pos: from,
-                                radius,
-                                up: s.frame.u.as_vec3(),
-                            },
-                            point,
-                        ],
-                    });
-                    s.chain = Some(chains.len() - 1);
-                    if let Some(p) = &mut self.prefault {
-                        p.progress(chains.len(), || [region(chains), region(origins)]);
-                    }
-                }
-            }
-        } else {
-            s.chain = None;
-            if d != 0.0 {
-                s.at = None;
-            }
-        }
-        if s.elasticity != 0.0 {
-            s.frame.bend(s.tropism.as_dvec3(), f64::from(s.elasticity));
-        }
-    }
 }
 
-fn push_vertex(poly: &mut Vec<Vec3>, p: Vec3) {
+pub(super) fn push_vertex(poly: &mut Vec<Vec3>, p: Vec3) {
     if poly.last().map_or(true, |q| q.distance(p) > 1e-6) {
         poly.push(p);
     }
