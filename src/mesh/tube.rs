@@ -236,36 +236,7 @@ pub(super) fn piece(
     for (j, &point) in kept.iter().enumerate() {
         let ring = match (j, p.start) {
             (0, Some(start)) => start,
-            _ => {
-                let q = &pts[point];
-                let t = tangent(j);
-                // Start from the turtle's up vector, then transport the
-                // previous ring's axis: project it into this ring's plane.
-                let seed = prev.map_or(q.up, |r| r.axis);
-                let mut a = (seed - t * seed.dot(t)).normalize_or_zero();
-                if a == Vec3::ZERO {
-                    a = t.any_orthonormal_vector();
-                }
-                let b = t.cross(a);
-                let first = mesh.positions.len() as u32;
-                let from = mesh.normals.len();
-                mesh.normals
-                    .extend(around.iter().map(|&(s, c)| a * c + b * s));
-                let (pos, radius) = (q.pos, q.radius);
-                mesh.positions.extend(
-                    mesh.normals[from..]
-                        .iter()
-                        .map(|&normal| pos + normal * radius),
-                );
-                Ring {
-                    first,
-                    sides,
-                    pos: q.pos,
-                    radius: q.radius,
-                    tangent: t,
-                    axis: a,
-                }
-            }
+            _ => new_ring(&pts[point], tangent(j), prev, around, mesh),
         };
         if let Some(r0) = prev {
             wall(r0.first, ring.first, sides, &mut mesh.indices);
@@ -283,6 +254,76 @@ pub(super) fn piece(
         let Some(ring) = ring else { continue };
         cap(ring, p.caps[end], end == 0, mesh);
     }
+}
+
+/// Appends a ring of `around.len()` vertices at `q`, in the plane normal
+/// to `t`: its first vertex along the turtle's up vector at a tube's
+/// first ring, else along `prev`'s axis carried into this plane (parallel
+/// transport, so that the tube does not twist).
+fn new_ring(
+    q: &TubePoint,
+    t: Vec3,
+    prev: Option<Ring>,
+    around: &[(f32, f32)],
+    mesh: &mut TriMesh,
+) -> Ring {
+    let seed = prev.map_or(q.up, |r| r.axis);
+    let mut a = (seed - t * seed.dot(t)).normalize_or_zero();
+    if a == Vec3::ZERO {
+        a = t.any_orthonormal_vector();
+    }
+    let b = t.cross(a);
+    let first = mesh.positions.len() as u32;
+    let from = mesh.normals.len();
+    mesh.normals
+        .extend(around.iter().map(|&(s, c)| a * c + b * s));
+    let (pos, radius) = (q.pos, q.radius);
+    mesh.positions.extend(
+        mesh.normals[from..]
+            .iter()
+            .map(|&normal| pos + normal * radius),
+    );
+    Ring {
+        first,
+        sides: around.len() as u32,
+        pos: q.pos,
+        radius: q.radius,
+        tangent: t,
+        axis: a,
+    }
+}
+
+/// [`piece`] for a piece of one segment, `a` to `b` in direction `dir`:
+/// the same rings, walls and caps, without the search for straight runs
+/// and the lists it keeps. Most chains of a branching plant are one `F`
+/// (each of W2's 262,143 is), and `piece`'s bookkeeping was most of their
+/// cost. Returns the two rings.
+pub(super) fn segment(
+    ends: [&TubePoint; 2],
+    dir: Vec3,
+    sides: u32,
+    start: Option<Ring>,
+    caps: [Cap; 2],
+    scratch: &mut Scratch,
+    mesh: &mut TriMesh,
+) -> [Ring; 2] {
+    let sides = sides.max(3);
+    scratch.tables(sides);
+    let around = &scratch.around[..];
+    let t = if dir == Vec3::ZERO { Vec3::Y } else { dir };
+    let new_rings = 2 - usize::from(start.is_some());
+    mesh.positions.reserve(new_rings * sides as usize);
+    mesh.normals.reserve(new_rings * sides as usize);
+    mesh.indices.reserve(6 * sides as usize);
+    let r0 = match start {
+        Some(ring) => ring,
+        None => new_ring(ends[0], t, None, around, mesh),
+    };
+    let r1 = new_ring(ends[1], t, Some(r0), around, mesh);
+    wall(r0.first, r1.first, sides, &mut mesh.indices);
+    cap(r0, caps[0], true, mesh);
+    cap(r1, caps[1], false, mesh);
+    [r0, r1]
 }
 
 /// Closes `ring`, facing back along the tube at its start (`start`) or on
@@ -404,6 +445,66 @@ pub(super) mod tests {
         // two rings + two caps, whatever the number of F
         assert_eq!(m.vertex_count(), 2 * 6 + 2 * 7);
         assert_watertight(&m);
+    }
+
+    #[test]
+    fn a_segment_is_the_piece_of_one_segment() {
+        let ends = [
+            (Vec3::ZERO, Vec3::new(0.3, 1.0, -0.2)),
+            (Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, 3.0)),
+            (Vec3::ZERO, Vec3::Z),
+        ];
+        let caps = [Cap::Flat, Cap::Fan, Cap::Open];
+        for (a, b) in ends {
+            let c = chain(&[a, b], 0.1);
+            for (c0, c1) in caps.iter().flat_map(|&x| caps.iter().map(move |&y| (x, y))) {
+                for shared in [false, true] {
+                    let mut before = TriMesh::default();
+                    let start = shared.then(|| {
+                        let mut scratch = Scratch::default();
+                        segment(
+                            [&c.points[0], &c.points[0]],
+                            Vec3::X,
+                            6,
+                            None,
+                            [Cap::Open; 2],
+                            &mut scratch,
+                            &mut before,
+                        )[1]
+                    });
+                    let mut by_piece = before.clone();
+                    let mut by_segment = before;
+                    let mut dirs = Vec::new();
+                    directions(&c.points, &mut dirs);
+                    let mut seen = Vec::new();
+                    piece(
+                        &Piece {
+                            points: &c.points,
+                            offset: 0,
+                            sides: 6,
+                            start,
+                            caps: [c0, c1],
+                        },
+                        &dirs,
+                        |_| false,
+                        |_, ring| seen.push(ring),
+                        &mut Scratch::default(),
+                        &mut by_piece,
+                    );
+                    let rings = segment(
+                        [&c.points[0], &c.points[1]],
+                        dirs[0],
+                        6,
+                        start,
+                        [c0, c1],
+                        &mut Scratch::default(),
+                        &mut by_segment,
+                    );
+                    assert_eq!(by_segment, by_piece, "{a} {b} {c0:?} {c1:?} {shared}");
+                    assert_eq!(rings.to_vec(), seen);
+                }
+            }
+        }
     }
 
     #[test]

@@ -14,7 +14,7 @@ use glam::Vec3;
 use super::assemble::MeshOptions;
 use super::ring_slots::{slots, Slots, NONE};
 use super::scene::{bounds_of, TriMesh};
-use super::tube::{directions, for_each_piece, piece, Cap, Piece, Ring, Scratch};
+use super::tube::{directions, for_each_piece, piece, segment, Cap, Piece, Ring, Scratch};
 use crate::turtle::drawing::{Chain, Origin};
 
 /// A tube starts from an earlier tube's ring only when its first segment
@@ -247,6 +247,28 @@ impl Tubes {
         } = self;
         let point_slots = &point_slots[first_point[index]..first_point[index + 1]];
         let first_slot = point_slots[0];
+        if let [a, b] = &pts[..] {
+            // One segment: no list of directions, no pieces.
+            let dir = (b.pos - a.pos).normalize_or_zero();
+            let start = rings[first_slot as usize]
+                .filter(|r| r.sides == sides && r.tangent.dot(dir) >= SHARE_COS);
+            let end_slot = point_slots[1];
+            let goes_on = end_slot != NONE && {
+                let s = &starts[end_slot as usize];
+                s.chain > index && s.sides == sides && s.dir.dot(dir) >= SHARE_COS
+            };
+            let caps = [
+                if start.is_some() { Cap::Open } else { closed },
+                if goes_on { Cap::Open } else { closed },
+            ];
+            let ends = segment([a, b], dir, sides, start, caps, scratch, mesh);
+            for (slot, ring) in [first_slot, end_slot].into_iter().zip(ends) {
+                if slot != NONE {
+                    rings[slot as usize] = Some(ring);
+                }
+            }
+            return;
+        }
         directions(pts, dirs);
         let dir0 = dirs[0];
         let start = rings[first_slot as usize]
