@@ -21,22 +21,33 @@ use std::path::Path;
 #[path = "src/mesh/obj_options.rs"]
 mod obj_options;
 
+// The program's own parser, for the standard library's grammars (see
+// `std_syntax_trees`). Not all of it is used here.
+#[allow(dead_code)]
+#[path = "src/source.rs"]
+mod source;
+
+#[allow(dead_code, unused_imports)]
+#[path = "src/parse/mod.rs"]
+mod parse;
+
+/// What the parser asks of the standard library: here, where the trees
+/// are made, there are none to read, so every grammar is parsed.
+mod stdlib {
+    pub const FILES: &[(&str, &str)] = &[];
+    pub const PARSED: &[(&str, &[u8])] = &[];
+}
+
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
+    std_syntax_trees(Path::new(&out));
     println!("cargo:rerun-if-changed=src/mesh/obj_options.rs");
     for set in ["", "preview"] {
         let src = Path::new("grammar/std/components").join(set);
         println!("cargo:rerun-if-changed={}", src.display());
         let dst = Path::new(&out).join("components").join(set);
         std::fs::create_dir_all(&dst).expect("creates the output folder");
-        let mut entries: Vec<_> = std::fs::read_dir(&src)
-            .expect("reads the components folder")
-            .map(|e| e.expect("lists the components folder").path())
-            .filter(|p| p.extension().is_some_and(|e| e == "obj"))
-            .collect();
-        entries.sort();
-        for path in entries {
-            println!("cargo:rerun-if-changed={}", path.display());
+        for path in files(&src, "obj") {
             let text = std::fs::read(&path).expect("reads a component model");
             let stem = path.file_stem().expect("a file name");
             let bytes = encode(&text, &path);
@@ -73,4 +84,53 @@ fn encode(text: &[u8], path: &Path) -> Vec<u8> {
         }
     }
     out
+}
+
+/// The standard library's grammars (`grammar/std/*.lsys`) -> their syntax
+/// trees, parsed by the program's parser and written with postcard to
+/// `OUT_DIR/std_ast/NAME.ast`, embedded by `src/stdlib.rs`: a run reads
+/// the tree of a standard library file instead of parsing it
+/// (`parse::stored`). A library grammar that does not parse
+/// cleanly stops the build with its diagnostics.
+fn std_syntax_trees(out: &Path) {
+    for input in ["grammar/lsys.pest", "src/source.rs", "src/parse"] {
+        println!("cargo:rerun-if-changed={input}");
+    }
+    let dst = out.join("std_ast");
+    std::fs::create_dir_all(&dst).expect("creates the output folder");
+    for path in files(Path::new("grammar/std"), "lsys") {
+        let text = std::fs::read_to_string(&path).expect("reads a library grammar");
+        let stem = path.file_stem().expect("a file name").to_string_lossy();
+        let file = source::SourceFile::new(
+            format!("std:{stem}"),
+            source::Origin::Std(stem.to_string()),
+            text,
+        );
+        let tree = parse::stored(&file).unwrap_or_else(|errors| {
+            let all: Vec<String> = errors.iter().map(|e| format!("{e:?}")).collect();
+            panic!(
+                "{} does not parse cleanly:\n{}",
+                path.display(),
+                all.join("\n")
+            )
+        });
+        let bytes = postcard::to_allocvec(&tree).expect("serializes a syntax tree");
+        std::fs::write(dst.join(stem.as_ref()).with_extension("ast"), bytes)
+            .expect("writes a syntax tree");
+    }
+}
+
+/// The files of folder `dir` with extension `ext`, sorted; each one is an
+/// input of the build.
+fn files(dir: &Path, ext: &str) -> Vec<std::path::PathBuf> {
+    let mut found: Vec<_> = std::fs::read_dir(dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.expect("lists a folder").path())
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
+        .collect();
+    found.sort();
+    for path in &found {
+        println!("cargo:rerun-if-changed={}", path.display());
+    }
+    found
 }

@@ -53,6 +53,49 @@ impl fmt::Debug for Span {
     }
 }
 
+thread_local! {
+    /// How spans being deserialized are read (see [`in_file`]).
+    static READING: std::cell::Cell<(FileId, u32, i64)> = const { std::cell::Cell::new((0, 0, 0)) };
+}
+
+/// Spans are stored without their file: a standard library file's syntax
+/// tree is stored once, when the crate is built (`build.rs`), and its file
+/// gets its id only when a run loads it. A span read back belongs to the
+/// file that [`in_file`] names.
+impl serde::Serialize for Span {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        serde::Serialize::serialize(&(self.start, self.end), s)
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Span {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Span, D::Error> {
+        let (start, end) = <(u32, u32)>::deserialize(d)?;
+        let (file, from, shift) = READING.with(std::cell::Cell::get);
+        let moved =
+            |at: u32| u32::try_from(i64::from(at) + shift).map_err(serde::de::Error::custom);
+        Ok(if start >= from && shift != 0 {
+            Span {
+                file,
+                start: moved(start)?,
+                end: moved(end)?,
+            }
+        } else {
+            Span { file, start, end }
+        })
+    }
+}
+
+/// Runs `read`, which deserializes spans, with those spans in file `file`
+/// and the ones that start at `from` or later moved by `shift` bytes (a
+/// stored tree's last part, in a text where it stands elsewhere).
+pub fn in_file<T>(file: FileId, from: u32, shift: i64, read: impl FnOnce() -> T) -> T {
+    let before = READING.with(|r| r.replace((file, from, shift)));
+    let out = read();
+    READING.with(|r| r.set(before));
+    out
+}
+
 impl From<Span> for SourceSpan {
     fn from(s: Span) -> SourceSpan {
         SourceSpan::new((s.start as usize).into(), s.len())

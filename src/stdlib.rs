@@ -14,6 +14,24 @@ pub const FILES: &[(&str, &str)] = &[
     ("pailou", include_str!("../grammar/std/pailou.lsys")),
 ];
 
+/// (name, syntax tree) of every standard library file, parsed when the
+/// crate was built (`build.rs`; postcard, spans without their file): see
+/// `parse::stored`.
+pub const PARSED: &[(&str, &[u8])] = &[
+    (
+        "toukung_middle",
+        include_bytes!(concat!(env!("OUT_DIR"), "/std_ast/toukung_middle.ast")),
+    ),
+    (
+        "toukung_side",
+        include_bytes!(concat!(env!("OUT_DIR"), "/std_ast/toukung_side.ast")),
+    ),
+    (
+        "pailou",
+        include_bytes!(concat!(env!("OUT_DIR"), "/std_ast/pailou.ast")),
+    ),
+];
+
 /// The text of the standard library file `name` (with or without `.lsys`).
 pub fn get(name: &str) -> Option<&'static str> {
     let name = name.strip_suffix(".lsys").unwrap_or(name);

@@ -6,7 +6,7 @@
 use crate::source::Span;
 
 /// One parsed file, statements in source order.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct File {
     pub items: Vec<Item>,
     /// The first line of each statement that failed to parse (reported
@@ -15,7 +15,7 @@ pub struct File {
     pub broken: Vec<Span>,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum Item {
     /// `#define` with one or more items (the paper's list form).
     Define(Vec<Define>),
@@ -29,13 +29,13 @@ pub enum Item {
     Production(Box<Production>),
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Ident {
     pub name: String,
     pub span: Span,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Define {
     pub name: Ident,
     /// `NAME(a,b)`: a function-like define.
@@ -50,7 +50,7 @@ pub struct Define {
     pub span: Span,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum Include {
     /// `#include "file.lsys"`, relative to the including file.
     Path { path: String, span: Span },
@@ -60,7 +60,7 @@ pub enum Include {
     Components(Vec<Ident>),
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Header {
     pub kind: HeaderKind,
     /// The keyword, for labels.
@@ -68,7 +68,7 @@ pub struct Header {
     pub span: Span,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum HeaderKind {
     Lsystem(String),
     DerivationLength(Expr),
@@ -101,7 +101,7 @@ pub enum HeaderKind {
     Colour(Expr, String, Span),
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct ModuleDecl {
     pub name: Ident,
     pub params: Vec<Ident>,
@@ -110,7 +110,7 @@ pub struct ModuleDecl {
 
 /// How a module token's name was written, which decides how resolve
 /// splits it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum TokKind {
     /// Letters, digits, `_`: split by longest match against the alphabet.
     Word,
@@ -126,7 +126,7 @@ pub enum TokKind {
 
 /// A run of module text with the parameter list that follows it (which
 /// belongs to the last module once the run is split).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct ModuleTok {
     pub text: String,
     pub kind: TokKind,
@@ -138,21 +138,21 @@ pub struct ModuleTok {
 }
 
 /// An element of a predecessor or context: a module token or a bracket.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum PatTok {
     Module(ModuleTok),
     Open(Span),
     Close(Span),
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum Condition {
     Expr(Expr),
     Else(Span),
     Always(Span),
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Production {
     pub lctx: Vec<PatTok>,
     pub pred: Vec<PatTok>,
@@ -173,13 +173,13 @@ pub struct Production {
     pub span: Span,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Expr {
     pub kind: ExprKind,
     pub span: Span,
 }
 
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum ExprKind {
     Num(f64),
     Name(String),
@@ -194,14 +194,14 @@ pub enum ExprKind {
 }
 
 /// A braced list of cpfg's C-like statements.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct Block {
     pub stmts: Vec<CStmt>,
     pub span: Span,
 }
 
 /// One C-like statement.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub enum CStmt {
     /// `x = e;`, `a[i][j] += e;`.
     Assign {
@@ -233,14 +233,14 @@ pub enum CStmt {
 }
 
 /// The left-hand side of an assignment: a variable or an array element.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct LValue {
     pub name: Ident,
     pub index: Vec<Expr>,
     pub span: Span,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum AssignOp {
     Set,
     Add,
@@ -263,7 +263,7 @@ impl AssignOp {
 
 /// `name[d1][d2] = { ... }` in an `array` statement; the initializer is
 /// flattened in row-major order.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]
 pub struct ArrayDecl {
     pub name: Ident,
     pub dims: Vec<Expr>,
@@ -271,7 +271,7 @@ pub struct ArrayDecl {
     pub span: Span,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum UnaryOp {
     Neg,
     Pos,
@@ -280,7 +280,7 @@ pub enum UnaryOp {
 
 /// Binary operators. `And` and `Or` short-circuit; comparisons and logic
 /// yield 1.0 or 0.0. Shared by the AST and the resolved IR (`ir::BinOp`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum BinaryOp {
     Add,
     Sub,

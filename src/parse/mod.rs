@@ -13,6 +13,7 @@ mod expr;
 mod headers;
 mod lower;
 mod print;
+pub mod stored;
 
 use pest::iterators::Pairs;
 use pest::Parser;
@@ -191,18 +192,58 @@ pub fn parse_limited(
             vec![e],
         );
     }
-    let (file_ast, mut errors) = parse_statements(file_id, file);
+    // The standard library's files were parsed when the crate was built
+    // (see `stored`): what a text shares with one is read, not parsed. A
+    // library file itself parsed with no error or warning (build.rs stops
+    // the build otherwise). Limits still apply, above.
+    let reuse = match stored::reuse(file_id, &file.text) {
+        Some(r) if r.whole => {
+            let tree = ast::File {
+                items: r.first,
+                broken: Vec::new(),
+            };
+            return (tree, Vec::new());
+        }
+        r => r,
+    };
+    let (file_ast, mut errors, _) = parse_statements(file_id, file, reuse);
     errors.extend(slash_comments(file, file_id));
     errors.extend(headers::misspelt_headers(file, file_id));
     (file_ast, errors)
 }
 
-fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<ParseError>) {
+/// A standard library file's tree to store (`build.rs`), or the file's
+/// errors and warnings: a library file must have none.
+pub fn stored(file: &SourceFile) -> Result<stored::Stored, Vec<ParseError>> {
+    let (tree, mut errors, bounds) = parse_statements(0, file, None);
+    errors.extend(slash_comments(file, 0));
+    errors.extend(headers::misspelt_headers(file, 0));
+    if errors.is_empty() && tree.broken.is_empty() && bounds.len() == tree.items.len() {
+        Ok(stored::Stored { tree, bounds })
+    } else {
+        Err(errors)
+    }
+}
+
+/// The statements of `file`, its errors, and where each statement that
+/// gave an item starts and ends (those parsed here: the statements `reuse`
+/// has are taken from it, see `stored`).
+fn parse_statements(
+    file_id: FileId,
+    file: &SourceFile,
+    reuse: Option<stored::Reuse>,
+) -> (ast::File, Vec<ParseError>, Vec<(u32, u32)>) {
     let text = file.text.as_str();
     let mut items = Vec::new();
     let mut errors = Vec::new();
     let mut broken = Vec::new();
+    let mut bounds = Vec::new();
     let mut pos = 0;
+    let mut reuse = reuse;
+    if let Some(r) = reuse.as_mut() {
+        items = std::mem::take(&mut r.first);
+        pos = r.resume;
+    }
     loop {
         pos = match skip_blank(text, pos) {
             Ok(p) => p,
@@ -215,6 +256,10 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
             }
         };
         if pos >= text.len() {
+            break;
+        }
+        if let Some(last) = reuse.as_mut().and_then(|r| r.last_from(pos)) {
+            items.extend(last);
             break;
         }
         let rest = &text[pos..];
@@ -230,7 +275,10 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
                     file,
                 };
                 match lower.statement(pair) {
-                    Ok(item) => items.push(item),
+                    Ok(item) => {
+                        items.push(item);
+                        bounds.push((pos as u32, end as u32));
+                    }
                     Err(e) => errors.push(*e),
                 }
                 let after = skip_inline(text, end);
@@ -258,7 +306,7 @@ fn parse_statements(file_id: FileId, file: &SourceFile) -> (ast::File, Vec<Parse
             }
         }
     }
-    (ast::File { items, broken }, errors)
+    (ast::File { items, broken }, errors, bounds)
 }
 
 /// Parses the statement at the start of `rest`: first by `statement_fast`,

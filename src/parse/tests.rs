@@ -190,3 +190,106 @@ fn limits() {
     // Long module strings are not expressions: no limit.
     assert!(errors(format!("Axiom: {}\n", "F+".repeat(100_000))).is_empty());
 }
+
+/// Each standard library file's stored tree (build.rs) is the tree its
+/// text parses to, with its spans in the file it is loaded as.
+#[test]
+fn stored_library_trees_are_the_parsed_ones() {
+    assert_eq!(crate::stdlib::PARSED.len(), crate::stdlib::FILES.len());
+    for &(name, text) in crate::stdlib::FILES {
+        let file = SourceFile::new(format!("std:{name}"), Origin::Std(name.into()), text);
+        let (fresh, errors, _) = parse_statements(7, &file, None);
+        assert!(errors.is_empty(), "{name}: {errors:?}");
+        assert!(stored::reuse(7, text).is_some_and(|r| r.whole), "{name}");
+        let (read, errors) = parse(7, &file);
+        assert!(errors.is_empty(), "{name}: {errors:?}");
+        assert_eq!(format!("{read:?}"), format!("{fresh:?}"), "{name}");
+        assert!(
+            format!("{read:?}").contains("7@"),
+            "{name}: spans in file 7"
+        );
+    }
+}
+
+/// The tree and the diagnostics of `text`, parsed whole.
+fn parsed_whole(text: &str) -> (String, Vec<String>) {
+    let file = SourceFile::new("t.lsys", Origin::Memory, text.to_string());
+    let (tree, mut errors, _) = parse_statements(5, &file, None);
+    errors.extend(slash_comments(&file, 5));
+    errors.extend(headers::misspelt_headers(&file, 5));
+    let errors = errors
+        .iter()
+        .map(|e| format!("{e} {:?}", e.offset()))
+        .collect();
+    (format!("{tree:?}"), errors)
+}
+
+/// Texts made from a library file by an edit anywhere (a style's tables in
+/// place of the Pailou's, a character more or less, a line joined to or
+/// split from a statement, a mistake) parse to what they parse to whole,
+/// with the statements they share read from the stored tree.
+#[test]
+fn texts_made_from_library_files_parse_as_themselves() {
+    let lib = crate::stdlib::get("pailou").unwrap();
+    let start = lib.find("// <layout>").unwrap();
+    let end = lib.find("// </layout>").unwrap();
+    let mut texts = vec![
+        format!(
+            "{}// <layout> ours\n#define exists[1..2, 1..2] {{1, 0, 1, 0}}\n{}",
+            &lib[..start],
+            &lib[end..]
+        ),
+        format!("{}{}", &lib[..start], &lib[end..]),
+        format!("{lib}\nA --> B\n"),
+        lib.replacen("#define", "#define  ", 1),
+    ];
+    let edits = ["", "x", "\n", "\n    F(1)", "\n#define Q 1\n", " ->"];
+    let mut at = 0;
+    while at < lib.len() {
+        at = (at + 211).min(lib.len());
+        while !lib.is_char_boundary(at) {
+            at += 1;
+        }
+        for (k, edit) in edits.iter().enumerate() {
+            let cut = if k == 0 {
+                lib[at..].chars().next().map_or(0, char::len_utf8)
+            } else {
+                0
+            };
+            texts.push(format!("{}{edit}{}", &lib[..at], &lib[at + cut..]));
+        }
+    }
+    let mut shared = 0;
+    for text in &texts {
+        let file = SourceFile::new("t.lsys", Origin::Memory, text.clone());
+        let reuse = stored::reuse(5, text);
+        shared += reuse.as_ref().map_or(0, |r| r.first.len() + r.last.len());
+        let (tree, errors) = parse(5, &file);
+        let errors: Vec<String> = errors
+            .iter()
+            .map(|e| format!("{e} {:?}", e.offset()))
+            .collect();
+        let whole = parsed_whole(text);
+        assert_eq!((format!("{tree:?}"), errors), whole, "{text}");
+    }
+    // Most statements of most texts were read.
+    assert!(
+        shared > texts.len() * 40,
+        "{shared} statements shared in {} texts",
+        texts.len()
+    );
+}
+
+/// Limits apply to the library's files as to any other.
+#[test]
+fn limits_reach_stored_trees() {
+    let text = crate::stdlib::get("pailou").unwrap();
+    let file = SourceFile::new("std:pailou", Origin::Std("pailou".into()), text);
+    let tight = Limits {
+        max_nesting: 2,
+        max_operators: MAX_OPERATORS,
+    };
+    let (tree, errors) = parse_limited(0, &file, tight);
+    assert!(tree.items.is_empty());
+    assert_eq!(errors.len(), 1, "{errors:?}");
+}
