@@ -89,11 +89,17 @@ fn encode(text: &[u8], path: &Path) -> Vec<u8> {
 /// The standard library's grammars (`grammar/std/*.lsys`) -> their syntax
 /// trees, parsed by the program's parser and written with postcard to
 /// `OUT_DIR/std_ast/NAME.ast`, embedded by `src/stdlib.rs`: a run reads
-/// the tree of a standard library file instead of parsing it
-/// (`parse::stored`). A library grammar that does not parse
-/// cleanly stops the build with its diagnostics.
+/// the tree of a standard library file instead of parsing it (see
+/// `parse::stored`). A library grammar that does not parse cleanly stops
+/// the build with its diagnostics (`parse::tree_to_store`).
 fn std_syntax_trees(out: &Path) {
-    for input in ["grammar/lsys.pest", "src/source.rs", "src/parse"] {
+    // The folder too: a library file added to it is an input.
+    for input in [
+        "grammar/lsys.pest",
+        "grammar/std",
+        "src/source.rs",
+        "src/parse",
+    ] {
         println!("cargo:rerun-if-changed={input}");
     }
     let dst = out.join("std_ast");
@@ -106,7 +112,7 @@ fn std_syntax_trees(out: &Path) {
             source::Origin::Std(stem.to_string()),
             text,
         );
-        let tree = parse::stored(&file).unwrap_or_else(|errors| {
+        let tree = parse::tree_to_store(&file).unwrap_or_else(|errors| {
             let all: Vec<String> = errors.iter().map(|e| format!("{e:?}")).collect();
             panic!(
                 "{} does not parse cleanly:\n{}",

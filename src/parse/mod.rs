@@ -214,7 +214,7 @@ pub fn parse_limited(
 
 /// A standard library file's tree to store (`build.rs`), or the file's
 /// errors and warnings: a library file must have none.
-pub fn stored(file: &SourceFile) -> Result<stored::Stored, Vec<ParseError>> {
+pub fn tree_to_store(file: &SourceFile) -> Result<stored::Stored, Vec<ParseError>> {
     let (tree, mut errors, bounds) = parse_statements(0, file, None);
     errors.extend(slash_comments(file, 0));
     errors.extend(headers::misspelt_headers(file, 0));
