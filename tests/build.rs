@@ -383,3 +383,30 @@ fn includes_stay_inside_the_grammar_folder() {
         );
     }
 }
+
+/// A model that draws nothing is still written, with a warning that says
+/// why and counts the modules in words that agree with the count.
+#[test]
+fn a_model_that_draws_nothing_says_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let grammar = dir.path().join("g.lsys");
+    let out = dir.path().join("g.glb");
+    for (text, why) in [
+        (
+            "derivation length: 1\naxiom: A\nA --> *\n",
+            "(its module string is empty)",
+        ),
+        ("axiom: A\n", "(its string of 1 module has no drawing"),
+        ("axiom: A B(1)\n", "(its string of 2 modules has no drawing"),
+    ] {
+        std::fs::write(&grammar, text).unwrap();
+        let o = lsys(&["build", path_str(&grammar), "-o", path_str(&out)]);
+        assert!(o.status.success(), "{text}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains(&format!("draws nothing {why}")),
+            "{text}: {}",
+            stderr(&o)
+        );
+        assert!(out.exists(), "{text}");
+    }
+}

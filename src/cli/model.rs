@@ -413,9 +413,14 @@ fn build_compiled(
         );
     }
     if built.scene.triangle_count() == 0 {
+        let why = match built.modules {
+            0 => "its module string is empty".to_string(),
+            1 => "its string of 1 module has no drawing command with a size".to_string(),
+            n => format!("its string of {n} modules has no drawing command with a size"),
+        };
         eprintln!(
-            "lsys: warning: {} draws nothing (its string of {} modules has no drawing command with a size); the output is empty",
-            m.name, built.modules
+            "lsys: warning: {} draws nothing ({why}); the output is empty",
+            m.name
         );
     }
     let t1 = Instant::now();

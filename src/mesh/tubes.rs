@@ -246,65 +246,62 @@ impl Tubes {
             ..
         } = self;
         let point_slots = &point_slots[first_point[index]..first_point[index + 1]];
-        let first_slot = point_slots[0];
-        if let [a, b] = &pts[..] {
-            // One segment: no list of directions, no pieces.
-            let dir = (b.pos - a.pos).normalize_or_zero();
-            let start = rings[first_slot as usize]
-                .filter(|r| r.sides == sides && r.tangent.dot(dir) >= SHARE_COS);
-            let end_slot = point_slots[1];
-            let goes_on = end_slot != NONE && {
-                let s = &starts[end_slot as usize];
-                s.chain > index && s.sides == sides && s.dir.dot(dir) >= SHARE_COS
-            };
-            let caps = [
-                if start.is_some() { Cap::Open } else { closed },
-                if goes_on { Cap::Open } else { closed },
-            ];
-            let ends = segment([a, b], dir, sides, start, caps, scratch, mesh);
-            for (slot, ring) in [first_slot, end_slot].into_iter().zip(ends) {
-                if slot != NONE {
-                    rings[slot as usize] = Some(ring);
-                }
+        // One segment (most chains of a branching plant) needs no list of
+        // directions and no pieces.
+        let (dir0, last_dir) = match &pts[..] {
+            [a, b] => {
+                let dir = (b.pos - a.pos).normalize_or_zero();
+                (dir, dir)
             }
-            return;
-        }
-        directions(pts, dirs);
-        let dir0 = dirs[0];
-        let start = rings[first_slot as usize]
+            _ => {
+                directions(pts, dirs);
+                (dirs[0], dirs[dirs.len() - 1])
+            }
+        };
+        let start = rings[point_slots[0] as usize]
             .filter(|r| r.sides == sides && r.tangent.dot(dir0) >= SHARE_COS);
-        let last_dir = dirs[dirs.len() - 1];
         let end_slot = point_slots[pts.len() - 1];
         let goes_on = end_slot != NONE && {
             let s = &starts[end_slot as usize];
             s.chain > index && s.sides == sides && s.dir.dot(last_dir) >= SHARE_COS
         };
-        let dirs = &dirs[..];
-        for_each_piece(dirs, |range, first, last| {
-            let caps = [
+        // The caps of a piece that is the chain's first and/or last.
+        let caps = |first: bool, last: bool| {
+            [
                 if first && start.is_some() {
                     Cap::Open
                 } else {
                     closed
                 },
                 if last && goes_on { Cap::Open } else { closed },
-            ];
+            ]
+        };
+        // The ring at point `i` of the chain, for the chains that start there.
+        let mut keep = |i: usize, ring: Ring| {
+            let slot = point_slots[i];
+            if slot != NONE {
+                rings[slot as usize] = Some(ring);
+            }
+        };
+        if let [a, b] = &pts[..] {
+            let ends = segment([a, b], dir0, sides, start, caps(true, true), scratch, mesh);
+            keep(0, ends[0]);
+            keep(1, ends[1]);
+            return;
+        }
+        let dirs = &dirs[..];
+        for_each_piece(dirs, |range, first, last| {
             piece(
                 &Piece {
                     points: &pts[range.clone()],
                     offset: range.start,
                     sides,
                     start: if first { start } else { None },
-                    caps,
+                    caps: caps(first, last),
                 },
                 &dirs[range.start..range.end - 1],
                 |i| point_slots[i] != NONE,
-                |i, ring| {
-                    let slot = point_slots[i];
-                    if slot != NONE {
-                        rings[slot as usize] = Some(ring);
-                    }
-                },
+                &mut keep,
                 scratch,
                 mesh,
             );

@@ -414,6 +414,7 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
             && code
                 .get(..k.len())
                 .is_some_and(|c| c.eq_ignore_ascii_case(k))
+            && !code[k.len()..].starts_with(|c: char| c.is_alphanumeric() || c == '_')
             && !code[k.len()..].trim_start().starts_with(':')
     }) {
         let typed = &code[..kw.len()];
@@ -425,6 +426,9 @@ fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> 
         return Some(
             "a probability or condition belongs on the production's own line, after the successor: `F --> F[+F]F : 0.5`".to_string(),
         );
+    }
+    if let Some(help) = assignment_help(code) {
+        return Some(help);
     }
     if single_equals(line) {
         return Some(
@@ -474,6 +478,25 @@ const HEADERS: &[&str] = &[
     "environment",
     "maximum depth",
 ];
+
+/// What to write instead of a line `NAME = VALUE`: the textbooks' `n = 5`
+/// and `δ = 25.7` are headers here, and any other name a `#define`.
+fn assignment_help(code: &str) -> Option<String> {
+    let (name, value) = code.split_once('=')?;
+    let (name, value) = (name.trim(), value.trim());
+    let is_name = name.chars().next().is_some_and(char::is_alphabetic)
+        && name.chars().all(|c| c.is_alphanumeric() || c == '_');
+    if !is_name || value.is_empty() || value.starts_with('=') {
+        return None;
+    }
+    Some(match name {
+        "n" | "N" | "iterations" | "steps" | "generations" => {
+            format!("the number of derivation steps is a header: `derivation length: {value}`")
+        }
+        "delta" | "δ" => format!("the turning angle is a header: `angle: {value}`"),
+        _ => format!("a constant is defined with `#define {name} {value}`"),
+    })
+}
 
 /// A lone `=` (not `==`, `<=`, `>=`, `!=`) before the line's arrow.
 fn single_equals(line: &str) -> bool {

@@ -197,14 +197,15 @@ pub fn parse_limited(
     // library file itself parsed with no error or warning (build.rs stops
     // the build otherwise). Limits still apply, above.
     let reuse = match stored::reuse(file_id, &file.text) {
-        Some(r) if r.whole => {
+        Some(stored::Shared::Whole(items)) => {
             let tree = ast::File {
-                items: r.first,
+                items,
                 broken: Vec::new(),
             };
             return (tree, Vec::new());
         }
-        r => r,
+        Some(stored::Shared::Parts(parts)) => Some(parts),
+        None => None,
     };
     let (file_ast, mut errors, _) = parse_statements(file_id, file, reuse);
     errors.extend(slash_comments(file, file_id));

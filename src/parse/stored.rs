@@ -31,10 +31,17 @@ pub struct Stored {
     pub bounds: Vec<(u32, u32)>,
 }
 
-/// The statements of a stored tree that a text shares with it.
+/// What a text shares with a library file's stored tree.
+pub(super) enum Shared {
+    /// The text is the library file's: its whole tree.
+    Whole(Vec<ast::Item>),
+    /// A first and a last part of it.
+    Parts(Reuse),
+}
+
+/// The statements at the start and at the end of a stored tree that a text
+/// shares with it.
 pub(super) struct Reuse {
-    /// The text is the library file's: `first` is its whole tree.
-    pub whole: bool,
     /// The statements at the start, and where the parse goes on after them.
     pub first: Vec<ast::Item>,
     pub resume: usize,
@@ -57,42 +64,31 @@ const AT_LEAST: usize = 256;
 
 /// What `text` (file `file_id`) shares with the library file it has most in
 /// common with; `None` when that is too little.
-pub(super) fn reuse(file_id: FileId, text: &str) -> Option<Reuse> {
+pub(super) fn reuse(file_id: FileId, text: &str) -> Option<Shared> {
     let (lib, first, last) = crate::stdlib::FILES
         .iter()
-        .map(|&(name, lib)| {
-            let first = common_prefix(text, lib);
-            let most = text.len().min(lib.len()) - first;
-            (name, lib, first, common_suffix(text, lib, most))
+        .map(|lib| {
+            let first = common_prefix(text, lib.text);
+            let most = text.len().min(lib.text.len()) - first;
+            (lib, first, common_suffix(text, lib.text, most))
         })
-        .max_by_key(|&(_, _, first, last)| first + last)
-        .map(|(name, lib, first, last)| ((name, lib), first, last))?;
+        .max_by_key(|&(_, first, last)| first + last)?;
     if first + last < AT_LEAST {
         return None;
     }
-    let (name, lib) = lib;
-    let bytes = crate::stdlib::PARSED
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, b)| *b)?;
     // Spans in the shared last part move with it.
-    let last_from = lib.len() - last;
-    let shift = text.len() as i64 - lib.len() as i64;
+    let last_from = lib.text.len() - last;
+    let shift = text.len() as i64 - lib.text.len() as i64;
     let stored: Stored = crate::source::in_file(file_id, last_from as u32, shift, || {
-        postcard::from_bytes(bytes)
+        postcard::from_bytes(lib.tree)
     })
     .ok()?;
     let Stored { tree, bounds } = stored;
     if bounds.len() != tree.items.len() {
         return None;
     }
-    if first == text.len() && first == lib.len() {
-        return Some(Reuse {
-            whole: true,
-            first: tree.items,
-            resume: text.len(),
-            last: Vec::new(),
-        });
+    if first == text.len() && first == lib.text.len() {
+        return Some(Shared::Whole(tree.items));
     }
     // Statement k is shared at the start when statement k + 1 ends in the
     // shared first part.
@@ -114,12 +110,11 @@ pub(super) fn reuse(file_id: FileId, text: &str) -> Option<Reuse> {
             last_items.push(((start as i64 + shift) as usize, item));
         }
     }
-    Some(Reuse {
-        whole: false,
+    Some(Shared::Parts(Reuse {
         first: first_items,
         resume,
         last: last_items,
-    })
+    }))
 }
 
 fn common_prefix(a: &str, b: &str) -> usize {
