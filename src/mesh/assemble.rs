@@ -4,6 +4,8 @@
 
 use std::collections::HashMap;
 
+use rustc_hash::FxHashMap;
+
 use super::components::ComponentSearch;
 use super::error::MeshError;
 use super::internodes;
@@ -52,9 +54,9 @@ struct Builder<'a> {
     palette: &'a Palette,
     scene: Scene,
     /// Colour index -> material index.
-    colour_materials: HashMap<u32, usize>,
+    colour_materials: FxHashMap<u32, usize>,
     /// Material index -> index in `scene.strokes`.
-    stroke_of: HashMap<usize, usize>,
+    stroke_of: FxHashMap<usize, usize>,
 }
 
 impl Builder<'_> {
@@ -107,8 +109,8 @@ pub fn assemble_scene(
     let mut b = Builder {
         palette,
         scene: Scene::default(),
-        colour_materials: HashMap::new(),
-        stroke_of: HashMap::new(),
+        colour_materials: FxHashMap::default(),
+        stroke_of: FxHashMap::default(),
     };
     let mut triangles = 0usize;
     let mut check = |added: usize| {
@@ -195,7 +197,7 @@ pub fn assemble_scene(
         .into_iter()
         .collect();
     // Symbol -> component index, loaded on first placement.
-    let mut loaded: HashMap<SymId, usize> = HashMap::new();
+    let mut loaded: FxHashMap<SymId, usize> = FxHashMap::default();
     // Placements so far per component index (`--instanced` has already
     // added its cylinder).
     let mut numbers: Vec<u32> = vec![0; b.scene.components.len()];

@@ -6,8 +6,6 @@
 //! and the layout of its binary buffer (`bin.rs`), which `mod.rs` writes as
 //! a GLB or a `.gltf` file.
 
-use std::collections::HashMap;
-
 use glam::{Mat3, Mat4, Vec3};
 use gltf_json as json;
 use json::accessor::{ComponentType, GenericComponentType, Type};
@@ -16,6 +14,7 @@ use json::material::{PbrBaseColorFactor, PbrMetallicRoughness, StrengthFactor};
 use json::mesh::{Mode, Primitive, Semantic};
 use json::validation::Checked::Valid;
 use json::{Accessor, Index};
+use rustc_hash::FxHashMap;
 
 use super::ExportError;
 
@@ -36,12 +35,12 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Bin<'_>), ExportError>
         root: json::Root::default(),
         bin: Bin::default(),
         materials: vec![None; scene.materials.len()],
-        parts: HashMap::new(),
-        meshes: HashMap::new(),
-        ids: HashMap::new(),
+        parts: FxHashMap::default(),
+        meshes: FxHashMap::default(),
+        ids: FxHashMap::default(),
         distinct: Vec::new(),
-        nested_meshes: HashMap::new(),
-        nested_geometry: HashMap::new(),
+        nested_meshes: FxHashMap::default(),
+        nested_geometry: FxHashMap::default(),
     };
     // Room for every node at once: a Pailou has ~3,600, and growing the
     // list by doubling copied it and touched fresh memory each time.
@@ -120,18 +119,18 @@ struct Builder<'s> {
     materials: Vec<Option<Index<json::Material>>>,
     /// Per (component id, part), its geometry (None: empty part), written
     /// once however many meshes and placements use it.
-    parts: HashMap<(usize, usize), Option<Geometry>>,
+    parts: FxHashMap<(usize, usize), Option<Geometry>>,
     /// Per (component id, placement material when some part takes it), the
     /// shared mesh (None: the component draws nothing).
-    meshes: HashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
+    meshes: FxHashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
     /// Component ids (see [`Builder::id`]) by address, and each id's component.
-    ids: HashMap<usize, usize>,
+    ids: FxHashMap<usize, usize>,
     distinct: Vec<&'s Component>,
     /// Per (nested component's address, placement colour when one of its
     /// own parts takes it), the mesh of its own parts.
-    nested_meshes: HashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
+    nested_meshes: FxHashMap<(usize, Option<usize>), Option<Index<json::Mesh>>>,
     /// Per own part of a nested component (by address), its geometry.
-    nested_geometry: HashMap<usize, Option<Geometry>>,
+    nested_geometry: FxHashMap<usize, Option<Geometry>>,
 }
 
 impl<'s> Builder<'s> {
