@@ -410,3 +410,36 @@ fn a_model_that_draws_nothing_says_why() {
         assert!(out.exists(), "{text}");
     }
 }
+
+/// A grammar that asks guides, built on its own, draws nothing: the
+/// warning names the queries and the scene beside it that hosts it.
+#[test]
+fn a_guided_grammar_built_alone_points_to_its_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let grammar = dir.path().join("leaf.lsys");
+    std::fs::write(
+        &grammar,
+        "derivation length: 3\naxiom: A\nA --> ?DL(0, 0, 0, 0, 0, 1)\n?DL(f, d, b, id, t, s) -->\n",
+    )
+    .unwrap();
+    let out = dir.path().join("leaf.glb");
+    let build = || lsys(&["build", path_str(&grammar), "-o", path_str(&out)]);
+    let o = build();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "help: it asks guides (`?DL`) and was built without any: build it from a guided scene"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    std::fs::write(dir.path().join("other.toml"), "# names no grammar\n").unwrap();
+    let scene = dir.path().join("garden.toml");
+    std::fs::write(&scene, "[[seed]]\ngrammar = \"leaf.lsys\"\n").unwrap();
+    let o = build();
+    let expected = format!(
+        "build the scene that hosts it, `lsys build {} -o garden.glb`",
+        scene.display()
+    );
+    assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
+}

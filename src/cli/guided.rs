@@ -78,3 +78,65 @@ pub fn build_scene(
         Err(e) => write_failed(e, out, color),
     }
 }
+
+/// The guided modeling queries (docs/guided.md): a grammar that asks them
+/// is meant to grow inside a scene, along its guides.
+const QUERIES: [&str; 7] = ["?DL", "?DG", "?DA", "?NL", "?NG", "?NA", "?X"];
+
+/// Why a grammar built on its own drew nothing, when it asks guides: the
+/// queries it uses, and the scenes beside it that host it (or `None`
+/// when it asks no guide).
+pub(super) fn built_without_its_guides(
+    program: &crate::resolve::Program,
+    grammar: Option<&Path>,
+) -> Option<String> {
+    let asked: Vec<&str> = QUERIES
+        .into_iter()
+        .filter(|q| program.symbols.get(q).is_some())
+        .collect();
+    if asked.is_empty() {
+        return None;
+    }
+    let asked = asked.join("`, `");
+    let hosts = grammar.map(hosting_scenes).unwrap_or_default();
+    Some(match hosts.first() {
+        Some(scene) => format!(
+            "it asks guides (`{asked}`) and was built without any: build the scene that hosts it, `lsys build {} -o {}.glb` (docs/guided.md)",
+            scene.display(),
+            scene.file_stem().unwrap_or_default().to_string_lossy()
+        ),
+        None => format!(
+            "it asks guides (`{asked}`) and was built without any: build it from a guided scene (a .toml file, docs/guided.md)"
+        ),
+    })
+}
+
+/// The scenes (`*.toml`) in `grammar`'s folder that name its file, sorted.
+fn hosting_scenes(grammar: &Path) -> Vec<std::path::PathBuf> {
+    let (Some(dir), Some(file)) = (grammar.parent(), grammar.file_name()) else {
+        return Vec::new();
+    };
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let file = file.to_string_lossy();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut scenes: Vec<_> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| std::fs::read_to_string(p).is_ok_and(|t| t.contains(&*file)))
+        .map(|p| {
+            if grammar.parent().is_some_and(|d| d.as_os_str().is_empty()) {
+                p.strip_prefix("./").map(Path::to_path_buf).unwrap_or(p)
+            } else {
+                p
+            }
+        })
+        .collect();
+    scenes.sort();
+    scenes
+}

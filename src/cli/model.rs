@@ -413,13 +413,20 @@ fn build_compiled(
         );
     }
     if built.scene.triangle_count() == 0 {
+        let input_path = match &m.input {
+            Input::Path(p) => Some(p.as_path()),
+            _ => None,
+        };
+        let hint = super::guided::built_without_its_guides(&comp.program, input_path)
+            .map(|h| format!("\n  help: {h}"))
+            .unwrap_or_default();
         let why = match built.modules {
             0 => "its module string is empty".to_string(),
             1 => "its string of 1 module has no drawing command with a size".to_string(),
             n => format!("its string of {n} modules has no drawing command with a size"),
         };
         eprintln!(
-            "lsys: warning: {} draws nothing ({why}); the output is empty",
+            "lsys: warning: {} draws nothing ({why}); the output is empty{hint}",
             m.name
         );
     }
