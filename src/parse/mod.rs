@@ -11,6 +11,7 @@ mod block;
 mod error;
 mod expr;
 mod headers;
+mod help;
 mod lower;
 mod print;
 pub mod stored;
