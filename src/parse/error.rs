@@ -8,8 +8,8 @@ use pest::error::{Error as PestError, ErrorVariant, InputLocation};
 use thiserror::Error;
 
 use super::help::{
-    closes, empty_entry, found_at, line_of, structural_help, typographic_help, ARROW_HELP,
-    MISSING_ARROW_HELP,
+    closes, empty_entry, found_at, line_of, structural_help, typographic_help,
+    without_empty_entries, ARROW_HELP, MISSING_ARROW_HELP,
 };
 use super::Rule;
 use crate::source::{FileId, SourceFile, Span};
@@ -242,13 +242,13 @@ impl ParseError {
                         "the value of a #define must be an expression; cpfg's textual macros (module strings, statements) are not supported yet"
                             .to_string(),
                     ),
-                    Some('(') if empty_entry(&file.text[at..]) => Some(
-                        "a parameter list has no empty entries: remove the extra `,` (write `B(x)` or `B(x, y)`)"
-                            .to_string(),
-                    ),
                     Some('(') if !closes(&file.text[at..]) => Some(
                         "this `(` is never closed: end the parameter list with `)`".to_string(),
                     ),
+                    Some('(') if empty_entry(&file.text[at..]) => Some(format!(
+                        "a parameter list has no empty entries: remove the extra `,` (write `{}`)",
+                        without_empty_entries(&file.text, at)
+                    )),
                     Some('(') => Some(
                         "a parameter list must follow its module name directly: write `F(1)`, not `F (1)`"
                             .to_string(),

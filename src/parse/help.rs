@@ -15,6 +15,24 @@ pub(super) fn empty_entry(rest: &str) -> bool {
     list.contains(",)") || list.contains("(,") || list.contains(",,")
 }
 
+/// The module whose parameter list starts at `at` (closed on its line),
+/// written without the list's empty entries: `C(x,)` -> `C(x)`.
+pub(super) fn without_empty_entries(text: &str, at: usize) -> String {
+    let name_start = text[..at]
+        .rfind(|c: char| c.is_whitespace() || matches!(c, '>' | '[' | ']' | ')'))
+        .map_or(0, |i| {
+            i + text[i..].chars().next().map_or(1, char::len_utf8)
+        });
+    let inner = &text[at + 1..];
+    let inner = &inner[..inner.find(')').unwrap_or(inner.len())];
+    let entries: Vec<&str> = inner
+        .split(',')
+        .map(str::trim)
+        .filter(|e| !e.is_empty())
+        .collect();
+    format!("{}({})", &text[name_start..at], entries.join(", "))
+}
+
 /// Whether the `(` that starts `rest` is closed on its line.
 pub(super) fn closes(rest: &str) -> bool {
     let mut depth = 0;
