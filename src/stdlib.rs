@@ -30,6 +30,18 @@ pub fn get(name: &str) -> Option<&'static str> {
     FILES.iter().find(|f| f.name == name).map(|f| f.text)
 }
 
+/// The library file whose name is at most two edits from `name`, the
+/// closest, for "did you mean" (`pailu`, `toukung-side`).
+pub fn closest(name: &str) -> Option<&'static str> {
+    let name = name.strip_suffix(".lsys").unwrap_or(name);
+    FILES
+        .iter()
+        .map(|f| (strsim::levenshtein(name, f.name), f.name))
+        .filter(|&(d, _)| d <= 2)
+        .min()
+        .map(|(_, n)| n)
+}
+
 /// Names of all standard library files, for help texts.
 pub fn names() -> Vec<&'static str> {
     FILES.iter().map(|f| f.name).collect()

@@ -175,3 +175,30 @@ fn a_failed_compilation_names_every_file_it_read() {
         .collect();
     assert_eq!(names, ["g.lsys", "part.lsys"]);
 }
+
+/// A misspelt library name, on the command line or in an `#include`, is
+/// answered with the name meant, written as it would be there.
+#[test]
+fn misspelt_library_names_get_the_name_meant() {
+    let opts = Options::default();
+    let std_err = match pipeline::compile(&Input::Std("toukung-side".into()), &opts) {
+        Ok(_) => panic!("std:toukung-side compiled"),
+        Err(d) => d.render_plain(),
+    };
+    assert!(
+        std_err.contains("did you mean `std:toukung_side`?"),
+        "{std_err}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let root = dir.path().join("g.lsys");
+    write(&root, "#include <pailu>\naxiom: F\n");
+    let include_err = compile(&root, &[]).unwrap_err();
+    assert!(
+        include_err.contains("did you mean `#include <pailou>`?"),
+        "{include_err}"
+    );
+    write(&root, "#include <nothing_like_it>\naxiom: F\n");
+    let far = compile(&root, &[]).unwrap_err();
+    assert!(!far.contains("did you mean"), "{far}");
+    assert!(far.contains("the standard library has: "), "{far}");
+}

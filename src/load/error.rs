@@ -21,11 +21,8 @@ pub enum InputError {
     )]
     NotFound { path: String, cause: String },
     #[error("no standard library grammar `std:{name}`")]
-    #[diagnostic(
-        code(lsys::load::unknown_std),
-        help("the standard library has: {available}")
-    )]
-    UnknownStd { name: String, available: String },
+    #[diagnostic(code(lsys::load::unknown_std), help("{help}"))]
+    UnknownStd { name: String, help: String },
     #[error("{path} is not an L-system source: {why}")]
     #[diagnostic(
         code(lsys::load::input_not_source),

@@ -63,8 +63,8 @@ impl Source {
                 .map_err(|e| format!("cannot read {}: {e}", p.display())),
             Source::Std(n) => crate::stdlib::get(n).map(String::from).ok_or_else(|| {
                 format!(
-                    "no standard library grammar `std:{n}`; there are: {}",
-                    crate::stdlib::names().join(", ")
+                    "no standard library grammar `std:{n}`; {}",
+                    crate::load::stdlib_help(n, |m| format!("std:{m}"))
                 )
             }),
             Source::Scratch => Ok(String::new()),
