@@ -202,3 +202,30 @@ fn misspelt_library_names_get_the_name_meant() {
     assert!(!far.contains("did you mean"), "{far}");
     assert!(far.contains("the standard library has: "), "{far}");
 }
+
+/// A folder given as the grammar is refused by name, with the grammars
+/// it holds (the first five) or the news that it holds none.
+#[test]
+fn a_folder_is_not_a_grammar() {
+    let dir = tempfile::tempdir().unwrap();
+    let err = compile(dir.path(), &[]).unwrap_err();
+    assert!(err.contains("lsys::load::input_is_folder"), "{err}");
+    assert!(err.contains("is a folder, not a grammar"), "{err}");
+    assert!(err.contains("this folder holds none"), "{err}");
+    for name in ["b.lsys", "a.lsys", "notes.txt", "c.l"] {
+        write(&dir.path().join(name), "axiom: F\n");
+    }
+    let err = compile(dir.path(), &[]).unwrap_err();
+    assert!(
+        err.contains("give lsys one of its grammars: a.lsys, b.lsys, c.l"),
+        "{err}"
+    );
+    for k in 0..6 {
+        write(&dir.path().join(format!("g{k}.lsys")), "axiom: F\n");
+    }
+    let err = compile(dir.path(), &[]).unwrap_err();
+    assert!(
+        err.contains("one of its 9 grammars: a.lsys, b.lsys, c.l, g0.lsys, g1.lsys, ..."),
+        "{err}"
+    );
+}

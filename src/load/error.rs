@@ -20,6 +20,9 @@ pub enum InputError {
         help("check the path; standard library grammars are named `std:NAME`")
     )]
     NotFound { path: String, cause: String },
+    #[error("{path} is a folder, not a grammar")]
+    #[diagnostic(code(lsys::load::input_is_folder), help("{help}"))]
+    Folder { path: String, help: String },
     #[error("no standard library grammar `std:{name}`")]
     #[diagnostic(code(lsys::load::unknown_std), help("{help}"))]
     UnknownStd { name: String, help: String },

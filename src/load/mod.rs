@@ -201,6 +201,10 @@ fn root_file(input: &Input) -> Result<SourceFile, InputError> {
     Ok(match input {
         Input::Path(p) => {
             let path = p.display().to_string();
+            if p.is_dir() {
+                let help = folder_help(p);
+                return Err(InputError::Folder { path, help });
+            }
             let text = include::read_source(p).map_err(|e| match e {
                 include::Unread::Io(e) => InputError::NotFound {
                     path,
@@ -269,5 +273,27 @@ pub(crate) fn stdlib_help(name: &str, spell: impl Fn(&str) -> String) -> String 
             spell(n)
         ),
         None => format!("the standard library has: {all}"),
+    }
+}
+
+/// What to give instead of folder `dir`: the grammars in it, if any.
+fn folder_help(dir: &std::path::Path) -> String {
+    let mut grammars: Vec<String> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| e.ok())
+        .map(|e| e.path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "lsys" || x == "l"))
+        .filter_map(|p| Some(p.file_name()?.to_string_lossy().into_owned()))
+        .collect();
+    grammars.sort();
+    const SHOWN: usize = 5;
+    match grammars.len() {
+        0 => "give lsys a grammar file (.lsys, or cpfg's .l); this folder holds none".to_string(),
+        n if n <= SHOWN => format!("give lsys one of its grammars: {}", grammars.join(", ")),
+        n => format!(
+            "give lsys one of its {n} grammars: {}, ...",
+            grammars[..SHOWN].join(", ")
+        ),
     }
 }
