@@ -202,7 +202,7 @@ pub const COMMANDS: &[Command] = &[
     Command {
         name: "quit",
         args: "",
-        help: "leave (Ctrl-D too)",
+        help: "leave (Ctrl-D, `quit` or `exit` too)",
         arg: Arg::None,
         run: |s, _| {
             s.quit = true;

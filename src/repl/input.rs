@@ -25,6 +25,14 @@ pub fn classify(text: &str) -> Kind<'_> {
     if t.is_empty() || t.starts_with("//") {
         return Kind::Empty;
     }
+    // What a newcomer types to leave: `quit` and `exit` leave as `:quit`
+    // does, instead of being rewritten as a string of one-letter modules.
+    if matches!(t, "quit" | "exit") {
+        return Kind::Command {
+            name: "quit",
+            args: "",
+        };
+    }
     if let Some(rest) = t.strip_prefix(':') {
         let (name, args) = rest.split_once(char::is_whitespace).unwrap_or((rest, ""));
         return Kind::Command {
@@ -99,6 +107,16 @@ mod tests {
     #[test]
     fn kinds() {
         assert_eq!(classify("  "), Kind::Empty);
+        for leave in ["quit", " exit "] {
+            assert_eq!(
+                classify(leave),
+                Kind::Command {
+                    name: "quit",
+                    args: ""
+                }
+            );
+        }
+        assert_eq!(classify("quit F"), Kind::Modules);
         assert_eq!(classify("// note"), Kind::Empty);
         assert_eq!(
             classify(":step 3"),
