@@ -30,16 +30,24 @@ pub fn get(name: &str) -> Option<&'static str> {
     FILES.iter().find(|f| f.name == name).map(|f| f.text)
 }
 
-/// The library file whose name is at most two edits from `name`, the
-/// closest, for "did you mean" (`pailu`, `toukung-side`).
-pub fn closest(name: &str) -> Option<&'static str> {
+/// The help of an unknown library name: the name meant, if one is at
+/// most two edits away (written by `spell`: `std:NAME`, `#include <NAME>`),
+/// and every name.
+pub fn unknown_help(name: &str, spell: impl Fn(&str) -> String) -> String {
     let name = name.strip_suffix(".lsys").unwrap_or(name);
-    FILES
+    let all = names().join(", ");
+    let closest = FILES
         .iter()
         .map(|f| (strsim::levenshtein(name, f.name), f.name))
         .filter(|&(d, _)| d <= 2)
-        .min()
-        .map(|(_, n)| n)
+        .min();
+    match closest {
+        Some((_, n)) => format!(
+            "did you mean `{}`? the standard library has: {all}",
+            spell(n)
+        ),
+        None => format!("the standard library has: {all}"),
+    }
 }
 
 /// Names of all standard library files, for help texts.

@@ -111,31 +111,25 @@ pub(super) fn built_without_its_guides(
     })
 }
 
-/// The scenes (`*.toml`) in `grammar`'s folder that name its file, sorted.
+/// The scenes (`*.toml`) in `grammar`'s folder that name its file, sorted,
+/// written as the grammar's path is (relative stays relative).
 fn hosting_scenes(grammar: &Path) -> Vec<std::path::PathBuf> {
-    let (Some(dir), Some(file)) = (grammar.parent(), grammar.file_name()) else {
+    let Some(file) = grammar.file_name() else {
         return Vec::new();
     };
-    let dir = if dir.as_os_str().is_empty() {
-        Path::new(".")
-    } else {
-        dir
-    };
     let file = file.to_string_lossy();
+    let dir = match grammar.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
     let Ok(entries) = std::fs::read_dir(dir) else {
         return Vec::new();
     };
     let mut scenes: Vec<_> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter_map(|e| e.ok())
+        .map(|e| grammar.with_file_name(e.file_name()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .filter(|p| std::fs::read_to_string(p).is_ok_and(|t| t.contains(&*file)))
-        .map(|p| {
-            if grammar.parent().is_some_and(|d| d.as_os_str().is_empty()) {
-                p.strip_prefix("./").map(Path::to_path_buf).unwrap_or(p)
-            } else {
-                p
-            }
-        })
         .collect();
     scenes.sort();
     scenes

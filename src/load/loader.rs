@@ -175,7 +175,7 @@ impl Loader {
                     name: name.to_string(),
                     src: from.named_source(),
                     span: span.into(),
-                    help: super::stdlib_help(name, |n| format!("#include <{n}>")),
+                    help: stdlib::unknown_help(name, |n| format!("#include <{n}>")),
                 }))
             }
         }

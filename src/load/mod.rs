@@ -221,7 +221,7 @@ fn root_file(input: &Input) -> Result<SourceFile, InputError> {
         Input::Std(name) => {
             let text = stdlib::get(name).ok_or_else(|| InputError::UnknownStd {
                 name: name.clone(),
-                help: stdlib_help(name, |n| format!("std:{n}")),
+                help: stdlib::unknown_help(name, |n| format!("std:{n}")),
             })?;
             SourceFile::new(format!("std:{name}"), Origin::Std(name.clone()), text)
         }
@@ -260,19 +260,6 @@ impl Options {
             .iter()
             .cloned()
             .partition(|(n, _)| !n.contains('.'))
-    }
-}
-
-/// The help of an unknown library name: the name meant, if one is close
-/// (written by `spell`: `std:NAME` or `<NAME>`), and every name.
-pub(crate) fn stdlib_help(name: &str, spell: impl Fn(&str) -> String) -> String {
-    let all = stdlib::names().join(", ");
-    match stdlib::closest(name) {
-        Some(n) => format!(
-            "did you mean `{}`? the standard library has: {all}",
-            spell(n)
-        ),
-        None => format!("the standard library has: {all}"),
     }
 }
 

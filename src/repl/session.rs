@@ -64,7 +64,7 @@ impl Source {
             Source::Std(n) => crate::stdlib::get(n).map(String::from).ok_or_else(|| {
                 format!(
                     "no standard library grammar `std:{n}`; {}",
-                    crate::load::stdlib_help(n, |m| format!("std:{m}"))
+                    crate::stdlib::unknown_help(n, |m| format!("std:{m}"))
                 )
             }),
             Source::Scratch => Ok(String::new()),
