@@ -201,11 +201,12 @@ fn root_file(input: &Input) -> Result<SourceFile, InputError> {
     Ok(match input {
         Input::Path(p) => {
             let path = p.display().to_string();
-            if p.is_dir() {
-                let help = folder_help(p);
-                return Err(InputError::Folder { path, help });
-            }
             let text = include::read_source(p).map_err(|e| match e {
+                // Asked only once reading failed: a build pays no stat for it.
+                include::Unread::Io(_) if p.is_dir() => InputError::Folder {
+                    path,
+                    help: folder_help(p),
+                },
                 include::Unread::Io(e) => InputError::NotFound {
                     path,
                     cause: e.to_string(),
@@ -269,9 +270,9 @@ fn folder_help(dir: &std::path::Path) -> String {
         .into_iter()
         .flatten()
         .filter_map(|e| e.ok())
-        .map(|e| e.path())
-        .filter(|p| p.is_file() && p.extension().is_some_and(|x| x == "lsys" || x == "l"))
-        .filter_map(|p| Some(p.file_name()?.to_string_lossy().into_owned()))
+        .filter(|e| e.file_type().is_ok_and(|t| !t.is_dir()))
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".lsys") || n.ends_with(".l"))
         .collect();
     grammars.sort();
     const SHOWN: usize = 5;
