@@ -8,6 +8,7 @@ use lsys::bytecode::{self, disasm, Compiled};
 use lsys::derive::{homomorphism, Derivation, DeriveError, DeriveOptions, ModuleStore, Rand48};
 use lsys::resolve::*;
 use lsys::source::{Origin, SourceFile, SourceMap, Span};
+use std::sync::Arc;
 
 // ---------------------------------------------------------------------
 // Mini program builder
@@ -92,7 +93,7 @@ impl Ex<'_> {
             assert!(self.eat(":"), "expected ':' in ternary");
             let f = self.expr();
             let (a, b) = (c.span.start as usize, f.span.end as usize);
-            return Ex::mk(ExprKind::Cond(Box::new(c), Box::new(t), Box::new(f)), a, b);
+            return Ex::mk(ExprKind::Cond(Arc::new(c), Arc::new(t), Arc::new(f)), a, b);
         }
         c
     }
@@ -109,7 +110,7 @@ impl Ex<'_> {
                     }
                     let r = next(self);
                     let (a, b) = (l.span.start as usize, r.span.end as usize);
-                    l = Ex::mk(ExprKind::Binary(op, Box::new(l), Box::new(r)), a, b);
+                    l = Ex::mk(ExprKind::Binary(op, Arc::new(l), Arc::new(r)), a, b);
                     continue 'outer;
                 }
             }
@@ -152,7 +153,7 @@ impl Ex<'_> {
             if self.eat(tok) {
                 let e = self.unary();
                 let b = e.span.end as usize;
-                return Ex::mk(ExprKind::Unary(op, Box::new(e)), a, b);
+                return Ex::mk(ExprKind::Unary(op, Arc::new(e)), a, b);
             }
         }
         self.pow()
@@ -163,7 +164,7 @@ impl Ex<'_> {
             let e = self.unary();
             let (a, b) = (base.span.start as usize, e.span.end as usize);
             return Ex::mk(
-                ExprKind::Binary(BinOp::Pow, Box::new(base), Box::new(e)),
+                ExprKind::Binary(BinOp::Pow, Arc::new(base), Arc::new(e)),
                 a,
                 b,
             );

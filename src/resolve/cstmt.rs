@@ -13,6 +13,7 @@
 //! every later use in that production reads.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use super::error::ResolveError;
 use super::expr::Scope;
@@ -246,8 +247,8 @@ impl Resolver {
                             Expr {
                                 kind: ExprKind::Binary(
                                     bin,
-                                    Box::new(Expr { kind, span }),
-                                    Box::new(v),
+                                    Arc::new(Expr { kind, span }),
+                                    Arc::new(v),
                                 ),
                                 span,
                             }

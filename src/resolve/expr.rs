@@ -5,6 +5,7 @@
 //! production that uses `h`).
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use miette::Report;
 
@@ -88,20 +89,20 @@ impl Resolver {
                 let a = self.expr_in(a, scope, exp)?;
                 match op {
                     ast::UnaryOp::Pos => return Some(a),
-                    ast::UnaryOp::Neg => ExprKind::Unary(UnOp::Neg, Box::new(a)),
-                    ast::UnaryOp::Not => ExprKind::Unary(UnOp::Not, Box::new(a)),
+                    ast::UnaryOp::Neg => ExprKind::Unary(UnOp::Neg, Arc::new(a)),
+                    ast::UnaryOp::Not => ExprKind::Unary(UnOp::Not, Arc::new(a)),
                 }
             }
             ast::ExprKind::Binary(op, a, b) => {
                 let a = self.expr_in(a, scope, exp);
                 let b = self.expr_in(b, scope, exp);
-                ExprKind::Binary(*op, Box::new(a?), Box::new(b?))
+                ExprKind::Binary(*op, Arc::new(a?), Arc::new(b?))
             }
             ast::ExprKind::Ternary(c, a, b) => {
                 let c = self.expr_in(c, scope, exp);
                 let a = self.expr_in(a, scope, exp);
                 let b = self.expr_in(b, scope, exp);
-                ExprKind::Cond(Box::new(c?), Box::new(a?), Box::new(b?))
+                ExprKind::Cond(Arc::new(c?), Arc::new(a?), Arc::new(b?))
             }
             ast::ExprKind::Call(name, args) => return self.call(name, args, span, scope, exp),
             ast::ExprKind::Index(name, args) => {
@@ -382,6 +383,14 @@ impl Resolver {
                 self.warnings.len(),
                 self.missing_names.len(),
             );
+        // Folded here, once, so that its uses share one folded tree: the
+        // statement's own fold then walks it without copying it (see
+        // `fold::folded`). A fold that fails keeps the tree as it was, and
+        // the statement's fold reports the error where it always did.
+        let expr = match super::fold::folded(&expr, &self.sources, &self.tables) {
+            Ok(Some(folded)) => folded,
+            Ok(None) | Err(_) => expr,
+        };
         if reusable && quiet {
             self.expansions
                 .made
@@ -529,7 +538,7 @@ impl Resolver {
         if !self.call_arity(name, args.len(), want, span, None) {
             return Some(None);
         }
-        let mut a = args.iter().cloned().map(Box::new);
+        let mut a = args.iter().cloned().map(Arc::new);
         let first = a.next().expect("checked count");
         let kind = match a.next() {
             Some(second) => ExprKind::Random(rand, first, second),

@@ -4,6 +4,7 @@
 //! constants folded. Nothing here refers back to the AST.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use crate::source::{SourceMap, Span};
 
@@ -72,17 +73,20 @@ pub struct Expr {
     pub span: Span,
 }
 
+/// Sub-expressions are shared (`Arc`, not `Box`): a define's expansion is
+/// one tree that every use of the define points at, so a Pailou's
+/// thousands of uses of its defines are not thousands of copies.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ExprKind {
     Num(f64),
     /// A bound parameter: index into the production's bindings (see
     /// [`Production::nparams`]).
     Param(u16),
-    Unary(UnOp, Box<Expr>),
+    Unary(UnOp, Arc<Expr>),
     /// `And` and `Or` short-circuit; comparisons and logic yield 1.0 or 0.0.
-    Binary(BinOp, Box<Expr>, Box<Expr>),
+    Binary(BinOp, Arc<Expr>, Arc<Expr>),
     /// `c ? a : b` (cpfg's C heritage).
-    Cond(Box<Expr>, Box<Expr>, Box<Expr>),
+    Cond(Arc<Expr>, Arc<Expr>, Arc<Expr>),
     Call(Func, Vec<Expr>),
     /// `NAME[i, j, ...]`: an element of table [`Program::tables`]`[id]`.
     Index(u32, Vec<Expr>),
@@ -92,11 +96,11 @@ pub enum ExprKind {
     Elem(u32, Vec<Expr>),
     /// cpfg's two-argument random functions (`nran`, `bran`, `biran`),
     /// drawn from the derivation's generator as cpfg draws them.
-    Random(RandFn, Box<Expr>, Box<Expr>),
+    Random(RandFn, Arc<Expr>, Arc<Expr>),
     /// `srand(seed)`: reseed the generator; yields 0.
-    Srand(Box<Expr>),
+    Srand(Arc<Expr>),
     /// cpfg's `func(id, x)`: function [`Program::functions`]`[index]` at x.
-    Spline(u32, Box<Expr>),
+    Spline(u32, Arc<Expr>),
 }
 
 /// A cpfg C-like statement, resolved.

@@ -12,6 +12,7 @@ use super::ir::{Expr, ExprKind};
 use super::Resolver;
 use crate::lang::spline::SplineFn;
 use crate::parse::ast;
+use std::sync::Arc;
 
 impl Resolver {
     /// cpfg's `func(id, x)`: `id` is a function's number in the view file
@@ -70,7 +71,7 @@ impl Resolver {
         };
         let x = self.expr_in(&args[1], scope, exp)?;
         Some(Expr {
-            kind: ExprKind::Spline(index as u32, Box::new(x)),
+            kind: ExprKind::Spline(index as u32, Arc::new(x)),
             span,
         })
     }
@@ -164,7 +165,7 @@ impl Resolver {
             }
         };
         Some(Some(Expr {
-            kind: ExprKind::Spline(index, Box::new(s)),
+            kind: ExprKind::Spline(index, Arc::new(s)),
             span,
         }))
     }
