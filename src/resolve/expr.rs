@@ -383,15 +383,17 @@ impl Resolver {
                 self.warnings.len(),
                 self.missing_names.len(),
             );
-        // Folded here, once, so that its uses share one folded tree: the
-        // statement's own fold then walks it without copying it (see
-        // `fold::folded`). A fold that fails keeps the tree as it was, and
-        // the statement's fold reports the error where it always did.
-        let expr = match super::fold::folded(&expr, &self.sources, &self.tables) {
-            Ok(Some(folded)) => folded,
-            Ok(None) | Err(_) => expr,
-        };
         if reusable && quiet {
+            // Folded once, here, so that the uses share one folded tree:
+            // the statement's own fold then walks it without copying it
+            // (see `fold::folded`). A fold that fails keeps the tree as it
+            // was, and the statement's fold reports the error where it
+            // always did. An expansion that is not kept has one use, and
+            // the statement's fold is its only one.
+            let expr = match super::fold::folded(&expr, &self.sources, &self.tables) {
+                Ok(Some(folded)) => folded,
+                Ok(None) | Err(_) => expr,
+            };
             self.expansions
                 .made
                 .entry(name.clone())
@@ -402,6 +404,7 @@ impl Resolver {
                     declared,
                     expr: expr.clone(),
                 });
+            return Some(expr);
         }
         Some(expr)
     }

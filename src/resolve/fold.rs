@@ -10,6 +10,7 @@ use super::error::ResolveError;
 use super::ir::{BinOp, Expr, ExprKind, TableDef, UnOp};
 use crate::source::SourceMap;
 
+/// `e` folded: the same tree where nothing in it is constant.
 pub fn fold(e: Expr, sources: &SourceMap, tables: &[TableDef]) -> Result<Expr, Box<ResolveError>> {
     Ok(folded(&e, sources, tables)?.unwrap_or(e))
 }
@@ -57,7 +58,7 @@ pub(super) fn folded(
             match fc.as_ref().unwrap_or(c).kind {
                 ExprKind::Num(v) => {
                     let (f, r) = if v != 0.0 { (fa, a) } else { (fb, b) };
-                    return Ok(Some(Expr::clone(&kept(f, r))));
+                    return Ok(Some(f.map_or_else(|| Expr::clone(r), Arc::unwrap_or_clone)));
                 }
                 _ if fc.is_none() && fa.is_none() && fb.is_none() => return Ok(None),
                 _ => ExprKind::Cond(kept(fc, c), kept(fa, a), kept(fb, b)),
@@ -208,6 +209,14 @@ mod tests {
         e(ExprKind::Binary(op, Arc::new(a), Arc::new(b)), span)
     }
 
+    fn num(v: f64, span: Span) -> Expr {
+        e(ExprKind::Num(v), span)
+    }
+
+    fn param(slot: u16, span: Span) -> Expr {
+        e(ExprKind::Param(slot), span)
+    }
+
     fn child_of(x: &Expr, right: bool) -> &Arc<Expr> {
         match &x.kind {
             ExprKind::Binary(_, a, b) => [a, b][right as usize],
@@ -218,18 +227,9 @@ mod tests {
     #[test]
     fn a_tree_with_nothing_to_fold_is_kept_not_copied() {
         let (map, s) = sources();
-        let shared = Arc::new(bin(
-            BinOp::Mul,
-            e(ExprKind::Param(1), s),
-            e(ExprKind::Num(2.0), s),
-            s,
-        ));
+        let shared = Arc::new(bin(BinOp::Mul, param(1, s), num(2.0, s), s));
         let whole = e(
-            ExprKind::Binary(
-                BinOp::Add,
-                Arc::new(e(ExprKind::Param(0), s)),
-                shared.clone(),
-            ),
+            ExprKind::Binary(BinOp::Add, Arc::new(param(0, s)), shared.clone()),
             s,
         );
         assert_eq!(folded(&whole, &map, &[]).unwrap(), None);
@@ -240,13 +240,8 @@ mod tests {
     #[test]
     fn a_constant_part_is_computed_and_the_rest_kept() {
         let (map, s) = sources();
-        let left = Arc::new(e(ExprKind::Param(0), s));
-        let right = bin(
-            BinOp::Mul,
-            e(ExprKind::Num(2.0), s),
-            e(ExprKind::Num(3.0), s),
-            s,
-        );
+        let left = Arc::new(param(0, s));
+        let right = bin(BinOp::Mul, num(2.0, s), num(3.0, s), s);
         let whole = e(
             ExprKind::Binary(BinOp::Add, left.clone(), Arc::new(right)),
             s,
@@ -259,18 +254,9 @@ mod tests {
     #[test]
     fn a_constant_condition_picks_its_branch_folded() {
         let (map, s) = sources();
-        let then = bin(
-            BinOp::Sub,
-            e(ExprKind::Num(5.0), s),
-            e(ExprKind::Num(1.0), s),
-            s,
-        );
+        let then = bin(BinOp::Sub, num(5.0, s), num(1.0, s), s);
         let cond = e(
-            ExprKind::Cond(
-                Arc::new(e(ExprKind::Num(1.0), s)),
-                Arc::new(then),
-                Arc::new(e(ExprKind::Param(0), s)),
-            ),
+            ExprKind::Cond(Arc::new(num(1.0, s)), Arc::new(then), Arc::new(param(0, s))),
             s,
         );
         assert_eq!(fold(cond, &map, &[]).unwrap().kind, ExprKind::Num(4.0));
@@ -279,12 +265,7 @@ mod tests {
     #[test]
     fn a_division_by_zero_is_found_in_a_tree_otherwise_left_alone() {
         let (map, s) = sources();
-        let div = bin(
-            BinOp::Div,
-            e(ExprKind::Param(0), s),
-            e(ExprKind::Num(0.0), s),
-            s,
-        );
+        let div = bin(BinOp::Div, param(0, s), num(0.0, s), s);
         let err = fold(div, &map, &[]).unwrap_err();
         assert!(
             matches!(*err, ResolveError::DivisionByZero { .. }),
@@ -298,20 +279,12 @@ mod tests {
         let call = e(
             ExprKind::Call(
                 Func::Max,
-                vec![
-                    bin(
-                        BinOp::Add,
-                        e(ExprKind::Num(1.0), s),
-                        e(ExprKind::Num(2.0), s),
-                        s,
-                    ),
-                    e(ExprKind::Num(2.5), s),
-                ],
+                vec![bin(BinOp::Add, num(1.0, s), num(2.0, s), s), num(2.5, s)],
             ),
             s,
         );
         assert_eq!(fold(call, &map, &[]).unwrap().kind, ExprKind::Num(3.0));
-        let kept = e(ExprKind::Call(Func::Max, vec![e(ExprKind::Param(0), s)]), s);
+        let kept = e(ExprKind::Call(Func::Max, vec![param(0, s)]), s);
         assert_eq!(folded(&kept, &map, &[]).unwrap(), None);
     }
 }

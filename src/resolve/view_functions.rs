@@ -6,13 +6,14 @@
 //! function the VM evaluates like `func` (appended after the view file's
 //! functions), the length a number.
 
+use std::sync::Arc;
+
 use super::error::ResolveError;
 use super::expr::{Expansion, Scope};
 use super::ir::{Expr, ExprKind};
 use super::Resolver;
 use crate::lang::spline::SplineFn;
 use crate::parse::ast;
-use std::sync::Arc;
 
 impl Resolver {
     /// cpfg's `func(id, x)`: `id` is a function's number in the view file
