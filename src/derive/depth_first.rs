@@ -34,9 +34,10 @@
 //! Two cores: with two threads in the rayon pool, an input of
 //! [`PAR_SPLIT`] modules or more is cut in two halves expanded at once;
 //! their counts add up and the second output is appended to the first
-//! (W2: 8.2 -> 4.5 ms, docs/performance.md). Only when the output looks
-//! large ([`SPLIT_OUTPUT`], judged from a first slice expanded alone):
-//! starting the pool costs a small build more than the split saves.
+//! (W2: 8.2 -> 4.5 ms, docs/performance/issue-19-rounds-1-4.md, round 2).
+//! Only when the output looks large ([`SPLIT_OUTPUT`], judged from a
+//! first slice expanded alone): starting the pool costs a small build
+//! more than the split saves.
 
 use super::fast::{first_match, run_range, LimitSink, Plan};
 use super::rewrite::Tables;
@@ -170,7 +171,8 @@ fn add((mut written, mut kept): Levels, (w2, k2): Levels) -> Levels {
 /// Whether most modules to rewrite at the start of `heads` (the first
 /// [`SAMPLE`]) repeat an earlier one: then the memo copies most of the
 /// output, which is faster on one core than two halves and the copy that
-/// joins them (W2: 0.8 ms against 7 ms, docs/performance.md).
+/// joins them (W2: 0.8 ms against 7 ms, docs/performance/issue-19-rounds-1-4.md,
+/// round 3).
 fn repetitive(tab: &Tables, heads: &[u32], params: &[f64]) -> bool {
     let has_rules = &tab.rules[0].has_rules;
     let mut seen = std::collections::HashSet::new();

@@ -10,7 +10,8 @@
 //! that writeback is under way by the rename. `sync_file_range(WRITE)`
 //! only starts writeback: it neither waits for the disk nor changes the
 //! file, and what it cannot do is left to the rename as before. (Freeing
-//! the old file's blocks stays in the rename: see docs/performance.md.)
+//! the old file's blocks stays in the rename: see
+//! docs/performance/issue-19-rounds-5-7.md, round 7.)
 
 use std::io::{self, Write};
 use std::sync::mpsc::{channel, Sender};
