@@ -61,6 +61,7 @@ pub mod bytecode;
 pub mod cli;
 pub mod derive;
 pub mod diag;
+pub mod driver;
 pub mod environment;
 #[cfg(feature = "cli")]
 pub mod exit_code;

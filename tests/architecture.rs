@@ -35,6 +35,7 @@ const ABOVE: &[&str] = &[
     "guided",
     "pailou",
     "api",
+    "driver",
     "exit_code",
     "progress",
     "repl",

@@ -47,13 +47,19 @@ impl Grammar {
     }
 
     pub(crate) fn compile(input: Input, options: GrammarOptions) -> Result<Grammar, Diagnostics> {
-        let mut comp = pipeline::compile(&input, &options.build.source)?;
+        let comp = pipeline::compile(&input, &options.build.source)?;
+        Ok(Grammar::compiled(comp, options))
+    }
+
+    /// A grammar already compiled with `options` (the driver compiles
+    /// its jobs itself); its warnings are kept.
+    pub(crate) fn compiled(mut comp: Compilation, options: GrammarOptions) -> Grammar {
         let warnings = Diagnostics::new(std::mem::take(&mut comp.warnings));
-        Ok(Grammar {
+        Grammar {
             comp: Arc::new(comp),
             options,
             warnings,
-        })
+        }
     }
 
     /// The warnings the grammar compiled with (possibly none).

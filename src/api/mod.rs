@@ -18,3 +18,4 @@ pub use derived::{Derived, Steps};
 pub use grammar::Grammar;
 pub use options::GrammarOptions;
 pub use scene::Scene;
+pub(crate) use scene::WriteFailed;

@@ -101,6 +101,65 @@ impl GrammarOptions {
         self
     }
 
+    /// Derivation steps for [`Grammar::build`](super::Grammar::build) and
+    /// the driver's jobs; `None` takes the file's `derivation length:`.
+    pub fn steps(mut self, steps: Option<u32>) -> Self {
+        self.build.steps = steps;
+        self
+    }
+
+    /// Overrides the file's `step:` (the turtle's default move).
+    pub fn step(mut self, length: f64) -> Self {
+        self.build.step = Some(length);
+        self
+    }
+
+    /// Overrides the file's `width:` (the default line width).
+    pub fn width(mut self, width: f64) -> Self {
+        self.build.width = Some(width);
+        self
+    }
+
+    /// Component detail, 0 (boxes) to 2 (full models); 1 by default.
+    pub fn detail(mut self, level: u8) -> Self {
+        self.build.components.detail = level;
+        self.build.mesh.detail = level;
+        self
+    }
+
+    /// Internodes as instances of one cylinder rather than one mesh.
+    pub fn instanced(mut self, on: bool) -> Self {
+        self.build.mesh.instanced = on;
+        self
+    }
+
+    /// The most triangles a model may have.
+    pub fn max_triangles(mut self, n: usize) -> Self {
+        self.build.mesh.max_triangles = n;
+        self
+    }
+
+    /// How deep `#include`s may nest.
+    pub fn max_include_depth(mut self, n: usize) -> Self {
+        self.build.source.max_include_depth = n;
+        self
+    }
+
+    /// The parser's ceilings: nesting of brackets and parentheses, and
+    /// operators in one expression.
+    pub fn parser_limits(mut self, max_nesting: usize, max_operators: usize) -> Self {
+        self.build.source.parse = crate::parse::Limits {
+            max_nesting,
+            max_operators,
+        };
+        self
+    }
+
+    /// The defines set so far, in order (the last of a name wins).
+    pub fn defines(&self) -> &[(String, String)] {
+        &self.build.source.defines
+    }
+
     /// Compiles `text`, named `name` in diagnostics (a name ending in `.l`
     /// is read as a cpfg model).
     pub fn from_str(self, name: &str, text: &str) -> Result<Grammar, Diagnostics> {

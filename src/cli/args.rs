@@ -168,6 +168,52 @@ impl SourceArgs {
 }
 
 /// How far and how to derive (shared by `derive`, `build` and `render`).
+impl SourceArgs {
+    /// These flags set on `o`.
+    pub fn apply(&self, mut o: crate::GrammarOptions) -> crate::GrammarOptions {
+        for dir in &self.include_dir {
+            o = o.include_dir(dir);
+        }
+        o = o
+            .max_include_depth(self.max_include_depth)
+            .parser_limits(self.max_nesting, self.max_operators);
+        if let Some(d) = self.dialect {
+            o = o.dialect(match d {
+                DialectArg::Paper => crate::Dialect::Paper,
+                DialectArg::Cpfg => crate::Dialect::Cpfg,
+            });
+        }
+        if let Some(spec) = &self.environment {
+            o = o.environment(spec);
+        }
+        o
+    }
+}
+
+impl LookArgs {
+    /// These flags set on `o`.
+    pub fn apply(&self, mut o: crate::GrammarOptions) -> crate::GrammarOptions {
+        if let Some(a) = self.angle {
+            o = o.angle(a);
+        }
+        if let Some(s) = self.step {
+            o = o.step(s);
+        }
+        if let Some(w) = self.width {
+            o = o.width(w);
+        }
+        for dir in &self.components {
+            o = o.components_dir(dir);
+        }
+        if let Some(n) = self.facets {
+            o = o.facets(n);
+        }
+        o.detail(self.detail)
+            .instanced(self.instanced)
+            .max_triangles(self.max_triangles)
+    }
+}
+
 #[derive(Args, Debug)]
 pub struct DeriveRun {
     /// Derivation steps (default: the file's `derivation length:`).

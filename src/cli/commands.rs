@@ -111,7 +111,7 @@ fn check(args: &CheckArgs, color: bool) -> i32 {
             // The components the grammar places, found as `build` would
             // find them (nothing is read or built).
             let search = crate::mesh::ComponentSearch {
-                grammar_dir: super::model::grammar_dir(&Input::from_arg(&c.file)),
+                grammar_dir: crate::driver::grammar_dir(&Input::from_arg(&c.file)),
                 dirs: args.components.clone(),
                 ..Default::default()
             };

@@ -6,7 +6,6 @@ mod args;
 mod commands;
 mod guided;
 mod model;
-mod shape_stats;
 #[cfg(feature = "studio")]
 mod studio;
 mod watch;

@@ -4,21 +4,18 @@
 //! on standard output.
 
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
 
 use super::args::{
     BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
     SourceArgs,
 };
-use super::commands::{compile_reporting, report};
+use super::commands::report;
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
-use crate::build::{self, BuildOptions, Built};
-use crate::derive::DeriveOptions;
-use crate::export::output::{write_scene, Format, WriteError};
-use crate::export::render;
-use crate::load::Input;
-use crate::mesh::{ComponentSearch, MeshOptions};
+use crate::driver::{
+    self, Check, Event, Format, Job, Output, Pailou, PailouError, PailouType, Reason,
+};
 use crate::progress::Progress;
+use crate::GrammarOptions;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match format_of(&b.output) {
@@ -27,12 +24,13 @@ pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
         }
         Ok(f) => {
             build_once(
-                &model_job(&b.model),
+                model_job(&b.model),
                 &b.output,
                 &b.picture,
                 f,
                 color,
                 Report::Stats,
+                b.model.look.stats,
             )
             .code
         }
@@ -55,12 +53,13 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         return super::guided::build_scene(&r.model, &r.output, &r.picture, Format::Png, color);
     }
     build_once(
-        &model_job(&r.model),
+        model_job(&r.model),
         &r.output,
         &r.picture,
         Format::Png,
         color,
         Report::Stats,
+        r.model.look.stats,
     )
     .code
 }
@@ -71,94 +70,42 @@ fn is_scene(m: &ModelArgs) -> bool {
 }
 
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
-    use crate::pailou::{self, graph, PailouType};
-    let mut defines = Vec::new();
-    let mut relations_text: Option<String> = None;
-    let (layout, kind, title, name) = match &p.graph {
-        Some(path) => {
-            let text = match std::fs::read_to_string(path) {
-                Ok(t) => t,
-                Err(e) => {
-                    eprintln!("lsys: cannot read {}: {e}", path.display());
-                    return EX_NOINPUT;
-                }
-            };
-            let relations = match &p.relations {
-                Some(r) => match std::fs::read_to_string(r) {
-                    Ok(t) => t,
-                    Err(e) => {
-                        eprintln!("lsys: cannot read {}: {e}", r.display());
-                        return EX_NOINPUT;
-                    }
-                },
-                None => graph::RELATIONS.to_string(),
-            };
-            let found = graph::read(&path.display().to_string(), &text, &relations);
-            if p.relations.is_some() {
-                relations_text = Some(relations);
-            }
-            match found {
-                Ok(g) => {
-                    for u in &g.unplaced {
-                        eprintln!("lsys: warning: graph: {u}");
-                    }
-                    defines = g.defines;
-                    let stem = path
-                        .file_stem()
-                        .map_or("graph".into(), |s| s.to_string_lossy().into_owned());
-                    (
-                        g.layout,
-                        g.kind,
-                        format!("graph {}", path.display()),
-                        format!("{stem}.lsys"),
-                    )
-                }
-                Err(e) => {
-                    report(e.as_ref(), color);
-                    return EX_DATAERR;
-                }
-            }
-        }
+    let pailou = match &p.graph {
+        Some(path) => Pailou::graph_file(path, p.relations.as_deref()),
         None => {
             let kind = match p.kind {
                 PailouTypeArg::Ridge => PailouType::Ridge,
                 PailouTypeArg::Pillar => PailouType::Pillar,
             };
-            match pailou::style_layout(&p.style, kind) {
-                Ok(l) => {
-                    let k = if kind == PailouType::Ridge {
-                        "ridge"
-                    } else {
-                        "pillar"
-                    };
-                    (
-                        l,
-                        kind,
-                        format!("style {}, {k} type", p.style),
-                        format!("pailou-{}-{k}.lsys", p.style),
-                    )
-                }
-                Err(e) => {
-                    eprintln!("lsys: cannot build the style {}: {e}", p.style);
-                    return EX_USAGE;
-                }
-            }
+            Pailou::style(&p.style, kind)
         }
     };
-    let input = pailou::input(&layout, kind, &title, &name);
-    // The command line's -D win over the graph's [defines].
-    defines.extend(p.define.iter().cloned());
-    pailou::toukung_levels(&mut defines);
+    let pailou = match pailou {
+        Ok(g) => g,
+        Err(PailouError::Graph(e)) => {
+            report(e.as_ref(), color);
+            return EX_DATAERR;
+        }
+        Err(e @ PailouError::Read { .. }) => {
+            eprintln!("lsys: {e}");
+            return EX_NOINPUT;
+        }
+        Err(e @ PailouError::Style { .. }) => {
+            eprintln!("lsys: {e}");
+            return EX_USAGE;
+        }
+    };
+    for u in pailou.unplaced() {
+        eprintln!("lsys: warning: graph: {u}");
+    }
     if p.emit_graph {
-        print!("{}", graph::emit(&layout, kind, &title));
+        print!("{}", pailou.graph_toml());
     }
     if p.chart {
-        print!("{}", layout.chart());
+        print!("{}", pailou.chart());
     }
     if p.emit_lsys {
-        if let Input::Text { text, .. } = &input {
-            print!("{text}");
-        }
+        print!("{}", pailou.grammar_text());
     }
     let Some(out) = &p.output else {
         if p.chart || p.emit_lsys || p.emit_graph {
@@ -176,47 +123,52 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
             return EX_USAGE;
         }
     };
-    let job = Job {
-        input,
-        name: &name,
-        defines: &defines,
-        source: None,
-        run: &p.run,
-        look: &p.look,
-        collisions: true,
-        relations: relations_text.as_deref(),
-    };
-    build_once(&job, out, &p.picture, format, color, Report::Stats).code
-}
-
-/// One build: the grammar and the options that shape it.
-pub(super) struct Job<'a> {
-    input: Input,
-    /// How messages name the grammar.
-    name: &'a str,
-    defines: &'a [(String, String)],
-    /// `--include-dir`, `--max-include-depth`, ...; `None` takes the defaults.
-    source: Option<&'a SourceArgs>,
-    run: &'a DeriveRun,
-    look: &'a LookArgs,
-    /// Run the structural check (supports and interpenetration).
-    collisions: bool,
-    /// The relation matrix for it (`None`: the library's).
-    relations: Option<&'a str>,
+    let job = pailou.job(grammar_options(&p.define, None, &p.run, &p.look));
+    build_once(
+        job,
+        out,
+        &p.picture,
+        format,
+        color,
+        Report::Stats,
+        p.look.stats,
+    )
+    .code
 }
 
 /// A build from `lsys build`, `render` or `watch`.
-pub(super) fn model_job(m: &ModelArgs) -> Job<'_> {
-    Job {
-        input: Input::from_arg(&m.common.file),
-        name: &m.common.file,
-        defines: &m.common.define,
-        source: Some(&m.common.source),
-        run: &m.run,
-        look: &m.look,
-        collisions: m.look.collisions,
-        relations: None,
+pub(super) fn model_job(m: &ModelArgs) -> Job {
+    let options = grammar_options(&m.common.define, Some(&m.common.source), &m.run, &m.look);
+    let check = if m.look.collisions {
+        Check::Library
+    } else {
+        Check::None
+    };
+    Job::for_arg(&m.common.file, options).check(check)
+}
+
+/// The options of a build from the command line's flags.
+pub(super) fn grammar_options(
+    defines: &[(String, String)],
+    source: Option<&SourceArgs>,
+    run: &DeriveRun,
+    look: &LookArgs,
+) -> GrammarOptions {
+    let mut o = GrammarOptions::default();
+    for (name, value) in defines {
+        o = o.define(name, value);
     }
+    if let Some(s) = source {
+        o = s.apply(o);
+    }
+    o = o
+        .steps(run.steps)
+        .max_modules(run.max_modules)
+        .max_params(run.max_params);
+    if let Some(seed) = run.seed {
+        o = o.seed(seed);
+    }
+    look.apply(o)
 }
 
 /// The format of `lsys build`'s output, or the usage error to print.
@@ -229,87 +181,23 @@ pub(super) fn format_of(out: &Path) -> Result<Format, String> {
     })
 }
 
-/// The folder whose `components/` is searched first: the grammar file's.
-pub(super) fn grammar_dir(input: &Input) -> Option<std::path::PathBuf> {
-    match input {
-        Input::Path(p) => Some(
-            p.parent()
-                .filter(|d| !d.as_os_str().is_empty())
-                .unwrap_or(Path::new("."))
-                .to_path_buf(),
-        ),
-        _ => None,
-    }
-}
-
 /// Reports an output that was not written; the exit code (65 when the
 /// exporter refused the model, 74 when the file could not be written).
-pub(super) fn write_failed(e: WriteError, out: &Path, color: bool) -> i32 {
-    match e {
-        WriteError::Export(e) => {
+pub(super) fn write_failed(reason: Reason, color: bool) -> i32 {
+    match reason {
+        Reason::Export(e) => {
             report(e.as_ref(), color);
             EX_DATAERR
         }
-        WriteError::Io(e) => {
-            eprintln!("lsys: cannot write {}: {e}", out.display());
+        Reason::Write { path, error } => {
+            eprintln!("lsys: cannot write {}: {error}", path.display());
             EX_IOERR
         }
-    }
-}
-
-/// The options of a build from the command line.
-fn options(m: &Job, source: crate::load::Options) -> BuildOptions {
-    let grammar_dir = grammar_dir(&m.input);
-    BuildOptions {
-        source,
-        steps: m.run.steps,
-        derive: DeriveOptions {
-            seed: m.run.seed,
-            max_modules: m.run.max_modules,
-            max_params: m.run.max_params,
-        },
-        angle: m.look.angle,
-        step: m.look.step,
-        width: m.look.width,
-        components: component_search(m.look, grammar_dir),
-        mesh: mesh_options(m.look),
-        early: Default::default(),
-    }
-}
-
-/// Where components are searched: `grammar_dir`'s `components/`, then the
-/// `--components` folders.
-pub(super) fn component_search(
-    look: &LookArgs,
-    grammar_dir: Option<std::path::PathBuf>,
-) -> ComponentSearch {
-    ComponentSearch {
-        grammar_dir,
-        dirs: look.components.clone(),
-        within: Vec::new(),
-        detail: look.detail,
-    }
-}
-
-/// The mesher's options from the command line's look flags.
-pub(super) fn mesh_options(look: &LookArgs) -> MeshOptions {
-    MeshOptions {
-        sides: look.facets.unwrap_or(MeshOptions::default().sides),
-        adaptive: look.facets.is_none(),
-        detail: look.detail,
-        instanced: look.instanced,
-        max_triangles: look.max_triangles,
-    }
-}
-
-/// The compilation options of a job from the command line.
-fn source_options(m: &Job) -> crate::load::Options {
-    match m.source {
-        Some(s) => s.options(m.defines),
-        None => crate::load::Options {
-            defines: m.defines.to_vec(),
-            ..Default::default()
-        },
+        Reason::Scene(e) => {
+            report(e.as_ref(), color);
+            EX_DATAERR
+        }
+        other => failed(other, "", color),
     }
 }
 
@@ -326,222 +214,98 @@ pub(super) enum Report {
 pub(super) struct Outcome {
     pub code: i32,
     /// Every file the model was read from (root, includes, view and
-    /// function files), when it compiled.
+    /// function files), when it could be read.
     pub sources: Option<Vec<PathBuf>>,
 }
 
-/// Compiles and builds `m`, writes `out`; prints diagnostics and the
-/// report.
+/// Runs `job` writing `out`; prints diagnostics, warnings, the progress
+/// bar and the report.
 pub(super) fn build_once(
-    m: &Job,
+    job: Job,
     out: &Path,
     pic: &PictureArgs,
     format: Format,
     color: bool,
     report_as: Report,
+    stats: bool,
 ) -> Outcome {
-    let t0 = Instant::now();
-    let opts = source_options(m);
-    let mut build_opts = options(m, opts.clone());
-    // The grammar components its text places are built on the other core
-    // while it compiles (a Pailou's Toukungs; see `build::Early`).
-    if let Some(text) = root_text(&m.input) {
-        build_opts.early = build::Early::start(&text, &build_opts);
-    }
-    let comp = match compile_reporting(&m.input, m.name, &opts, color) {
-        Ok(c) => c,
-        Err((code, files)) => {
-            // A grammar that failed still names what it read: watch waits
-            // for a fix in an include or a function file too.
-            return Outcome {
-                code,
-                sources: (!files.is_empty()).then_some(files),
-            };
-        }
-    };
-    let sources = Some(comp.program.sources.disk_paths());
-    let code = build_compiled(
-        m,
-        &comp,
-        &build_opts,
-        (out, pic, format),
-        color,
-        report_as,
-        t0,
-    );
-    Outcome { code, sources }
-}
-
-/// The text of the grammar's own file, if it can be had without a
-/// diagnostic (compiling reads it again, and reports what is wrong).
-fn root_text(input: &crate::load::Input) -> Option<std::borrow::Cow<'static, str>> {
-    use crate::load::Input;
-    match input {
-        Input::Std(name) => crate::stdlib::get(name).map(Into::into),
-        Input::Path(path) => std::fs::read_to_string(path).ok().map(Into::into),
-        Input::Text { text, .. } | Input::Edited { text, .. } => Some(text.clone().into()),
-    }
-}
-
-/// Builds the compiled grammar and writes `out` as `format`; the exit code.
-fn build_compiled(
-    m: &Job,
-    comp: &crate::pipeline::Compilation,
-    opts: &BuildOptions,
-    (out, pic, format): (&Path, &PictureArgs, Format),
-    color: bool,
-    report_as: Report,
-    t0: Instant,
-) -> i32 {
-    let parse = t0.elapsed();
-    let progress = Progress::new(true);
-    let built = match build::build_observed(comp, opts, &mut |s| progress.stage(s)) {
-        Ok(b) => b,
-        Err(e) => {
-            drop(progress);
-            report(&e, color);
-            return EX_DATAERR;
-        }
-    };
-    for w in &built.warnings {
-        report(w, color);
-    }
-    if m.collisions {
-        structural_warnings(
-            &built.scene,
-            m.relations.unwrap_or(crate::pailou::graph::RELATIONS),
-        );
-    }
-    if built.scene.triangle_count() == 0 {
-        let input_path = match &m.input {
-            Input::Path(p) => Some(p.as_path()),
-            _ => None,
-        };
-        let hint = super::guided::built_without_its_guides(&comp.program, input_path)
-            .map(|h| format!("\n  help: {h}"))
-            .unwrap_or_default();
-        let why = match built.modules {
-            0 => "its module string is empty".to_string(),
-            1 => "its string of 1 module has no drawing command with a size".to_string(),
-            n => format!("its string of {n} modules has no drawing command with a size"),
-        };
-        eprintln!(
-            "lsys: warning: {} draws nothing ({why}); the output is empty{hint}",
-            m.name
-        );
-    }
-    let t1 = Instant::now();
-    progress.message(if format == Format::Png {
-        "rendering"
-    } else {
-        "writing"
+    let job = job.output(Output::File {
+        path: out.to_path_buf(),
+        format,
+        picture: picture(pic),
     });
-    let written = write_scene(&built.scene, out, format, &picture(pic));
+    let mut progress: Option<Progress> = None;
+    let result = driver::run(&job, &mut |event| match event {
+        Event::Warning(w) => report(w, color),
+        Event::Notice(n) => eprintln!("lsys: warning: {n}"),
+        Event::Stage(s) => progress.get_or_insert_with(|| Progress::new(true)).stage(s),
+        Event::Writing(f) => {
+            progress
+                .get_or_insert_with(|| Progress::new(true))
+                .message(if f == Format::Png {
+                    "rendering"
+                } else {
+                    "writing"
+                })
+        }
+    });
     drop(progress);
-    let write_time = t1.elapsed();
-    let code = match written {
-        Ok(bytes) => {
-            if m.look.stats {
-                println!(
-                    "{}",
-                    stats(&built, &comp.program, parse, write_time, out, bytes)
-                );
+    match result {
+        Ok(done) => {
+            if stats {
+                println!("{}", done.stats());
             } else if report_as == Report::Summary {
-                println!("{}", summary(&built, out, bytes, t0.elapsed()));
+                println!("{}", done.summary());
             }
-            EX_OK
+            let sources = Some(done.sources.clone());
+            // Freeing a big model (W2: a quarter of a million tube chains,
+            // each its own allocation) took milliseconds after the file
+            // was complete: it is freed beside the exit (or the next build,
+            // in `watch`). Should no thread start, the refused closure
+            // frees it here.
+            let _ = std::thread::Builder::new().spawn(move || drop(done));
+            Outcome {
+                code: EX_OK,
+                sources,
+            }
         }
-        Err(e) => write_failed(e, out, color),
-    };
-    // Freeing a big model (W2: a quarter of a million tube chains, each
-    // its own allocation) took milliseconds after the file was complete:
-    // it is freed beside the exit (or the next build, in `watch`). Should
-    // no thread start, the refused closure frees it here.
-    let _ = std::thread::Builder::new().spawn(move || drop(built));
-    code
-}
-
-/// Prints the structural check's problems as warnings (at most 40, then
-/// how many more).
-fn structural_warnings(scene: &crate::mesh::Scene, relations: &str) {
-    use crate::mesh::structure;
-    let rules = match structure::Rules::pailou(relations) {
-        Ok(r) => r,
-        Err(e) => {
-            eprintln!("lsys: warning: no structural check: the relation matrix does not read: {e}");
-            return;
-        }
-    };
-    let found = structure::check(scene, &rules);
-    for p in found.iter().take(40) {
-        eprintln!("lsys: warning: structure: {p}");
-    }
-    if found.len() > 40 {
-        eprintln!(
-            "lsys: warning: structure: ... and {} more problems",
-            found.len() - 40
-        );
+        Err(f) => Outcome {
+            sources: (!f.sources.is_empty()).then_some(f.sources),
+            code: failed(f.reason, &job.name, color),
+        },
     }
 }
 
-pub(super) fn picture(pic: &PictureArgs) -> render::RenderOptions {
-    render::RenderOptions {
+/// Prints why a job failed; the exit code.
+fn failed(reason: Reason, name: &str, color: bool) -> i32 {
+    match reason {
+        Reason::Input(d) => {
+            eprint!("{}", d.render(color));
+            EX_NOINPUT
+        }
+        Reason::Grammar(d) => {
+            let errors = d.error_count();
+            eprint!("{}", d.render(color));
+            eprintln!(
+                "{}: {errors} error{}",
+                name,
+                if errors == 1 { "" } else { "s" }
+            );
+            EX_DATAERR
+        }
+        Reason::Build(e) => {
+            report(e.as_ref(), color);
+            EX_DATAERR
+        }
+        other => write_failed(other, color),
+    }
+}
+
+pub(super) fn picture(pic: &PictureArgs) -> driver::Picture {
+    driver::Picture {
         view: pic.view,
         width: pic.size.0,
         height: pic.size.1,
         ..Default::default()
     }
-}
-
-/// One line for `watch`: what was written and how big the model is.
-fn summary(built: &Built, out: &Path, bytes: u64, took: Duration) -> String {
-    format!(
-        "wrote {}: {} modules, {} triangles, {bytes} bytes in {} ms",
-        out.display(),
-        built.modules,
-        built.scene.triangle_count(),
-        took.as_millis()
-    )
-}
-
-pub(super) fn ms(d: Duration) -> f64 {
-    (d.as_secs_f64() * 1e6).round() / 1e3
-}
-
-fn stats(
-    built: &Built,
-    program: &crate::resolve::Program,
-    parse: Duration,
-    write: Duration,
-    out: &Path,
-    bytes: u64,
-) -> String {
-    let s = &built.scene;
-    // f32 coordinates printed through f64 would show binary noise
-    // (84.05000305175781); print the shortest decimal that reads back.
-    let short = |v: glam::Vec3| {
-        v.to_array()
-            .map(|x| x.to_string().parse::<f64>().unwrap_or(f64::NAN))
-    };
-    let bounds = s
-        .bounds()
-        .map(|(lo, hi)| serde_json::json!([short(lo), short(hi)]));
-    let t = &built.timings;
-    let mut json = serde_json::json!({
-        "modules": built.modules,
-        "instances": s.instance_counts(),
-        "vertices": s.vertex_count(),
-        "triangles": s.triangle_count(),
-        "bounds": bounds,
-        "output": {"path": out.display().to_string(), "bytes": bytes},
-        "timings_ms": {
-            "parse": ms(parse),
-            "derive": ms(t.derive),
-            "interpret": ms(t.interpret),
-            "mesh": ms(t.mesh),
-            "write": ms(write),
-        },
-    });
-    super::shape_stats::add(&mut json, built, program);
-    json.to_string()
 }

@@ -67,12 +67,13 @@ pub fn watch_cmd(b: &BuildArgs, color: bool) -> i32 {
     let mut first = true;
     loop {
         let outcome = build_once(
-            &model_job(&b.model),
+            model_job(&b.model),
             &b.output,
             &b.picture,
             format,
             color,
             Report::Summary,
+            b.model.look.stats,
         );
         if let Some(files) = outcome.sources {
             sources = files.into_iter().collect();

@@ -11,7 +11,6 @@ mod ring_slots;
 pub mod roof;
 pub mod scene;
 pub mod shapes;
-pub mod structure;
 pub mod subgrammar;
 pub mod surface;
 pub mod tube;

@@ -29,22 +29,6 @@ use super::style::*;
 /// The library's relation matrix (`grammar/std/relations.toml`).
 pub const RELATIONS: &str = include_str!("../../grammar/std/relations.toml");
 
-/// Component kinds, as graph files name them.
-pub const KINDS_OF_COMPONENT: &[&str] = &[
-    "pillar",
-    "suspended_pillar",
-    "lintel",
-    "pillar_base",
-    "flower_board",
-    "queti",
-    "yundan",
-    "inscribed_board",
-    "middle_toukung",
-    "side_toukung",
-    "clipped_roof",
-    "eaves_roof",
-];
-
 #[derive(Debug, Error, Diagnostic)]
 pub enum GraphError {
     #[error("{file} is not a component graph: {message}")]
@@ -185,12 +169,15 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         used: Default::default(),
     };
     for (id, kind) in &file.components {
-        if !KINDS_OF_COMPONENT.contains(&kind.get_ref().as_str()) {
+        if !super::kinds::is_graph_kind(kind.get_ref()) {
             return Err(r.err(
                 kind.span(),
                 format!("`{id}` has the unknown kind `{}`", kind.get_ref()),
                 "this kind",
-                format!("the kinds are: {}", KINDS_OF_COMPONENT.join(", ")),
+                format!(
+                    "the kinds are: {}",
+                    super::kinds::graph_kinds().collect::<Vec<_>>().join(", ")
+                ),
             ));
         }
         r.kinds.insert(id, kind.get_ref());

@@ -3,6 +3,8 @@
 //! ready to compile (or to print for an expert to continue by hand).
 mod emit;
 pub mod graph;
+pub mod kinds;
+pub mod structure;
 pub mod style;
 
 pub use style::{layout, parse_style, Layout, PailouType, StyleError};

@@ -74,16 +74,13 @@ impl GrammarSession {
             .map(|(k, v)| (k.clone(), v.clone()))
             .collect();
         let name = self.path.to_string_lossy().into_owned();
-        let built = model::compile(&name, None, &defines).and_then(|g| {
-            self.length = g.derivation_length();
-            let steps = self.step.unwrap_or(self.length);
-            let warnings = model::diagnostics_json(g.warnings());
-            model::build(&g, steps, false).map(|m| (m, warnings))
-        });
-        match built {
-            Ok((m, warnings)) => {
+        let input = crate::driver::Input::Path(self.path.clone());
+        let job = model::job(input, &name, &defines, self.step, false);
+        match model::build(&job) {
+            Ok((m, g)) => {
+                self.length = g.derivation_length();
                 self.model = Some(m);
-                self.diagnostics = warnings;
+                self.diagnostics = model::diagnostics_json(g.warnings());
                 self.current = true;
             }
             Err(d) => {

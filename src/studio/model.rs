@@ -7,7 +7,7 @@ use serde_json::{json, Value};
 
 use crate::api::{Grammar, GrammarOptions, Scene};
 use crate::diag::Diagnostics;
-use crate::mesh::structure;
+use crate::driver::{self, Check, Job, Output, Problem};
 
 /// A model built for the page.
 pub struct Model {
@@ -20,56 +20,52 @@ pub struct Model {
     pub scene: Scene,
 }
 
-/// Compiles `text` (named `name`) or, with `text = None`, the file at
-/// `name`, with `defines`.
-pub fn compile(
+/// The job of building `input` (named `name`) with `defines` for the
+/// page: a GLB in memory, checked against the library's relation matrix
+/// when `check`.
+pub fn job(
+    input: driver::Input,
     name: &str,
-    text: Option<&str>,
     defines: &[(String, String)],
-) -> Result<Grammar, Diagnostics> {
-    let mut o: GrammarOptions = Grammar::options();
+    steps: Option<u32>,
+    check: bool,
+) -> Job {
+    let mut o: GrammarOptions = Grammar::options().steps(steps);
     for (k, v) in defines {
         o = o.define(k, v);
     }
-    match text {
-        Some(t) => o.from_str(name, t),
-        None => o.from_path(name),
-    }
+    for_page(Job::new(input, name, o).check(if check { Check::Library } else { Check::None }))
 }
 
-/// The library's symbols and relation matrix, read once per process
-/// (every Pailou build and every palette reads them).
-pub fn rules() -> &'static structure::Rules {
-    static RULES: std::sync::OnceLock<structure::Rules> = std::sync::OnceLock::new();
-    RULES.get_or_init(|| {
-        structure::Rules::pailou(crate::pailou::graph::RELATIONS)
-            .expect("the library's relation matrix reads")
+/// `job` writing the GLB the page's 3D view loads, in memory.
+pub fn for_page(job: Job) -> Job {
+    job.output(Output::Bytes {
+        format: driver::Format::Glb,
+        picture: Default::default(),
     })
 }
 
-/// Builds `g` at `steps` and runs the structural check when `check`.
-pub fn build(g: &Grammar, steps: u32, check: bool) -> Result<Model, Diagnostics> {
-    let scene = g.build(steps)?;
-    let glb = crate::export::gltf::to_glb(scene.mesh()).map_err(Diagnostics::one)?;
-    let problems = if check {
-        structure::check(scene.mesh(), rules())
-            .iter()
-            .map(|p| json!({"message": p.to_string(), "parts": parts_of(p)}))
-            .collect()
-    } else {
-        Vec::new()
-    };
-    Ok(Model {
-        glb,
-        triangles: scene.triangle_count(),
-        parts: scene.instance_count(),
+/// Runs `job` (warnings and progress are the page's to show, from the
+/// result); the model and its grammar.
+pub fn build(job: &Job) -> Result<(Model, Grammar), Diagnostics> {
+    let done = driver::run(job, &mut |_| {}).map_err(|f| f.diagnostics())?;
+    let problems = done
+        .problems
+        .iter()
+        .map(|p| json!({"message": p.to_string(), "parts": parts_of(p)}))
+        .collect();
+    let model = Model {
+        glb: done.bytes.unwrap_or_default(),
+        triangles: done.scene.triangle_count(),
+        parts: done.scene.instance_count(),
         problems,
-        scene,
-    })
+        scene: done.scene,
+    };
+    Ok((model, done.grammar))
 }
 
-fn parts_of(p: &structure::Problem) -> Vec<String> {
-    use structure::Problem::*;
+fn parts_of(p: &Problem) -> Vec<String> {
+    use Problem::*;
     match p {
         Unsupported { part, .. } => vec![part.clone()],
         OneSided { part, .. } => vec![part.clone()],

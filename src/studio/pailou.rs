@@ -11,7 +11,9 @@ use serde_json::{json, Value};
 
 use super::edit::EditGraph;
 use super::model::{self, Model};
+use crate::driver::{Pailou, PailouError};
 use crate::pailou::{self, graph};
+use crate::Grammar;
 
 pub struct PailouSession {
     /// The graph file (relative to the opened folder), if one was opened.
@@ -57,19 +59,19 @@ impl PailouSession {
 
     /// Reads and builds `text`; on success it becomes the current graph.
     fn rebuild_from(&mut self, name: &str, text: &str) -> Result<(), Value> {
-        let g = graph::read(name, text, graph::RELATIONS).map_err(|e| model::one_json(&*e))?;
-        let title = format!("graph {name}");
-        let source = pailou::source(&g.layout, &title);
-        let mut defines = g.defines.clone();
-        pailou::toukung_levels(&mut defines);
-        let grammar = model::compile("pailou-graph.lsys", Some(&source), &defines)
-            .map_err(|d| first_diagnostic(&d))?;
-        let built = model::build(&grammar, grammar.derivation_length(), true)
-            .map_err(|d| first_diagnostic(&d))?;
+        let p = Pailou::graph(name, text, None)
+            .map_err(|e| match e {
+                PailouError::Graph(e) => model::one_json(e.as_ref()),
+                e => json!({"severity": "error", "message": e.to_string(), "rendered": e.to_string()}),
+            })?
+            .named("pailou-graph.lsys");
+        let job = model::for_page(p.job(Grammar::options()));
+        let defines = job.options.defines().to_vec();
+        let (built, _) = model::build(&job).map_err(|d| first_diagnostic(&d))?;
         self.model = Some(built);
-        self.unplaced = g.unplaced;
-        self.chart = g.layout.chart();
-        self.lsys = source;
+        self.unplaced = p.unplaced().to_vec();
+        self.chart = p.chart();
+        self.lsys = p.grammar_text();
         self.defines = defines;
         self.error = None;
         Ok(())
@@ -210,12 +212,12 @@ fn first_diagnostic(d: &crate::diag::Diagnostics) -> Value {
 /// The kinds the relation matrix lets attach to `id` (graph kinds only).
 pub fn palette(g: &EditGraph, id: &str) -> Vec<String> {
     let kind = g.kind_of(id).unwrap_or("");
-    model::rules()
+    crate::driver::library_rules()
         .accepts
         .get(kind)
         .map(|v| {
             v.iter()
-                .filter(|k| graph::KINDS_OF_COMPONENT.contains(&k.as_str()))
+                .filter(|k| pailou::kinds::is_graph_kind(k))
                 .cloned()
                 .collect()
         })

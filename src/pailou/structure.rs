@@ -23,29 +23,11 @@ use std::fmt;
 
 use glam::Vec3;
 
-use super::scene::Scene;
+use crate::mesh::Scene;
 
 /// Contact within this gap counts, and overlaps up to this depth are
 /// allowed, in model units.
 pub const TOLERANCE: f32 = 0.02;
-
-/// The Pailou's component symbols and the kinds the relation matrix names.
-/// `MP` is a `pillar` when it stands on the ground, else a
-/// `suspended_pillar`.
-pub const PAILOU_SYMBOLS: &[(&str, &str)] = &[
-    ("MPB", "pillar_base"),
-    ("MP", "pillar"),
-    ("MBP", "pillar_cap"),
-    ("ML", "lintel"),
-    ("MFB", "flower_board"),
-    ("MIB", "inscribed_board"),
-    ("MQ", "queti"),
-    ("MY", "yundan"),
-    ("TM", "middle_toukung"),
-    ("TS", "side_toukung"),
-    ("RC", "clipped_roof"),
-    ("RE", "eaves_roof"),
-];
 
 /// How a part meets its support.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -73,9 +55,10 @@ impl Rules {
         let accepts: BTreeMap<String, Vec<String>> =
             toml::from_str(relations).map_err(|e| e.message().to_string())?;
         Ok(Rules {
-            symbols: PAILOU_SYMBOLS
-                .iter()
-                .map(|&(s, k)| (s.to_string(), k.to_string()))
+            // `MP` is a `pillar` when it stands on the ground, else a
+            // `suspended_pillar`.
+            symbols: super::kinds::symbols()
+                .map(|(s, k)| (s.to_string(), k.to_string()))
                 .collect(),
             accepts,
         })
@@ -208,7 +191,7 @@ pub fn check(scene: &Scene, rules: &Rules) -> Vec<Problem> {
                 );
                 i.transform.transform_point3(c)
             });
-            let (lo, hi) = super::scene::bounds_of(corners).expect("eight corners");
+            let (lo, hi) = crate::mesh::scene::bounds_of(corners).expect("eight corners");
             let symbol = &scene.components[i.component].name;
             let kind = rules.symbols.get(symbol).map(|k| {
                 if k == "pillar" && lo.y > TOLERANCE {

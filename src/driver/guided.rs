@@ -1,0 +1,100 @@
+//! A guided scene's job (docs/guided.md): a scene file (`FILE.toml`) and
+//! options -> every seed run along its guides, meshed (with the guides and
+//! links drawn, if asked) and written -> [`SceneDone`] with its figures,
+//! or a [`Failure`].
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use super::job::Output;
+use super::run::{write_output, Failure, Reason};
+use super::stats::ms;
+use crate::api::GrammarOptions;
+use crate::guided;
+
+/// One guided scene to run and write.
+#[derive(Clone, Debug)]
+pub struct SceneJob {
+    pub path: PathBuf,
+    /// Defines, include folders, seed, steps, component folders, facets;
+    /// the steps and seed given here override the scene's.
+    pub options: GrammarOptions,
+    /// Draw the guides and links as thin lines too.
+    pub guides: bool,
+    pub output: Output,
+}
+
+/// A guided scene run, meshed and written.
+pub struct SceneDone {
+    pub seeds: usize,
+    pub messages: usize,
+    pub triangles: usize,
+    pub output: Option<PathBuf>,
+    pub written: u64,
+    pub bytes: Option<Vec<u8>>,
+    pub steps: u32,
+    /// Reading the scene and compiling its grammars.
+    pub load: Duration,
+    /// Running every seed.
+    pub run: Duration,
+}
+
+/// Runs, meshes and writes the guided scene of `job`.
+pub fn run_scene(job: &SceneJob) -> Result<SceneDone, Failure> {
+    let fail = |e: Box<dyn miette::Diagnostic + Send + Sync>| Failure {
+        reason: Reason::Scene(e),
+        sources: Vec::new(),
+    };
+    let opts = &job.options.build;
+    let t0 = Instant::now();
+    let mut loaded = guided::load_file(&job.path, &opts.source).map_err(|e| fail(e))?;
+    if let Some(n) = opts.steps {
+        loaded.spec.steps = n;
+    }
+    if let Some(s) = opts.derive.seed {
+        loaded.spec.seed = Some(s);
+    }
+    let t1 = Instant::now();
+    let outcome = guided::run(&loaded).map_err(|e| fail(Box::new(e)))?;
+    let t2 = Instant::now();
+    let mut search = opts.components.clone();
+    search.grammar_dir = job.path.parent().map(PathBuf::from);
+    let scene = guided::build::scene(&loaded, &outcome, job.guides, &search, &opts.mesh)
+        .map_err(|e| fail(Box::new(e)))?;
+    let (written, bytes) = write_output(&scene, &job.output, &[])?;
+    Ok(SceneDone {
+        seeds: outcome.seeds.len(),
+        messages: outcome.messages.len(),
+        triangles: scene.triangle_count(),
+        output: match &job.output {
+            Output::File { path, .. } => Some(path.clone()),
+            _ => None,
+        },
+        written,
+        bytes,
+        steps: loaded.spec.steps,
+        load: t1 - t0,
+        run: t2 - t1,
+    })
+}
+
+impl SceneDone {
+    /// The `--stats` figures of a guided scene.
+    pub fn stats(&self) -> serde_json::Value {
+        let path = self
+            .output
+            .as_ref()
+            .map_or(String::new(), |p| p.display().to_string());
+        serde_json::json!({
+            "seeds": self.seeds,
+            "messages": self.messages,
+            "triangles": self.triangles,
+            "output": {"path": path, "bytes": self.written},
+            "timings_ms": {
+                "load": ms(self.load),
+                "run": ms(self.run),
+                "per_step": ms(self.run / self.steps.max(1)),
+            },
+        })
+    }
+}

@@ -1,0 +1,36 @@
+//! The driver: one job from its input to its output, for every front end
+//! (`lsys build`, `render`, `pailou`, `watch`, the studio, and the batch
+//! runner and Python package to come). Input: a [`Job`] — a grammar (a
+//! file, `std:NAME` or text), its [`GrammarOptions`](crate::GrammarOptions)
+//! as plain values, whether to check the model's structure, and where the
+//! output goes (a file, bytes, or nowhere). Output: [`Done`] — the built
+//! scene, the bytes written (or the bytes themselves), the structural
+//! problems, the timings, the files the grammar read — or a [`Failure`].
+//! Warnings and progress are reported through a callback ([`Event`]) as
+//! they happen, so that a front end prints them in the order they arise.
+//!
+//! The sequence it runs: start the grammar components the text places on
+//! the other core (`build::Early`), compile, derive, interpret, mesh (the
+//! grammar components with the same options), check the structure, warn
+//! when nothing was drawn, write.
+
+mod empty;
+mod guided;
+mod job;
+mod pailou;
+mod run;
+mod stats;
+mod structure;
+
+pub use guided::{run_scene, SceneDone, SceneJob};
+pub use job::{grammar_dir, Check, Job, Output};
+pub use pailou::{Pailou, PailouError, PailouType};
+pub use run::{run, Done, Event, Failure, Reason};
+pub use stats::ms;
+pub use structure::library_rules;
+
+pub use crate::build::Stage;
+pub use crate::export::output::Format;
+pub use crate::export::render::{RenderOptions as Picture, View};
+pub use crate::load::Input;
+pub use crate::pailou::structure::Problem;
