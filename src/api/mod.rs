@@ -18,3 +18,6 @@ pub use derived::{Derived, Steps};
 pub use grammar::Grammar;
 pub use options::GrammarOptions;
 pub use scene::Scene;
+
+#[cfg(test)]
+mod tests;
