@@ -81,7 +81,7 @@ impl std::fmt::Display for Level {
 /// `koch.lsys:3:7: error[lsys::resolve::unknown_name]: unknown name `x``.
 ///
 /// ```
-/// let err = lsys::Grammar::from_str("koch.lsys", "axiom: F(x)\n").err().unwrap();
+/// let err = lsys::Grammar::from_str("koch.lsys", "axiom: F(x)\n").unwrap_err();
 /// let m = err.messages().next().unwrap();
 /// assert_eq!(m.code.as_deref(), Some("lsys::resolve::unknown_name"));
 /// assert_eq!(m.severity, lsys::Level::Error);
@@ -242,7 +242,7 @@ impl Diagnostics {
     /// [`Message`]s (code, severity, place, text, help).
     ///
     /// ```
-    /// let err = lsys::Grammar::from_str("g.lsys", "axiom: A(1\n").err().unwrap();
+    /// let err = lsys::Grammar::from_str("g.lsys", "axiom: A(1\n").unwrap_err();
     /// let codes: Vec<String> = err.messages().filter_map(|m| m.code).collect();
     /// assert_eq!(codes, ["lsys::parse::syntax"]);
     /// ```

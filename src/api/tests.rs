@@ -102,3 +102,40 @@ fn display_of_a_diagnostic_without_a_place() {
         "{err}"
     );
 }
+
+#[test]
+fn a_failed_compilation_unwraps_to_its_diagnostics() {
+    // `unwrap_err` needs `Grammar: Debug`.
+    let err = Grammar::from_str("bad.lsys", "axiom: A(1\n").unwrap_err();
+    assert_eq!(
+        err.messages().next().unwrap().code.as_deref(),
+        Some("lsys::parse::syntax")
+    );
+}
+
+#[test]
+fn debug_forms_are_short() {
+    let g = Grammar::from_str(
+        "koch.lsys",
+        "derivation length: 3\naxiom: F\nF --> F+F-F-F+F\nF --> G\n",
+    )
+    .unwrap();
+    assert_eq!(
+        format!("{g:?}"),
+        "Grammar { name: \"koch.lsys\", derivation_length: 3, alphabet: 6, productions: 2, warnings: 1 }"
+    );
+    let mut steps = g.steps();
+    assert_eq!(
+        format!("{steps:?}"),
+        "Steps { grammar: \"koch.lsys\", to: 3, ended: false }"
+    );
+    assert_eq!(steps.by_ref().count(), 4);
+    assert_eq!(
+        format!("{steps:?}"),
+        "Steps { grammar: \"koch.lsys\", to: 3, ended: true }"
+    );
+    let scene = g.build(1).unwrap();
+    let s = format!("{scene:?}");
+    assert!(s.starts_with("Scene { modules: 9, triangles: "), "{s}");
+    assert!(s.ends_with(", instances: 0 }"), "{s}");
+}
