@@ -139,3 +139,46 @@ fn debug_forms_are_short() {
     assert!(s.starts_with("Scene { modules: 9, triangles: "), "{s}");
     assert!(s.ends_with(", instances: 0 }"), "{s}");
 }
+
+#[test]
+fn a_define_that_matches_nothing_is_told_in_words_of_no_front_end() {
+    let err = Grammar::options()
+        .define("M", 3)
+        .from_str("koch.lsys", "#define N 2\naxiom: F\n")
+        .unwrap_err();
+    let m = err.messages().next().unwrap();
+    assert_eq!(m.code.as_deref(), Some("lsys::resolve::unknown_override"));
+    assert_eq!(
+        m.message,
+        "the define `M` given as an option matches no #define in koch.lsys"
+    );
+    assert_eq!(
+        m.help.as_deref(),
+        Some("did you mean `N`? the grammar defines: N")
+    );
+    assert!(!m.rendered().contains("-D"), "{}", m.rendered());
+}
+
+#[test]
+fn a_namespace_that_names_no_component_is_told_in_words_of_no_front_end() {
+    let err = Grammar::options()
+        .define("TM.NTL", 3)
+        .from_str("koch.lsys", "axiom: F\n")
+        .unwrap_err();
+    let m = err.messages().next().unwrap();
+    assert_eq!(m.code.as_deref(), Some("lsys::options::unknown_namespace"));
+    assert!(!m.rendered().contains("-D"), "{}", m.rendered());
+}
+
+#[test]
+fn a_limit_names_the_option_as_the_library_and_the_command_line_spell_it() {
+    let g = Grammar::options()
+        .max_modules(10)
+        .from_str("koch.lsys", "axiom: F\nF --> F F\n")
+        .unwrap();
+    let m = g.derive(8).unwrap_err().messages().next().unwrap();
+    assert_eq!(m.code.as_deref(), Some("lsys::derive::module_limit"));
+    let help = m.help.unwrap();
+    assert!(help.contains("max_modules"), "{help}");
+    assert!(help.contains("--max-modules"), "{help}");
+}
