@@ -182,3 +182,51 @@ fn a_limit_names_the_option_as_the_library_and_the_command_line_spell_it() {
     assert!(help.contains("max_modules"), "{help}");
     assert!(help.contains("--max-modules"), "{help}");
 }
+
+/// The code and place of the first diagnostic of a failure.
+fn first(d: &crate::Diagnostics) -> (Option<String>, Option<usize>, Level) {
+    let m = d.messages().next().expect("a diagnostic");
+    (m.code, m.line, m.severity)
+}
+
+#[test]
+fn derive_errors_carry_their_codes_and_places() {
+    let g = Grammar::options()
+        .max_modules(10)
+        .from_str("grow.lsys", "derivation length: 8\naxiom: F\nF --> F F\n")
+        .unwrap();
+    let want = (
+        Some("lsys::derive::module_limit".to_string()),
+        Some(3),
+        Level::Error,
+    );
+    assert_eq!(first(&g.derive(8).unwrap_err()), want);
+    let stepped = g.steps().find_map(Result::err).expect("a step fails");
+    assert_eq!(first(&stepped), want);
+    assert_eq!(first(&g.build(8).unwrap_err()), want);
+}
+
+#[test]
+fn write_errors_carry_their_codes() {
+    let scene = Grammar::from_str("f.lsys", "axiom: F\n")
+        .unwrap()
+        .build(0)
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let nowhere = dir.path().join("no such folder").join("f.glb");
+    let err = scene.write_glb(&nowhere).unwrap_err();
+    let m = err.messages().next().unwrap();
+    assert_eq!(m.code.as_deref(), Some("lsys::export::write"));
+    assert_eq!((m.file, m.line, m.severity), (None, None, Level::Error));
+    assert!(m.message.starts_with("cannot write "), "{}", m.message);
+    assert!(m.help.is_some());
+    assert!(err
+        .to_string()
+        .starts_with("error[lsys::export::write]: cannot write "));
+    let err = scene.write_obj(nowhere.with_extension("obj")).unwrap_err();
+    assert_eq!(first(&err).0.as_deref(), Some("lsys::export::write"));
+    let err = scene
+        .write_png(dir.path().join("f.png"), 0, 10)
+        .unwrap_err();
+    assert_eq!(first(&err).0.as_deref(), Some("lsys::render::zero_size"));
+}
