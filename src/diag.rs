@@ -1,6 +1,7 @@
 //! Diagnostics rendering: any stage's errors -> text. The CLI renders with
 //! colour for a terminal; tests and pipes get the colour-free form at a
-//! fixed width, so snapshots are stable.
+//! fixed width, so snapshots are stable. A library caller reads each
+//! diagnostic as a plain [`Message`] (code, severity, place, text).
 
 use miette::{Diagnostic, GraphicalReportHandler, GraphicalTheme, Severity};
 
@@ -32,6 +33,155 @@ pub fn render(d: &dyn Diagnostic, color: bool) -> String {
 /// Whether a diagnostic is an error (as opposed to a warning or advice).
 pub fn is_error(d: &dyn Diagnostic) -> bool {
     matches!(d.severity(), None | Some(Severity::Error))
+}
+
+/// How grave a [`Message`] is. (miette's `Severity` is its counterpart
+/// inside the crate; this one is lsys's own, so that a caller needs no
+/// miette to match on it.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Level {
+    /// The grammar did not compile, or the run stopped.
+    Error,
+    /// Worth a look; the grammar still compiled.
+    Warning,
+    /// A hint.
+    Advice,
+}
+
+impl Level {
+    /// `error`, `warning` or `advice`, as the short form writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Level::Error => "error",
+            Level::Warning => "warning",
+            Level::Advice => "advice",
+        }
+    }
+}
+
+impl std::fmt::Display for Level {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One diagnostic as plain data: what a caller of the library reads from
+/// [`Diagnostics::messages`] (a test, an editor, a web page). Named
+/// `Message`, not `Diagnostic`, so that it does not clash with miette's
+/// `Diagnostic` trait in code that uses both.
+///
+/// The place is where the diagnostic's primary label points (its first
+/// label when none is marked primary): `file`, `line` and `column` are all
+/// `Some` or all `None` (a diagnostic about no place in a file, such as a
+/// define given as an option that matches nothing). Lines and columns
+/// count from 1; a column counts bytes from the start of the line, as the
+/// rendered text's `file:line:column` does.
+///
+/// `Display` is the short, one-line form:
+/// `koch.lsys:3:7: error[lsys::resolve::unknown_name]: unknown name `x``.
+///
+/// ```
+/// let err = lsys::Grammar::from_str("koch.lsys", "axiom: F(x)\n").unwrap_err();
+/// let m = err.messages().next().unwrap();
+/// assert_eq!(m.code.as_deref(), Some("lsys::resolve::unknown_name"));
+/// assert_eq!(m.severity, lsys::Level::Error);
+/// assert_eq!((m.file.as_deref(), m.line, m.column), (Some("koch.lsys"), Some(1), Some(10)));
+/// assert_eq!(m.message, "unknown name `x`");
+/// assert!(m.rendered().contains("╭─[koch.lsys:1:10]"));
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct Message {
+    /// The diagnostic's code, e.g. `lsys::resolve::unknown_name` (every
+    /// diagnostic of lsys has one; `None` only for one that came from
+    /// elsewhere without).
+    pub code: Option<String>,
+    /// Error, warning or advice.
+    pub severity: Level,
+    /// The name of the file (or the name given to `Grammar::from_str`)
+    /// the diagnostic points into.
+    pub file: Option<String>,
+    /// The line it points at, from 1.
+    pub line: Option<usize>,
+    /// The column it points at, from 1 (in bytes).
+    pub column: Option<usize>,
+    /// The message, one sentence without the place.
+    pub message: String,
+    /// The help sentence, when the diagnostic has one.
+    pub help: Option<String>,
+    rendered: String,
+}
+
+impl Message {
+    /// The typed form of any miette diagnostic.
+    pub fn from_diagnostic(d: &dyn Diagnostic) -> Message {
+        Message {
+            rendered: render_plain(d),
+            ..Message::unrendered(d)
+        }
+    }
+
+    /// The same without the rendering (for the short form).
+    fn unrendered(d: &dyn Diagnostic) -> Message {
+        let (file, line, column) = match place(d) {
+            Some((file, line, column)) => (file, Some(line), Some(column)),
+            None => (None, None, None),
+        };
+        Message {
+            code: d.code().map(|c| c.to_string()),
+            severity: Message::level_of(d),
+            file,
+            line,
+            column,
+            message: d.to_string(),
+            help: d.help().map(|h| h.to_string()),
+            rendered: String::new(),
+        }
+    }
+
+    fn level_of(d: &dyn Diagnostic) -> Level {
+        match d.severity() {
+            Some(Severity::Warning) => Level::Warning,
+            Some(Severity::Advice) => Level::Advice,
+            None | Some(Severity::Error) => Level::Error,
+        }
+    }
+
+    /// The diagnostic rendered as the CLI renders it into a pipe: without
+    /// colour, at [`WIDTH`] columns, with the source lines it points at.
+    pub fn rendered(&self) -> &str {
+        &self.rendered
+    }
+
+    /// Whether this is an error (not a warning or advice).
+    pub fn is_error(&self) -> bool {
+        self.severity == Level::Error
+    }
+}
+
+impl std::fmt::Display for Message {
+    /// `file:line:column: severity[code]: message`, each part present
+    /// only when the diagnostic has it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let (Some(file), Some(line), Some(column)) = (&self.file, self.line, self.column) {
+            write!(f, "{file}:{line}:{column}: ")?;
+        }
+        write!(f, "{}", self.severity)?;
+        if let Some(code) = &self.code {
+            write!(f, "[{code}]")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+/// Where a diagnostic points: the file name (when its source has one),
+/// line and column from 1, of its primary label (else its first label).
+pub fn place(d: &dyn Diagnostic) -> Option<(Option<String>, usize, usize)> {
+    let src = d.source_code()?;
+    let labels: Vec<miette::LabeledSpan> = d.labels()?.collect();
+    let label = labels.iter().find(|l| l.primary()).or(labels.first())?;
+    let c = src.read_span(label.inner(), 0, 0).ok()?;
+    Some((c.name().map(str::to_string), c.line() + 1, c.column() + 1))
 }
 
 /// Every diagnostic of a failed compilation or run, errors first as they
@@ -88,7 +238,35 @@ impl Diagnostics {
         self.input
     }
 
-    /// Every diagnostic, errors and warnings, in order.
+    /// Every diagnostic, errors and warnings, in order, as plain
+    /// [`Message`]s (code, severity, place, text, help).
+    ///
+    /// ```
+    /// let err = lsys::Grammar::from_str("g.lsys", "axiom: A(1\n").unwrap_err();
+    /// let codes: Vec<String> = err.messages().filter_map(|m| m.code).collect();
+    /// assert_eq!(codes, ["lsys::parse::syntax"]);
+    /// ```
+    pub fn messages(&self) -> impl Iterator<Item = Message> + '_ {
+        self.iter().map(|d| Message::from_diagnostic(d))
+    }
+
+    /// How many diagnostics, errors and warnings.
+    pub fn len(&self) -> usize {
+        self.reports.len()
+    }
+
+    /// Whether there are none (a grammar's warnings, when it has none).
+    pub fn is_empty(&self) -> bool {
+        self.reports.is_empty()
+    }
+
+    /// Whether any is an error.
+    pub fn has_errors(&self) -> bool {
+        self.iter().any(|d| is_error(d))
+    }
+
+    /// Every diagnostic, errors and warnings, in order, as miette
+    /// diagnostics (to render them, or to hand them to miette).
     pub fn iter(&self) -> impl Iterator<Item = &(dyn Diagnostic + Send + Sync + 'static)> {
         self.reports.iter().map(|r| r.as_ref())
     }
@@ -122,22 +300,26 @@ impl Diagnostics {
 }
 
 impl std::fmt::Display for Diagnostics {
+    /// The first error (else the first warning) in the short form of
+    /// [`Message`], `koch.lsys:3:7: error[lsys::resolve::unknown_name]:
+    /// unknown name `x``, then ` (and 2 more errors)` when there are
+    /// others of its severity.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.first() {
-            Some(d) => {
-                write!(f, "{d}")?;
-                let more = self.error_count().saturating_sub(1);
-                if more > 0 {
-                    write!(
-                        f,
-                        " (and {more} more error{})",
-                        if more == 1 { "" } else { "s" }
-                    )?;
-                }
-                Ok(())
-            }
-            None => write!(f, "no diagnostics"),
+        let Some(d) = self.first() else {
+            return write!(f, "no diagnostics");
+        };
+        let first = Message::unrendered(d);
+        write!(f, "{first}")?;
+        let more = self
+            .iter()
+            .filter(|d| Message::level_of(*d) == first.severity)
+            .count()
+            .saturating_sub(1);
+        if more > 0 {
+            let s = if more == 1 { "" } else { "s" };
+            write!(f, " (and {more} more {}{s})", first.severity)?;
         }
+        Ok(())
     }
 }
 

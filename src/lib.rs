@@ -52,7 +52,7 @@
 mod api;
 
 pub use api::{Derived, Grammar, GrammarOptions, Scene, Steps};
-pub use diag::Diagnostics;
+pub use diag::{Diagnostics, Level, Message};
 pub use lang::Dialect;
 
 pub mod build;

@@ -18,9 +18,10 @@ pub struct Compilation {
     pub warnings: Vec<Report>,
 }
 
-/// A `-D NS.NAME=VALUE` whose namespace is no component of the grammar.
+/// A define given as an option, `NS.NAME=VALUE`, whose namespace is no
+/// component of the grammar.
 #[derive(Debug, Error, Diagnostic)]
-#[error("`-D {name}`: the grammar places no component `~{namespace}`")]
+#[error("the define `{name}` given as an option names a component `~{namespace}` the grammar does not place")]
 #[diagnostic(code(lsys::options::unknown_namespace), help("{help}"))]
 pub struct UnknownNamespace {
     pub name: String,
@@ -90,7 +91,7 @@ fn check_namespaces(program: &Program, namespaced: &[(String, String)]) -> Resul
                 return None;
             }
             let help = if components.is_empty() {
-                "this grammar places no components; write `-D NAME=VALUE` for its own defines"
+                "this grammar places no components; give its own defines without a namespace (`NAME=VALUE`)"
                     .to_string()
             } else {
                 let near = components

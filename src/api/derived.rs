@@ -92,6 +92,17 @@ pub struct Steps<'g> {
     started: bool,
 }
 
+/// A short form: the grammar's name, the last step and whether it ended.
+impl std::fmt::Debug for Steps<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Steps")
+            .field("grammar", &self.grammar.name())
+            .field("to", &self.target)
+            .field("ended", &self.sim.is_none())
+            .finish()
+    }
+}
+
 impl<'g> Steps<'g> {
     pub(crate) fn new(grammar: &'g Grammar, target: u32) -> Steps<'g> {
         let (sim, pending) = match grammar.simulation(target) {

@@ -20,6 +20,22 @@ use crate::simulation::Simulation;
 /// assert_eq!(steps, ["A", "A B", "A B A", "A B A A B"]);
 /// # Ok::<(), lsys::Diagnostics>(())
 /// ```
+///
+/// A grammar with mistakes comes back as [`Diagnostics`], one typed
+/// [`Message`](crate::Message) each; `Debug` is short (no program):
+///
+/// ```
+/// let err = lsys::Grammar::from_str("bad.lsys", "axiom: A(1\n").unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "bad.lsys:1:9: error[lsys::parse::syntax]: syntax error: unexpected `(` after the end of the statement"
+/// );
+/// let g = lsys::Grammar::from_str("algae.lsys", "axiom: A\nA --> A B\nB --> A\n").unwrap();
+/// assert_eq!(
+///     format!("{g:?}"),
+///     r#"Grammar { name: "algae.lsys", derivation_length: 0, alphabet: 4, productions: 2, warnings: 0 }"#
+/// );
+/// ```
 pub struct Grammar {
     pub(crate) comp: Arc<Compilation>,
     pub(crate) options: GrammarOptions,
@@ -113,5 +129,32 @@ impl Grammar {
 
     pub(crate) fn derived(&self, string: crate::derive::ModuleStore, step: u32) -> Derived {
         Derived::new(self.comp.clone(), string, step)
+    }
+
+    /// The name the grammar was compiled under (its path, the name given
+    /// to `from_str`, or `std:NAME`'s file name).
+    pub(crate) fn name(&self) -> &str {
+        self.comp
+            .program
+            .sources
+            .files()
+            .first()
+            .map_or("", |f| f.name.as_str())
+    }
+}
+
+/// A short form: the name, the derivation length, the size of the alphabet
+/// (`[` and `]`, which every grammar has, among it), how many
+/// productions and warnings; not the program.
+impl std::fmt::Debug for Grammar {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let p = &self.comp.program;
+        f.debug_struct("Grammar")
+            .field("name", &self.name())
+            .field("derivation_length", &p.derivation_length)
+            .field("alphabet", &p.symbols.len())
+            .field("productions", &p.productions.len())
+            .field("warnings", &self.warnings.len())
+            .finish()
     }
 }

@@ -19,3 +19,6 @@ pub use grammar::Grammar;
 pub use options::GrammarOptions;
 pub use scene::Scene;
 pub(crate) use scene::WriteFailed;
+
+#[cfg(test)]
+mod tests;

@@ -22,6 +22,17 @@ pub struct Scene {
     pub(crate) built: Built,
 }
 
+/// A short form: the counts, not the meshes.
+impl std::fmt::Debug for Scene {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Scene")
+            .field("modules", &self.module_count())
+            .field("triangles", &self.triangle_count())
+            .field("instances", &self.instance_count())
+            .finish()
+    }
+}
+
 /// An output file could not be written.
 #[derive(Debug, Error, Diagnostic)]
 #[error("cannot write {path}: {cause}")]

@@ -18,7 +18,7 @@ pub enum DeriveError {
     )]
     #[diagnostic(
         code(lsys::derive::module_limit),
-        help("raise the limit with `--max-modules N`, or derive fewer steps")
+        help("raise the limit max_modules (`--max-modules N`), or derive fewer steps")
     )]
     ModuleLimit {
         step: u32,
@@ -33,7 +33,7 @@ pub enum DeriveError {
     #[error("the string passed the parameter limit at step {step}: {reached} parameter values (limit {limit})")]
     #[diagnostic(
         code(lsys::derive::param_limit),
-        help("raise the limit with `--max-params N`, or derive fewer steps")
+        help("raise the limit max_params (`--max-params N`), or derive fewer steps")
     )]
     ParamLimit {
         step: u32,
@@ -135,7 +135,7 @@ pub enum DeriveError {
     #[error("step {step} would not fit in memory: about {modules} modules ({bytes} with the string before it), and {available} is available")]
     #[diagnostic(
         code(lsys::derive::too_large),
-        help("the size is projected from the growth of the last step; derive fewer steps, count the modules without building the string with `lsys derive --count`, or lower `--max-modules` (now {limit}) so that the derivation stops at a size of your choosing")
+        help("the size is projected from the growth of the last step; derive fewer steps, count the modules without building the string with `lsys derive --count`, or lower the limit max_modules (`--max-modules`, now {limit}) so that the derivation stops at a size of your choosing")
     )]
     TooLarge {
         step: u32,

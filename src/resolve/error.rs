@@ -14,7 +14,7 @@ pub enum ResolveError {
     #[error("`{name}` is defined twice")]
     #[diagnostic(
         code(lsys::resolve::duplicate_define),
-        help("remove one of the definitions, or give the second a different name; to change a value for one run use `-D {name}=VALUE`")
+        help("remove one of the definitions, or give the second a different name; to change a value for one run, give it as an option (`-D {name}=VALUE`)")
     )]
     DuplicateDefine {
         name: String,
@@ -26,15 +26,20 @@ pub enum ResolveError {
         first: Option<SourceSpan>,
     },
 
-    #[error("`-D {name}` does not match any #define")]
+    /// A define given as an option (`-D NAME=VALUE` on the command line,
+    /// `:set` in the REPL, `GrammarOptions::define` in the library) that
+    /// names no `#define` of the grammar.
+    #[error("the define `{name}` given as an option matches no #define in {file}")]
     #[diagnostic(code(lsys::resolve::unknown_override))]
     UnknownOverride {
         name: String,
+        /// The grammar's (root) file name.
+        file: String,
         #[help]
         help: String,
     },
 
-    #[error("bad value for `-D {name}`: {why}")]
+    #[error("bad value for the define `{name}` given as an option: {why}")]
     #[diagnostic(code(lsys::resolve::bad_override))]
     BadOverride {
         name: String,

@@ -305,8 +305,10 @@ impl Resolver {
                     }
                     None => format!("the grammar defines: {}", known.join(", ")),
                 };
+                let file = self.sources.files().first();
                 self.error(ResolveError::UnknownOverride {
                     name: base.to_string(),
+                    file: file.map_or_else(|| "the grammar".to_string(), |f| f.name.clone()),
                     help,
                 });
                 continue;
@@ -324,7 +326,9 @@ impl Resolver {
                 self.error(ResolveError::BadOverride {
                     name: name.clone(),
                     why: format!("`{base}` is not a table"),
-                    help: Some(format!("write `-D {base}=VALUE`")),
+                    help: Some(format!(
+                        "give `{base}` one value, without an index (`{base}=VALUE`)"
+                    )),
                 });
                 continue;
             }
@@ -350,14 +354,16 @@ impl Resolver {
                     None => self.error(ResolveError::BadOverride {
                         name: name.clone(),
                         why: "its index is not a list of whole numbers".to_string(),
-                        help: Some(format!("write e.g. `-D '{base}[1,2,3]=0'`")),
+                        help: Some(format!(
+                            "write the index as whole numbers, e.g. `{base}[1,2,3]=0`"
+                        )),
                     }),
                 },
                 (Some(_), Table(_)) => self.error(ResolveError::BadOverride {
                     name: name.clone(),
                     why: "one element takes one value".to_string(),
                     help: Some(format!(
-                        "to replace the whole table write `-D '{base}={{...}}'`"
+                        "to replace the whole table give `{base}` a list (`{base}={{...}}`)"
                     )),
                 }),
                 (None, Table(elems)) if is_table => {

@@ -99,7 +99,10 @@ impl Resolver {
             let Some(&id) = self.table_ids.get(&o.name) else {
                 continue; // the table itself failed and was reported
             };
-            let Some(v) = self.constant(&o.value, &format!("`-D {}`", o.text)) else {
+            let Some(v) = self.constant(
+                &o.value,
+                &format!("the define `{}` given as an option", o.text),
+            ) else {
                 continue;
             };
             let t = &self.tables[id as usize];
