@@ -3,8 +3,10 @@
 //! ```text
 //! lang        the language profile, turtle command table, built-in
 //!             functions, random generator: what every stage shares
-//! prefault    a second core backing big buffers' fresh pages ahead of
-//!             their writer (the turtle's chains, the mesher's meshes)
+//! support     not a stage: memory infrastructure the stages share
+//!             (prefault: a second core backing big buffers' fresh pages
+//!             ahead of their writer, for the turtle's chains and the
+//!             mesher's meshes)
 //! source (.lsys, #include'd files, std library embedded in the binary)
 //!   -> load       every file the model reads: root, includes (cpfg .l through
 //!                 the C preprocessor), view and function files, each parsed
@@ -74,7 +76,6 @@ pub mod mesh;
 pub mod pailou;
 pub mod parse;
 pub mod pipeline;
-pub mod prefault;
 pub mod preprocess;
 #[cfg(feature = "cli")]
 pub mod progress;
@@ -86,4 +87,5 @@ pub mod source;
 pub mod stdlib;
 #[cfg(feature = "studio")]
 pub mod studio;
+pub mod support;
 pub mod turtle;
