@@ -22,10 +22,12 @@
 //!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
 //!
-//! Each stage imports only the stages before it (`tests/architecture.rs`
-//! checks). Above them: [`pipeline`] (load to bytecode in one call),
-//! [`build`] (simulation to meshes in one call, building grammar
-//! components with the same options), [`pailou`] and the public API.
+//! The whole map, every folder of `src/` with what goes in and out of it,
+//! is `docs/architecture.md`. Each stage imports only the stages before it
+//! (`tests/architecture.rs` checks). Above them: [`pipeline`] (load to
+//! bytecode in one call), [`build`] (simulation to meshes in one call,
+//! building grammar components with the same options), [`pailou`] and the
+//! public API.
 //!
 //! # Using the library
 //!
