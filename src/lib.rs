@@ -3,8 +3,10 @@
 //! ```text
 //! lang        the language profile, turtle command table, built-in
 //!             functions, random generator: what every stage shares
-//! prefault    a second core backing big buffers' fresh pages ahead of
-//!             their writer (the turtle's chains, the mesher's meshes)
+//! support     not a stage: memory infrastructure the stages share
+//!             (prefault: a second core backing big buffers' fresh pages
+//!             ahead of their writer, for the turtle's chains and the
+//!             mesher's meshes)
 //! source (.lsys, #include'd files, std library embedded in the binary)
 //!   -> load       every file the model reads: root, includes (cpfg .l through
 //!                 the C preprocessor), view and function files, each parsed
@@ -20,10 +22,12 @@
 //!   -> export     Scene -> glTF/GLB, OBJ+MTL, PNG pictures (atomic writes)
 //! ```
 //!
-//! Each stage imports only the stages before it (`tests/architecture.rs`
-//! checks). Above them: [`pipeline`] (load to bytecode in one call),
-//! [`build`] (simulation to meshes in one call, building grammar
-//! components with the same options), [`pailou`] and the public API.
+//! The whole map, every folder of `src/` with what goes in and out of it,
+//! is `docs/architecture.md`. Each stage imports only the stages before it
+//! (`tests/architecture.rs` checks). Above them: [`pipeline`] (load to
+//! bytecode in one call), [`build`] (simulation to meshes in one call,
+//! building grammar components with the same options), [`pailou`] and the
+//! public API.
 //!
 //! # Using the library
 //!
@@ -75,7 +79,6 @@ pub mod mesh;
 pub mod pailou;
 pub mod parse;
 pub mod pipeline;
-pub mod prefault;
 pub mod preprocess;
 #[cfg(feature = "cli")]
 pub mod progress;
@@ -87,4 +90,5 @@ pub mod source;
 pub mod stdlib;
 #[cfg(feature = "studio")]
 pub mod studio;
+pub mod support;
 pub mod turtle;

@@ -7,11 +7,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The core stages in pipeline order. Each may import only the stages
-/// before it (and itself).
+/// before it (and itself). `support` is no stage but infrastructure the
+/// stages share (memory): first, so that any stage may use it and it may
+/// use none.
 const STAGES: &[&str] = &[
+    "support",
     "source",
     "diag",
-    "prefault",
     "stdlib",
     "lang",
     "preprocess",

@@ -15,11 +15,12 @@
 
 use std::collections::HashMap;
 
-use super::engine::{Derivation, DeriveOptions};
+use super::engine::Derivation;
 use super::error::DeriveError;
 use super::fast::{first_match, Plan};
-use super::rewrite::Tables;
+use super::options::DeriveOptions;
 use super::store::{head_arity, head_sym, ModuleStore};
+use super::tables::Tables;
 use crate::bytecode::vm::{self, Machine};
 use crate::bytecode::Compiled;
 use crate::lang::rng::Rand48;

@@ -40,8 +40,8 @@
 //! more than the split saves.
 
 use super::fast::{first_match, run_range, LimitSink, Plan};
-use super::rewrite::Tables;
 use super::store::{head_arity, head_sym, ModuleStore};
+use super::tables::Tables;
 use crate::bytecode::vm::{self, Machine};
 use crate::lang::rng::Rand48;
 

@@ -11,6 +11,15 @@ use thiserror::Error;
 /// Shared, so that errors stay small (`Result`s are returned per module).
 pub type Src = Arc<NamedSource<Arc<String>>>;
 
+/// Internal error: boxed so that the `Result`s passed per module stay small.
+pub(crate) type Fail = Box<DeriveError>;
+
+impl From<Box<DeriveError>> for DeriveError {
+    fn from(b: Box<DeriveError>) -> DeriveError {
+        *b
+    }
+}
+
 #[derive(Debug, Error, Diagnostic)]
 pub enum DeriveError {
     #[error(

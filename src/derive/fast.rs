@@ -21,8 +21,8 @@
 //! engine redoes the step from the same input (with the generator in the
 //! same state), producing exactly the diagnostic it always did.
 
-use super::rewrite::Tables;
 use super::store::{head_arity, head_sym, ModuleStore};
+use super::tables::Tables;
 use super::template::{Cond, Succ};
 use crate::bytecode::vm::{self, Machine, NoSink, Sink};
 use crate::bytecode::{Chunk, CondCode, Op, ProdCode};
@@ -84,6 +84,12 @@ fn static_output(c: &Chunk) -> Option<(usize, usize)> {
     Some((mods, params))
 }
 
+/// Inputs smaller than this are rewritten on one core (the default
+/// [`Plan::par_min`]): below it the threads' start-up and the extra passes
+/// of `parallel.rs` cost more than they save. (Measured: W2 at 2^18
+/// modules per step is no faster on two busy cores.)
+const PAR_MIN_MODULES: usize = 1 << 20;
+
 /// What the fast step needs besides the tables: whether it applies, and
 /// the fixed output size of every production (for the parallel step).
 pub(crate) struct Plan {
@@ -143,7 +149,7 @@ impl Plan {
         }
         Some(Plan {
             out,
-            par_min: super::parallel::PAR_MIN_MODULES,
+            par_min: PAR_MIN_MODULES,
             succ: succs,
             cond: conds,
         })
@@ -155,9 +161,10 @@ impl Plan {
         self.succ[p].as_ref()
     }
 
-    /// Rewrite `input` with the main table into `out` (cleared first).
-    /// `false`: not done (fault or limit), `out` holds garbage and the
-    /// general engine must do the step.
+    /// Rewrite `input` with the main table into `out` (cleared first), on
+    /// this thread (`parallel.rs`'s `fast_step` decides when to use all
+    /// cores instead). `false`: not done (fault or limit), `out` holds
+    /// garbage and the general engine must do the step.
     pub(crate) fn step(
         &self,
         tab: &Tables,
@@ -165,11 +172,6 @@ impl Plan {
         input: &ModuleStore,
         out: &mut ModuleStore,
     ) -> bool {
-        if input.len() >= self.par_min && super::parallel::threads() > 1 {
-            if let Some(done) = super::parallel::step(self, tab, input, out) {
-                return done;
-            }
-        }
         out.clear();
         // Growth is usually steady: reserve for the same ratio as the last
         // step so the vectors are not regrown (and their pages faulted in)

@@ -4,21 +4,12 @@
 
 use std::sync::Arc;
 
-use super::error::{DeriveError, Src};
-use super::rewrite::{table_name, Tables};
+use super::error::{DeriveError, Fail, Src};
 use super::store::ModuleStore;
+use super::tables::{table_name, Tables};
 use crate::bytecode::{Fault, FaultKind};
 use crate::resolve::Table;
 use crate::source::Span;
-
-/// Internal error: boxed so that the `Result`s passed per module stay small.
-pub(crate) type Fail = Box<DeriveError>;
-
-impl From<Box<DeriveError>> for DeriveError {
-    fn from(b: Box<DeriveError>) -> DeriveError {
-        *b
-    }
-}
 
 pub(super) fn src(tab: &Tables, span: Span) -> Src {
     Arc::new(tab.program.sources.named_source(span))

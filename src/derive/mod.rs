@@ -60,6 +60,7 @@
 //!   [`DeriveOptions::max_params`] parameter values.
 
 mod budget;
+mod condition;
 pub mod count;
 mod depth_first;
 mod engine;
@@ -68,18 +69,22 @@ mod fast;
 mod faults;
 mod matching;
 pub mod number;
+mod options;
 mod parallel;
 mod rewrite;
 mod run;
+mod state;
 mod stochastic;
 pub mod store;
 mod sublsystem;
+mod tables;
 mod template;
 
 pub use crate::lang::rng::{Rand48, DEFAULT_SEED};
 pub use count::{count, Counts};
-pub use engine::{homomorphism, Checkpoint, Derivation, DeriveOptions, Interpreted};
+pub use engine::{homomorphism, Checkpoint, Derivation, Interpreted};
 pub use error::{DepthWarning, DeriveError};
 pub use number::{NumberFormat, NumberStyle};
+pub use options::DeriveOptions;
 pub use parallel::threads;
 pub use store::{ContextIndex, Module, ModuleStore};

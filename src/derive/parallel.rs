@@ -21,15 +21,10 @@ use std::mem::MaybeUninit;
 use rayon::prelude::*;
 
 use super::fast::{first_match, run_range, Out, Plan};
-use super::rewrite::Tables;
 use super::store::{head_arity, pack, ModuleStore};
+use super::tables::Tables;
 use super::template::Succ;
 use crate::bytecode::vm::Sink;
-
-/// Inputs smaller than this are rewritten on one core: below it the
-/// threads' start-up and the extra passes cost more than they save.
-/// (Measured: W2 at 2^18 modules per step is no faster on two busy cores.)
-pub(crate) const PAR_MIN_MODULES: usize = 1 << 20;
 
 /// How many threads rayon runs on, without starting its global pool:
 /// asking rayon starts it, spawning its threads (0.3–1.5 ms of a small
@@ -53,15 +48,30 @@ pub fn threads() -> usize {
 /// Slices per thread, so that a slow slice does not leave a core idle.
 const SLICES_PER_THREAD: usize = 8;
 
+/// The fast step of `input` into `out`: on all cores when the string has
+/// at least [`Plan::par_min`] modules, there is more than one thread and
+/// every production writes a fixed number of modules; else on this one
+/// ([`Plan::step`]). `false`: not done (fault or limit), `out` holds
+/// garbage and the general engine must do the step.
+pub(crate) fn fast_step(
+    plan: &Plan,
+    tab: &Tables,
+    stack: &mut [f64],
+    input: &ModuleStore,
+    out: &mut ModuleStore,
+) -> bool {
+    if input.len() >= plan.par_min && threads() > 1 {
+        if let Some(done) = step(plan, tab, input, out) {
+            return done;
+        }
+    }
+    plan.step(tab, stack, input, out)
+}
+
 /// Rewrite `input` into `out` in parallel. `None`: not applicable (a
 /// production's output size is not fixed), do it serially; `Some(false)`:
 /// a fault or a limit, the general engine must redo the step.
-pub(crate) fn step(
-    plan: &Plan,
-    tab: &Tables,
-    input: &ModuleStore,
-    out: &mut ModuleStore,
-) -> Option<bool> {
+fn step(plan: &Plan, tab: &Tables, input: &ModuleStore, out: &mut ModuleStore) -> Option<bool> {
     let sizes: Vec<(usize, usize)> = plan.out.iter().copied().collect::<Option<_>>()?;
     let n = input.len();
     let k = (rayon::current_num_threads() * SLICES_PER_THREAD)

@@ -3,8 +3,11 @@
 //! L-system's statement blocks. Input: [`Tables`], [`State`], a chunk;
 //! output: modules appended, variables changed, or a fault.
 
-use super::rewrite::{fault_error, Fail, Site, State, Tables};
+use super::error::Fail;
+use super::faults::{fault_error, Site};
+use super::state::State;
 use super::store::ModuleStore;
+use super::tables::Tables;
 use crate::bytecode::vm::{self, NoSink};
 use crate::bytecode::{Chunk, Fault};
 

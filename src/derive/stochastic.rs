@@ -16,9 +16,12 @@
 //!
 //! [`Profile::cpfg_stochastic`]: crate::lang::Profile::cpfg_stochastic
 
+use super::condition::{applies, weight};
+use super::error::Fail;
 use super::matching::{match_at, Bound, Input};
-use super::rewrite::{applies, table_index, weight, Fail, State, Tables};
+use super::state::State;
 use super::store::head_sym;
+use super::tables::{table_index, Tables};
 use crate::resolve::Table;
 
 /// A module: the string, its index and the offset of its parameters.

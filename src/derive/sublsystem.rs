@@ -4,8 +4,8 @@
 //! `CheckPred`), so a module is rewritten by the L-system that the
 //! enclosing `?( )`...`$` name; those two by the one they leave.
 
-use super::rewrite::Tables;
 use super::store::{head_arity, head_sym};
+use super::tables::Tables;
 
 /// What a module does to the L-system that rewrites the modules after it.
 #[derive(Clone, Copy)]

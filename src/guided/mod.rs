@@ -10,6 +10,7 @@
 //! tokens.rs   free -> reserved -> used
 //! queries.rs  ?DL ?DG ?DA ?NL ?NG ?NA ?X answered (an Environment)
 //! run.rs      all seeds in lockstep, messages -> new seeds; local update
+//! build.rs    an Outcome -> one Scene (the clipped drawings, the overlay)
 //! draw.rs     placing, clipping, the guide/link overlay
 //! ```
 //!

@@ -13,8 +13,8 @@ use super::palette::Palette;
 use super::scene::{Component, Instance, Material, Scene, Stroke, TriMesh};
 use super::shapes;
 use super::tubes::{Facets, Tubes};
-use crate::prefault::{region, Prefault};
 use crate::resolve::ir::{Program, SymId};
+use crate::support::prefault::{region, Prefault};
 use crate::turtle::Drawing;
 
 /// Meshing choices.
@@ -330,7 +330,7 @@ pub(super) fn missing(
 /// 64 KiB, with a few dozen KiB of vertices).
 const LOOK_EVERY: usize = 16 << 10;
 
-fn stroke_regions(mesh: &TriMesh) -> [crate::prefault::Region; 3] {
+fn stroke_regions(mesh: &TriMesh) -> [crate::support::prefault::Region; 3] {
     [
         region(&mesh.positions),
         region(&mesh.normals),

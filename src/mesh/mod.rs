@@ -1,5 +1,8 @@
-//! Mesh: turtle output -> triangle meshes. Tubes for strokes, polygons,
-//! spheres and discs, and components loaded once and placed by transform.
+//! Mesh: a turtle [`Drawing`](crate::turtle::Drawing) in, a [`Scene`] out.
+//! Tubes for strokes (sharing rings where chains meet, or instanced
+//! internodes), triangles for polygons, spheres and discs, and components
+//! (OBJ models, roofs, cpfg surfaces, grammars) loaded once and placed by
+//! transform; plus the structural check of a Scene's placed parts.
 pub mod assemble;
 pub mod component;
 pub mod components;

@@ -1,6 +1,8 @@
-//! The Pailou front-end: a style (`4-3-7`, ridge or pillar type) -> the
-//! standard library's Pailou grammar with its layout tables filled in,
-//! ready to compile (or to print for an expert to continue by hand).
+//! The Pailou front-end: a style (`4-3-7`, ridge or pillar type, in
+//! `style.rs`) or a component graph (TOML, in `graph.rs`) -> a [`Layout`]
+//! -> the standard library's Pailou grammar with its layout tables filled
+//! in, ready to compile (or to print for an expert to continue by hand);
+//! and a layout's canonical graph back out (`emit.rs`).
 mod emit;
 pub mod graph;
 pub mod kinds;

@@ -11,7 +11,9 @@
 //! * `inspect.rs`: the commands that look (`:show`, `:diff`, `:export`, ...);
 //! * `grammar.rs`: edits of the grammar's text; `show.rs`: printing strings;
 //! * `input.rs`: continuation and classification of input lines;
-//! * `complete.rs`: the line editor's completer and validator.
+//! * `complete.rs`: the line editor's completer and validator;
+//! * `shadow.rs`: rules an earlier one always shadows (never applied);
+//! * `undo.rs`: `:undo`, the stack of the grammar before each edit.
 
 mod commands;
 mod complete;

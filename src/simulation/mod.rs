@@ -1,5 +1,5 @@
 //! The simulation loop: a compiled grammar and a target step count in, the
-//! derived string of every step out. One place owns the loop
+//! derived string of every step out. One place owns the loop:
 //!
 //! ```text
 //! Start:, axiom, decomposition -> environments answer queries

@@ -11,8 +11,8 @@ use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
 use crate::lang::{Dialect, Profile};
-use crate::prefault::Prefault;
 use crate::resolve::ir::{Program, SymId, SymbolKind, Symbols};
+use crate::support::prefault::Prefault;
 
 mod chains;
 

@@ -1,6 +1,10 @@
-//! Turtle: the command table that the checker, help text and the 3D turtle
-//! all read, and the turtle itself. Input: a derived module string; output:
-//! strokes, polygons and component placements handed to the mesh builder.
+//! Turtle: the 3D turtle that carries out a string's commands. Input: a
+//! derived module string; output: a [`Drawing`] (strokes in tube chains,
+//! polygons, spheres and discs, generalized cylinders and cpfg contours,
+//! shape grammars' solids, component placements) handed to the mesh
+//! builder, and for the simulation loop the turtle's state at each query
+//! module ([`query_sites`]). The command table it reads, with resolve and
+//! `lsys commands`, is `lang/commands.rs`'s.
 mod cpfg;
 mod cpfg_contour;
 mod cylinder;

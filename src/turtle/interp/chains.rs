@@ -2,12 +2,12 @@
 //! is on, or starts a chain with its origin (the drawn point it left from,
 //! a hint for meshing); inside a polygon it traces the outline instead.
 //! For a big string, room for its chains is reserved up front and their
-//! pages backed on the second core ([`crate::prefault`]).
+//! pages backed on the second core ([`crate::support::prefault`]).
 
 use super::{push_vertex, Act, Turtle, Walk};
 use crate::derive::store::head_sym;
 use crate::lang::commands::Action;
-use crate::prefault::{region, Prefault};
+use crate::support::prefault::{region, Prefault};
 use crate::turtle::drawing::{Chain, Origin, TubePoint};
 
 /// Strings shorter than this draw too little for a prefault helper.
