@@ -12,16 +12,14 @@ use super::args::{
 use super::commands::report;
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
 use crate::driver::{
-    self, Check, Event, Format, Job, Output, Pailou, PailouError, PailouType, Reason,
+    self, Check, Event, Format, Job, Output, Pailou, PailouError, PailouType, Reason, TomlFile,
 };
 use crate::progress::Progress;
 use crate::GrammarOptions;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match format_of(&b.output) {
-        Ok(f) if is_scene(&b.model) => {
-            super::guided::build_scene(&b.model, &b.output, &b.picture, f, color)
-        }
+        Ok(f) if is_toml(&b.model) => build_toml(&b.model, &b.output, &b.picture, f, color),
         Ok(f) => {
             build_once(
                 model_job(&b.model),
@@ -49,8 +47,8 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
-    if is_scene(&r.model) {
-        return super::guided::build_scene(&r.model, &r.output, &r.picture, Format::Png, color);
+    if is_toml(&r.model) {
+        return build_toml(&r.model, &r.output, &r.picture, Format::Png, color);
     }
     build_once(
         model_job(&r.model),
@@ -64,9 +62,58 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
     .code
 }
 
-/// A guided scene (`FILE.toml`, docs/guided.md) rather than a grammar.
-fn is_scene(m: &ModelArgs) -> bool {
+/// A guided scene or a Pailou graph (`FILE.toml`) rather than a grammar.
+fn is_toml(m: &ModelArgs) -> bool {
     m.common.file.ends_with(".toml")
+}
+
+/// `lsys build FILE.toml`: a guided scene (docs/guided.md), or a Pailou
+/// component graph built as `lsys pailou FILE.toml` builds it; told apart
+/// by their keys.
+fn build_toml(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, color: bool) -> i32 {
+    let path = Path::new(&m.common.file);
+    let kind = match std::fs::read_to_string(path) {
+        Ok(text) => driver::toml_file(path, &text),
+        // The scene's reader says why it cannot be read.
+        Err(_) => Ok(TomlFile::GuidedScene),
+    };
+    match kind {
+        Ok(TomlFile::GuidedScene) => super::guided::build_scene(m, out, pic, format, color),
+        Ok(TomlFile::PailouGraph) => {
+            let pailou = match Pailou::graph_file(path, None) {
+                Ok(p) => p,
+                Err(e) => return pailou_failed(e, color),
+            };
+            for u in pailou.unplaced() {
+                eprintln!("lsys: warning: graph: {u}");
+            }
+            let c = &m.common;
+            let job = pailou.job(grammar_options(&c.define, Some(&c.source), &m.run, &m.look));
+            build_once(job, out, pic, format, color, Report::Stats, m.look.stats).code
+        }
+        Err(e) => {
+            report(&e, color);
+            EX_DATAERR
+        }
+    }
+}
+
+/// Prints why a Pailou could not be read; the exit code.
+fn pailou_failed(e: PailouError, color: bool) -> i32 {
+    match e {
+        PailouError::Graph(e) => {
+            report(e.as_ref(), color);
+            EX_DATAERR
+        }
+        e @ PailouError::Read { .. } => {
+            eprintln!("lsys: {e}");
+            EX_NOINPUT
+        }
+        e @ PailouError::Style { .. } => {
+            eprintln!("lsys: {e}");
+            EX_USAGE
+        }
+    }
 }
 
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
@@ -82,18 +129,7 @@ pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     };
     let pailou = match pailou {
         Ok(g) => g,
-        Err(PailouError::Graph(e)) => {
-            report(e.as_ref(), color);
-            return EX_DATAERR;
-        }
-        Err(e @ PailouError::Read { .. }) => {
-            eprintln!("lsys: {e}");
-            return EX_NOINPUT;
-        }
-        Err(e @ PailouError::Style { .. }) => {
-            eprintln!("lsys: {e}");
-            return EX_USAGE;
-        }
+        Err(e) => return pailou_failed(e, color),
     };
     for u in pailou.unplaced() {
         eprintln!("lsys: warning: graph: {u}");

@@ -21,6 +21,7 @@ mod pailou;
 mod run;
 mod stats;
 mod structure;
+mod toml_file;
 
 pub use guided::{run_scene, SceneDone, SceneJob};
 pub use job::{grammar_dir, Check, Job, Output};
@@ -28,6 +29,7 @@ pub use pailou::{Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};
 pub use stats::ms;
 pub use structure::library_rules;
+pub use toml_file::{toml_file, NeitherFormat, TomlFile};
 
 pub use crate::build::Stage;
 pub use crate::export::output::Format;

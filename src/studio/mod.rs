@@ -206,6 +206,19 @@ pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
     let full = confine(root, rel).map_err(|e| e.to_string())?;
     if rel.ends_with(".toml") {
         let text = std::fs::read_to_string(&full).map_err(|e| format!("cannot read {rel}: {e}"))?;
+        match crate::driver::toml_file(Path::new(rel), &text) {
+            Ok(crate::driver::TomlFile::PailouGraph) => {}
+            Ok(crate::driver::TomlFile::GuidedScene) => {
+                return Err(format!(
+                    "{rel} is a guided scene (docs/guided.md), not a Pailou graph; the studio edits graphs and grammars: build the scene with `lsys build {rel} -o OUT.glb`"
+                ))
+            }
+            Err(e) => {
+                use miette::Diagnostic;
+                let help = e.help().map(|h| h.to_string()).unwrap_or_default();
+                return Err(format!("{e}; {help}"));
+            }
+        }
         Ok(Session::Pailou(pailou::PailouSession::open(
             rel,
             &text,
