@@ -55,7 +55,7 @@
 
 mod api;
 
-pub use api::{Derived, Grammar, GrammarOptions, Scene, Steps};
+pub use api::{Derivation, Derived, Drawn, Grammar, GrammarOptions, Numbers, Scene, Steps};
 pub use diag::{Diagnostics, Level, Message};
 pub use lang::Dialect;
 

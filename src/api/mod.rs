@@ -9,11 +9,13 @@
 //! # Ok::<(), lsys::Diagnostics>(())
 //! ```
 
+mod derivation;
 mod derived;
 mod grammar;
 mod options;
 mod scene;
 
+pub use derivation::{Derivation, Drawn, Numbers};
 pub use derived::{Derived, Steps};
 pub use grammar::Grammar;
 pub use options::GrammarOptions;

@@ -44,6 +44,13 @@ impl GrammarOptions {
         self
     }
 
+    /// [`seed`](Self::seed) when `seed` is given; the file's `seed:` (or
+    /// 0) otherwise.
+    pub fn seed_option(mut self, seed: Option<u64>) -> Self {
+        self.build.derive.seed = seed;
+        self
+    }
+
     /// The largest string, in modules, a step may produce.
     pub fn max_modules(mut self, n: usize) -> Self {
         self.build.derive.max_modules = n;

@@ -8,7 +8,7 @@ use thiserror::Error;
 
 use crate::build::Built;
 use crate::diag::Diagnostics;
-use crate::export::output::{write_scene, Format, WriteError};
+use crate::export::output::{scene_bytes, write_scene, Format, WriteError};
 use crate::export::render::{RenderOptions, View};
 
 /// A built model ([`Grammar::build`](super::Grammar::build)).
@@ -65,6 +65,41 @@ impl Scene {
     /// than writing a file.
     pub fn mesh(&self) -> &crate::mesh::Scene {
         &self.built.scene
+    }
+
+    /// The model as a binary glTF file's bytes (what
+    /// [`write_glb`](Self::write_glb) writes).
+    pub fn to_glb(&self) -> Result<Vec<u8>, Diagnostics> {
+        self.to_bytes(Format::Glb, &RenderOptions::default(), "model.mtl")
+    }
+
+    /// The model as an OBJ file's text whose `mtllib` names `mtl_name`
+    /// (the materials themselves are [`write_obj`](Self::write_obj)'s).
+    pub fn to_obj(&self, mtl_name: &str) -> Vec<u8> {
+        self.to_bytes(Format::Obj, &RenderOptions::default(), mtl_name)
+            .unwrap_or_default()
+    }
+
+    /// An isometric picture `width` × `height` pixels, as PNG bytes.
+    pub fn to_png(&self, width: u32, height: u32) -> Result<Vec<u8>, Diagnostics> {
+        let pic = RenderOptions {
+            view: View::Iso,
+            width,
+            height,
+            ..RenderOptions::default()
+        };
+        pic.validate().map_err(Diagnostics::one)?;
+        self.to_bytes(Format::Png, &pic, "model.mtl")
+    }
+
+    fn to_bytes(
+        &self,
+        format: Format,
+        pic: &RenderOptions,
+        mtl_name: &str,
+    ) -> Result<Vec<u8>, Diagnostics> {
+        scene_bytes(&self.built.scene, format, pic, mtl_name)
+            .map_err(|d| Diagnostics::new(vec![miette::Report::new_boxed(d)]))
     }
 
     /// Writes a binary glTF file; returns its size in bytes.

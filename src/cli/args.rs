@@ -4,7 +4,8 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
-use crate::export::render::View;
+use crate::driver::limits::*;
+use crate::driver::View;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -116,15 +117,15 @@ pub struct SourceArgs {
     #[arg(long = "include-dir", value_name = "DIR")]
     pub include_dir: Vec<PathBuf>,
     /// Stop with an error when includes nest deeper than this many files.
-    #[arg(long, value_name = "N", default_value_t = crate::load::MAX_INCLUDE_DEPTH)]
+    #[arg(long, value_name = "N", default_value_t = MAX_INCLUDE_DEPTH)]
     pub max_include_depth: usize,
     /// Stop with an error when `(` and `{` nest deeper than this (at most 4096).
-    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_NESTING,
-          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_NESTING_CEILING as u64))]
+    #[arg(long, value_name = "N", default_value_t = MAX_NESTING,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_NESTING_CEILING as u64))]
     pub max_nesting: usize,
     /// Stop with an error when one expression has more operators than this (at most 100000).
-    #[arg(long, value_name = "N", default_value_t = crate::parse::MAX_OPERATORS,
-          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=crate::parse::MAX_OPERATORS_CEILING as u64))]
+    #[arg(long, value_name = "N", default_value_t = MAX_OPERATORS,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=MAX_OPERATORS_CEILING as u64))]
     pub max_operators: usize,
     /// Read the file in this notation whatever its name (`.l`) and its
     /// `dialect:` header say.
@@ -144,27 +145,6 @@ pub enum DialectArg {
     Paper,
     /// cpfg's (`%` cuts the branch, `$` ends a sub-L-system; f32 parameters).
     Cpfg,
-}
-
-impl SourceArgs {
-    /// The compilation options these arguments ask for, with `defines`.
-    pub fn options(&self, defines: &[(String, String)]) -> crate::load::Options {
-        crate::load::Options {
-            defines: defines.to_vec(),
-            include_dirs: self.include_dir.clone(),
-            max_include_depth: self.max_include_depth,
-            parse: crate::parse::Limits {
-                max_nesting: self.max_nesting,
-                max_operators: self.max_operators,
-            },
-            dialect: self.dialect.map(|d| match d {
-                DialectArg::Paper => crate::lang::Dialect::Paper,
-                DialectArg::Cpfg => crate::lang::Dialect::Cpfg,
-            }),
-            unsaved: Default::default(),
-            environment: self.environment.clone(),
-        }
-    }
 }
 
 /// How far and how to derive (shared by `derive`, `build` and `render`).
@@ -384,7 +364,7 @@ pub struct PictureArgs {
 
 /// `--size`: the renderer's own parser, its message as clap's.
 fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    crate::export::render::parse_size(s).map_err(|e| {
+    crate::driver::parse_size(s).map_err(|e| {
         use miette::Diagnostic;
         match e.help() {
             Some(h) => format!("{e}; {h}"),

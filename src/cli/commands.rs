@@ -1,18 +1,15 @@
 //! The subcommands: each takes parsed arguments, runs the pipeline and
 //! prints results to standard output and diagnostics to standard error.
 
-use std::borrow::Cow;
 use std::io::{self, BufWriter, Write};
 
 use miette::Diagnostic;
 
 use super::args::{CheckArgs, Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
-use crate::derive::{self, DeriveOptions, NumberFormat, NumberStyle};
-use crate::load::{Input, Options};
-use crate::pipeline::{self, Compilation};
+use crate::driver;
 use crate::progress::Progress;
-use crate::simulation::Simulation;
+use crate::{Diagnostics, Grammar, GrammarOptions, Numbers};
 
 /// Runs `cmd`. `color` is for diagnostics on standard error; the REPL
 /// decides for standard output itself unless `repl_color` says.
@@ -20,31 +17,28 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
     match cmd {
         Command::Check(c) => check(c, color),
         Command::Derive(d) => derive_cmd(d, color),
-        Command::Disasm(c) => match compile(c, color) {
-            Ok(comp) => emit_stdout(|out| {
-                out.write_all(crate::bytecode::disasm(&comp.program, &comp.compiled).as_bytes())
-            }),
+        Command::Disasm(c) => match compile(c, GrammarOptions::default(), color) {
+            Ok(g) => emit_stdout(|out| out.write_all(g.disasm().as_bytes())),
             Err(code) => code,
         },
         Command::Build(b) => super::model::build_cmd(b, color),
         Command::Render(r) => super::model::render_cmd(r, color),
         Command::Pailou(p) => super::model::pailou_cmd(p, color),
-        Command::Commands => {
-            emit_stdout(|out| out.write_all(crate::lang::commands::help_text().as_bytes()))
-        }
+        Command::Commands => emit_stdout(|out| out.write_all(driver::turtle_commands().as_bytes())),
         Command::Watch(b) => super::watch::watch_cmd(b, color),
-        Command::Lsp(l) => crate::lsp::run_stdio(l.source.options(&l.define)),
+        // The language server keeps its own access to the parser and the
+        // resolver: it must work on broken text (src/lsp/mod.rs).
+        Command::Lsp(l) => crate::lsp::run_stdio(l.source.apply(defined(&l.define))),
         #[cfg(feature = "studio")]
         Command::Studio(s) => super::studio::studio_cmd(s),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {
             file: r.file.clone(),
             defines: r.define.clone(),
             step: r.step,
-            derive: DeriveOptions {
-                seed: r.seed,
-                max_modules: r.max_modules,
-                max_params: r.max_params,
-            },
+            options: GrammarOptions::default()
+                .max_modules(r.max_modules)
+                .max_params(r.max_params)
+                .seed_option(r.seed),
             echo: r.echo,
             color: repl_color,
         }),
@@ -52,85 +46,69 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
 }
 
 pub(super) fn report(d: &dyn Diagnostic, color: bool) {
-    eprint!("{}", crate::diag::render(d, color));
+    eprint!("{}", driver::render_diagnostic(d, color));
 }
 
-/// Compiles, printing warnings; on failure prints every diagnostic and
-/// returns the exit code.
-pub(super) fn compile(c: &Common, color: bool) -> Result<Compilation, i32> {
-    let opts = c.source.options(&c.define);
-    compile_input(&Input::from_arg(&c.file), &c.file, &opts, color)
+/// Options with `defines` set, in order.
+fn defined(defines: &[(String, String)]) -> GrammarOptions {
+    defines
+        .iter()
+        .fold(GrammarOptions::default(), |o, (k, v)| o.define(k, v))
 }
 
-/// Compiles `input` (named `name` in the summary line) with `opts`.
-pub(super) fn compile_input(
-    input: &Input,
-    name: &str,
-    opts: &Options,
-    color: bool,
-) -> Result<Compilation, i32> {
-    compile_reporting(input, name, opts, color).map_err(|(code, _)| code)
-}
-
-/// [`compile_input`], also naming on failure the files the grammar read.
-pub(super) fn compile_reporting(
-    input: &Input,
-    name: &str,
-    opts: &Options,
-    color: bool,
-) -> Result<Compilation, (i32, Vec<std::path::PathBuf>)> {
-    match pipeline::compile(input, opts) {
-        Ok(comp) => {
-            for w in &comp.warnings {
-                report(w.as_ref(), color);
-            }
-            Ok(comp)
+/// Compiles the FILE of `c` with its flags on top of `more`, printing
+/// warnings; on failure prints every diagnostic and returns the exit code.
+fn compile(c: &Common, more: GrammarOptions, color: bool) -> Result<Grammar, i32> {
+    let mut o = more;
+    for (k, v) in &c.define {
+        o = o.define(k, v);
+    }
+    match c.source.apply(o).from_path(&c.file) {
+        Ok(g) => {
+            eprint!("{}", g.warnings().render(color));
+            Ok(g)
         }
         Err(d) if d.is_input_error() => {
             eprint!("{}", d.render(color));
-            Err((EX_NOINPUT, Vec::new()))
+            Err(EX_NOINPUT)
         }
-        Err(diagnostics) => {
-            let errors = diagnostics.error_count();
-            eprint!("{}", diagnostics.render(color));
+        Err(d) => {
+            let errors = d.error_count();
+            eprint!("{}", d.render(color));
             eprintln!(
                 "{}: {errors} error{}",
-                name,
+                c.file,
                 if errors == 1 { "" } else { "s" }
             );
-            Err((EX_DATAERR, diagnostics.files().to_vec()))
+            Err(EX_DATAERR)
         }
     }
 }
 
 fn check(args: &CheckArgs, color: bool) -> i32 {
     let c = &args.common;
-    match compile(c, color) {
-        Ok(comp) => {
-            let p = &comp.program;
+    let more = args
+        .components
+        .iter()
+        .fold(GrammarOptions::default(), |o, d| o.components_dir(d));
+    match compile(c, more, color) {
+        Ok(g) => {
             // The components the grammar places, found as `build` would
             // find them (nothing is read or built).
-            let search = crate::mesh::ComponentSearch {
-                grammar_dir: crate::driver::grammar_dir(&Input::from_arg(&c.file)),
-                dirs: args.components.clone(),
-                ..Default::default()
-            };
-            let missing = search.find_all(p);
-            for e in &missing {
-                report(e, color);
-            }
-            let n = missing.iter().filter(|e| crate::diag::is_error(*e)).count();
+            let missing = g.missing_components();
+            eprint!("{}", missing.render(color));
+            let n = missing.error_count();
             if n > 0 {
                 eprintln!("{}: {n} error{}", c.file, if n == 1 { "" } else { "s" });
                 return EX_DATAERR;
             }
-            let n = p.productions.len() + p.decomposition.len() + p.homomorphism.len();
-            let w = comp.warnings.len();
+            let n = g.rule_count();
+            let w = g.warnings().len();
             eprintln!(
                 "{}: ok ({n} production{}, {} symbols{})",
                 c.file,
                 if n == 1 { "" } else { "s" },
-                p.symbols.len(),
+                g.symbol_count(),
                 if w > 0 {
                     format!(", {w} warning{}", if w == 1 { "" } else { "s" })
                 } else {
@@ -144,47 +122,35 @@ fn check(args: &CheckArgs, color: bool) -> i32 {
 }
 
 fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
-    let comp = match compile(&d.common, color) {
-        Ok(c) => c,
+    let more = GrammarOptions::default()
+        .max_modules(d.run.max_modules)
+        .max_params(d.run.max_params)
+        .seed_option(d.run.seed);
+    let g = match compile(&d.common, more, color) {
+        Ok(g) => g,
         Err(code) => return code,
     };
-    let (program, compiled) = (&comp.program, &comp.compiled);
-    let opts = DeriveOptions {
-        seed: d.run.seed,
-        max_modules: d.run.max_modules,
-        max_params: d.run.max_params,
-    };
-    let steps = d.run.steps.unwrap_or(program.derivation_length);
+    let steps = d.run.steps.unwrap_or(g.derivation_length());
     if d.count {
-        return count_cmd(d, &comp, opts, steps, color);
+        return count_cmd(d, &g, steps, color);
     }
-    let style = match (d.precision, d.cpfg_format) {
-        (_, true) => NumberStyle::PrintfG,
-        (Some(n), false) => NumberStyle::Decimals(n),
-        (None, false) => NumberStyle::Shortest,
+    let numbers = match (d.precision, d.cpfg_format) {
+        (_, true) => Numbers::Cpfg,
+        (Some(n), false) => Numbers::Decimals(n),
+        (None, false) => Numbers::Shortest,
     };
-    let fmt = NumberFormat::for_program(program).with_style(style);
     let write = |out: &mut dyn Write| -> Result<(), Outcome> {
-        let line = |sim: &mut Simulation, mut out: &mut dyn Write| -> Result<(), Outcome> {
-            let shown = if d.homomorphism {
-                // cpfg model files: the drawn string continues the
-                // derivation's generator, as each of cpfg's interpretations
-                // does (see `Simulation::drawn`).
-                let h = sim.drawn().map_err(Outcome::Derive)?;
-                for w in &h.warnings {
-                    report(w, color);
-                }
-                Cow::Owned(h.modules)
+        let line = |deriv: &mut crate::Derivation, out: &mut dyn Write| -> Result<(), Outcome> {
+            if d.homomorphism {
+                let drawn = deriv.drawn().map_err(Outcome::Derive)?;
+                eprint!("{}", drawn.warnings.render(color));
+                drawn.write(numbers, out)?;
             } else {
-                Cow::Borrowed(sim.current())
-            };
-            shown
-                .write_string_with(&program.symbols, fmt, &mut out)
-                .map_err(Outcome::Io)?;
+                deriv.write_current(numbers, out)?;
+            }
             out.write_all(b"\n").map_err(Outcome::Io)
         };
-        let mut deriv =
-            Simulation::new(program, compiled, opts.clone(), steps).map_err(Outcome::Derive)?;
+        let mut deriv = g.derivation(steps).map_err(Outcome::Derive)?;
         if d.every {
             line(&mut deriv, out)?;
         }
@@ -204,9 +170,7 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         }
         deriv.finish().map_err(Outcome::Derive)?;
         drop(progress);
-        for w in deriv.derivation().warnings() {
-            report(w, color);
-        }
+        eprint!("{}", deriv.warnings().render(color));
         if !d.every {
             line(&mut deriv, out)?;
         }
@@ -218,12 +182,12 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
             let mut out = BufWriter::with_capacity(1 << 16, stdout.lock());
             write(&mut out).and_then(|_| out.flush().map_err(Outcome::Io))
         }
-        Some(path) => crate::export::atomic::write_file(path, |f| write(f)),
+        Some(path) => driver::write_file(path, |f| write(f)),
     };
     match result {
         Ok(()) => EX_OK,
         Err(Outcome::Derive(e)) => {
-            report(&e, color);
+            eprint!("{}", e.render(color));
             EX_DATAERR
         }
         Err(Outcome::Io(e)) if e.kind() == io::ErrorKind::BrokenPipe => EX_OK,
@@ -236,18 +200,11 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
 
 /// `lsys derive --count`: `N modules` on the first line, then `SYMBOL N`
 /// for every symbol present, in symbol order.
-fn count_cmd(
-    d: &DeriveArgs,
-    comp: &Compilation,
-    opts: DeriveOptions,
-    steps: u32,
-    color: bool,
-) -> i32 {
-    let program = &comp.program;
-    let counts = match derive::count(program, &comp.compiled, opts, steps) {
+fn count_cmd(d: &DeriveArgs, g: &Grammar, steps: u32, color: bool) -> i32 {
+    let counts = match g.count(steps) {
         Ok(c) => c,
         Err(e) => {
-            report(&e, color);
+            eprint!("{}", e.render(color));
             return EX_DATAERR;
         }
     };
@@ -259,29 +216,25 @@ fn count_cmd(
             n.to_string()
         }
     };
-    let mut text = format!("{} modules\n", show(counts.total()));
-    for (s, &n) in counts.per_symbol.iter().enumerate() {
-        if n > 0 {
-            let name = program.symbols.name(s as u32);
-            text.push_str(&format!("{name} {}\n", show(n)));
-        }
+    let total = counts.iter().fold(0u64, |a, (_, n)| a.saturating_add(*n));
+    let mut text = format!("{} modules\n", show(total));
+    for (name, n) in &counts {
+        text.push_str(&format!("{name} {}\n", show(*n)));
     }
     match &d.output {
         None => emit_stdout(|out| out.write_all(text.as_bytes())),
-        Some(path) => {
-            match crate::export::atomic::write_file(path, |f| f.write_all(text.as_bytes())) {
-                Ok(()) => EX_OK,
-                Err(e) => {
-                    eprintln!("lsys: cannot write the output: {e}");
-                    EX_IOERR
-                }
+        Some(path) => match driver::write_file(path, |f| f.write_all(text.as_bytes())) {
+            Ok(()) => EX_OK,
+            Err(e) => {
+                eprintln!("lsys: cannot write the output: {e}");
+                EX_IOERR
             }
-        }
+        },
     }
 }
 
 enum Outcome {
-    Derive(derive::DeriveError),
+    Derive(Diagnostics),
     Io(io::Error),
 }
 

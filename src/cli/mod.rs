@@ -59,7 +59,7 @@ pub fn main() -> i32 {
     // can take with it (parse::MAX_NESTING, parse::MAX_OPERATORS).
     let worker = std::thread::Builder::new()
         .name("lsys".into())
-        .stack_size(crate::build::WORKER_STACK)
+        .stack_size(crate::driver::WORKER_STACK)
         .spawn(move || commands::run(&cli.command, color, repl_color));
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,

@@ -20,7 +20,7 @@ use notify::{EventKind, RecursiveMode, Watcher};
 use super::args::BuildArgs;
 use super::model::{build_once, format_of, model_job, Report};
 use super::{EX_IOERR, EX_NOINPUT, EX_USAGE};
-use crate::load::Input;
+use crate::driver::Input;
 
 /// Events closer together than this are one change.
 const DEBOUNCE: Duration = Duration::from_millis(100);

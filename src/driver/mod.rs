@@ -36,3 +36,21 @@ pub use crate::export::output::Format;
 pub use crate::export::render::{RenderOptions as Picture, View};
 pub use crate::load::Input;
 pub use crate::pailou::structure::Problem;
+
+// What a front end needs of the stages besides running jobs: the worker
+// thread's stack, rendering a diagnostic, atomic writes of its own
+// output, the turtle's command table, a picture size, and the limits'
+// defaults its flags show.
+pub use crate::build::WORKER_STACK;
+pub use crate::diag::render as render_diagnostic;
+pub use crate::export::atomic::write_file;
+pub use crate::export::render::parse_size;
+pub use crate::lang::commands::help_text as turtle_commands;
+
+/// The defaults and ceilings of the parser's and loader's limits.
+pub mod limits {
+    pub use crate::load::MAX_INCLUDE_DEPTH;
+    pub use crate::parse::{
+        MAX_NESTING, MAX_NESTING_CEILING, MAX_OPERATORS, MAX_OPERATORS_CEILING,
+    };
+}

@@ -11,8 +11,7 @@ use super::job::{grammar_dir, Job, Output};
 use crate::api::{Grammar, Scene};
 use crate::build::{self, BuildError, Stage};
 use crate::diag::Diagnostics;
-use crate::export::output::{write_scene, Format, WriteError};
-use crate::export::{gltf, obj, render};
+use crate::export::output::{scene_bytes, write_scene, Format, WriteError};
 use crate::load::Input;
 use crate::pailou::structure::Problem;
 
@@ -220,41 +219,10 @@ pub(super) fn write_output(
             }
         },
         Output::Bytes { format, picture } => {
-            let b = to_bytes(scene, *format, picture)
+            let b = scene_bytes(scene, *format, picture, "model.mtl")
                 .map_err(|e| Failure::new(Reason::Export(e), sources))?;
             (b.len() as u64, Some(b))
         }
         Output::Nothing => (0, None),
-    })
-}
-
-/// `scene` in `format`, in memory.
-fn to_bytes(
-    scene: &crate::mesh::Scene,
-    format: Format,
-    picture: &render::RenderOptions,
-) -> Result<Vec<u8>, Box<dyn Diagnostic + Send + Sync>> {
-    Ok(match format {
-        Format::Glb => gltf::to_glb(scene)?,
-        Format::Gltf => gltf::to_gltf(scene)?,
-        Format::Obj => {
-            let mut b = Vec::new();
-            obj::write_obj_only(scene, "model.mtl", &mut b).map_err(io_diagnostic)?;
-            b
-        }
-        Format::Png => {
-            let image = render::render(scene, picture);
-            let mut png = Vec::new();
-            render::write_png(&image, &mut png)?;
-            png
-        }
-    })
-}
-
-/// Writing to memory fails only when memory does; said as a diagnostic.
-fn io_diagnostic(e: std::io::Error) -> Box<dyn Diagnostic + Send + Sync> {
-    Box::new(crate::api::WriteFailed {
-        path: "memory".into(),
-        cause: e.to_string(),
     })
 }

@@ -112,6 +112,33 @@ pub fn write_scene(
     Ok(bytes)
 }
 
+/// `scene` in `format`, in memory: a GLB, a glTF with its buffer
+/// embedded, an OBJ whose `mtllib` names `mtl_name` (its materials are
+/// not included), or a PNG picture.
+pub fn scene_bytes(
+    scene: &Scene,
+    format: Format,
+    picture: &render::RenderOptions,
+    mtl_name: &str,
+) -> Result<Vec<u8>, Box<dyn miette::Diagnostic + Send + Sync>> {
+    Ok(match format {
+        Format::Glb => gltf::to_glb(scene)?,
+        Format::Gltf => gltf::to_gltf(scene)?,
+        Format::Obj => {
+            let mut b = Vec::new();
+            // Writing to memory fails only when memory does.
+            obj::write_obj_only(scene, mtl_name, &mut b).expect("a Vec takes every byte");
+            b
+        }
+        Format::Png => {
+            let image = render::render(scene, picture);
+            let mut png = Vec::new();
+            render::write_png(&image, &mut png)?;
+            png
+        }
+    })
+}
+
 /// Counts the bytes that pass through to `inner`.
 struct Counted<'w> {
     inner: &'w mut dyn io::Write,

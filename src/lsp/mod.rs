@@ -37,9 +37,9 @@ pub use server::{capabilities, serve};
 
 /// Runs the server over standard input and output until the client asks
 /// it to exit; the process's exit code.
-pub fn run_stdio(opts: crate::load::Options) -> i32 {
+pub fn run_stdio(options: crate::GrammarOptions) -> i32 {
     let (connection, io) = lsp_server::Connection::stdio();
-    let result = serve(connection, opts);
+    let result = serve(connection, options.build.source);
     let joined = io.join();
     match (result, joined) {
         (Ok(()), Ok(())) => 0,

@@ -37,7 +37,6 @@ use rustyline::{CompletionType, Editor};
 pub use commands::{Arg, Command, COMMANDS};
 pub use session::{Names, Reply, Session, Settings, Source};
 
-use crate::derive::DeriveOptions;
 use crate::exit_code::{EX_DATAERR, EX_IOERR, EX_OK};
 
 /// How `lsys repl` was started.
@@ -47,7 +46,8 @@ pub struct Config {
     pub defines: Vec<(String, String)>,
     /// The step to derive to after loading `file`.
     pub step: u32,
-    pub derive: DeriveOptions,
+    /// Seed and limits of derivations.
+    pub options: crate::GrammarOptions,
     /// Print each piped input as `> input` before its reply.
     pub echo: bool,
     /// `--color always` / `never`; `None` decides by the terminal.
@@ -63,7 +63,7 @@ pub fn run(cfg: Config) -> i32 {
     let mut session = Session::new(Settings {
         color,
         progress: interactive,
-        derive: cfg.derive.clone(),
+        derive: cfg.options.build.derive.clone(),
         defines: cfg.defines.clone(),
     });
     let mut failed = false;

@@ -29,7 +29,7 @@ pub fn serve(server: &Server, shared: &Arc<Shared>) {
         busy.fetch_add(1, SeqCst);
         let (sh, b) = (shared.clone(), busy.clone());
         let spawned = std::thread::Builder::new()
-            .stack_size(crate::build::WORKER_STACK)
+            .stack_size(crate::driver::WORKER_STACK)
             .spawn(move || {
                 handle(req, &sh);
                 b.fetch_sub(1, SeqCst);
@@ -242,9 +242,7 @@ fn save(sh: &Shared, body: Option<Value>) -> Reply {
         return text(409, "only a Pailou graph is saved from the studio");
     };
     let text_out = p.graph.to_toml();
-    match crate::export::atomic::write_file::<std::io::Error>(&full, |w| {
-        w.write_all(text_out.as_bytes())
-    }) {
+    match crate::driver::write_file::<std::io::Error>(&full, |w| w.write_all(text_out.as_bytes())) {
         Ok(_) => {
             p.file = Some(rel.to_string());
             json_reply(200, json!({"saved": rel, "bytes": text_out.len()}))
@@ -280,20 +278,8 @@ fn export(sh: &Shared, format: &str) -> Reply {
             // encoded in memory (the download has no room for an `.mtl`).
             let encoded = match format {
                 "glb" => Ok(m.glb.clone()),
-                "obj" => {
-                    let mut b = Vec::new();
-                    crate::export::obj::write_obj_only(m.scene.mesh(), "studio.mtl", &mut b)
-                        .map(|_| b)
-                        .map_err(|e| e.to_string())
-                }
-                _ => {
-                    use crate::export::render;
-                    let pic = render::render(m.scene.mesh(), &render::RenderOptions::default());
-                    let mut b = Vec::new();
-                    render::write_png(&pic, &mut b)
-                        .map(|_| b)
-                        .map_err(|e| e.to_string())
-                }
+                "obj" => Ok(m.scene.to_obj("studio.mtl")),
+                _ => m.scene.to_png(1024, 768).map_err(|e| e.to_string()),
             };
             match encoded {
                 Ok(b) => {

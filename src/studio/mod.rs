@@ -160,7 +160,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
     let watcher = shared.clone();
     std::thread::Builder::new()
         .name("studio-watch".into())
-        .stack_size(crate::build::WORKER_STACK)
+        .stack_size(crate::driver::WORKER_STACK)
         .spawn(move || watch(&watcher))
         .map_err(|e| e.to_string())?;
     let (s, sh) = (server.clone(), shared.clone());

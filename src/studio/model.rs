@@ -6,8 +6,8 @@ use miette::Diagnostic;
 use serde_json::{json, Value};
 
 use crate::api::{Grammar, GrammarOptions, Scene};
-use crate::diag::Diagnostics;
 use crate::driver::{self, Check, Job, Output, Problem};
+use crate::Diagnostics;
 
 /// A model built for the page.
 pub struct Model {
@@ -104,6 +104,6 @@ pub fn one_json(d: &dyn Diagnostic) -> Value {
         "col": col,
         "code": code,
         "message": d.to_string(),
-        "rendered": crate::diag::render_plain(d),
+        "rendered": crate::driver::render_diagnostic(d, false),
     })
 }
