@@ -8,12 +8,12 @@ mod common;
 
 use divan::counter::ItemsCount;
 use divan::{black_box, Bencher};
-use lsys::build::{self, BuildOptions};
-use lsys::export::output::{write_scene, Format};
-use lsys::export::render::RenderOptions;
-use lsys::load::Input;
-use lsys::pailou::{self, PailouType};
-use lsys::pipeline::Compilation;
+use lsys::internals::build::{self, BuildOptions};
+use lsys::internals::export::output::{write_scene, Format};
+use lsys::internals::export::render::RenderOptions;
+use lsys::internals::load::Input;
+use lsys::internals::pailou::{self, PailouType};
+use lsys::internals::pipeline::Compilation;
 
 fn main() {
     divan::main();
@@ -82,19 +82,19 @@ fn forest(bencher: Bencher, ext: &str) {
 fn w3_w2_mesh_only(bencher: Bencher) {
     let c = common::w2(18);
     let built = build::build(&c, &opts()).expect("builds");
-    let palette = lsys::mesh::Palette::new(&c.program.turtle.palette);
+    let palette = lsys::internals::mesh::Palette::new(&c.program.turtle.palette);
     let o = opts();
     bencher
         .counter(ItemsCount::new(built.modules))
         .bench_local(|| {
             black_box(
-                lsys::mesh::assemble_scene(
+                lsys::internals::mesh::assemble_scene(
                     &c.program,
                     &built.drawing,
                     &palette,
                     &o.components,
                     &o.mesh,
-                    &mut lsys::mesh::NoGrammars,
+                    &mut lsys::internals::mesh::NoGrammars,
                 )
                 .expect("meshes"),
             )

@@ -83,7 +83,7 @@ impl Client {
         let (server, conn) = Connection::memory();
         let server = std::thread::Builder::new()
             .stack_size(64 << 20)
-            .spawn(move || lsys::lsp::serve(server, Default::default()).expect("serves"))
+            .spawn(move || lsys::internals::lsp::serve(server, Default::default()).expect("serves"))
             .expect("thread");
         let c = Client {
             conn,
@@ -178,10 +178,10 @@ fn change_to_diagnostics_rich(bencher: Bencher) {
 
 /// The document as the server compiles it: text at a path in a folder
 /// with the include beside it.
-fn edited_input(dir: &tempfile::TempDir, text: String) -> lsys::load::Input {
+fn edited_input(dir: &tempfile::TempDir, text: String) -> lsys::internals::load::Input {
     let path = dir.path().join("gen.lsys");
     std::fs::write(path.with_file_name("gen_shared.lsys"), SHARED).expect("writes");
-    lsys::load::Input::Edited { path, text }
+    lsys::internals::load::Input::Edited { path, text }
 }
 
 /// Load alone (read and parse the file and its include).
@@ -189,8 +189,8 @@ fn edited_input(dir: &tempfile::TempDir, text: String) -> lsys::load::Input {
 fn load_generated(bencher: Bencher) {
     let dir = tempfile::tempdir().expect("temp dir");
     let input = edited_input(&dir, generated());
-    let opts = lsys::load::Options::default();
-    bencher.bench_local(|| black_box(lsys::load::load(&input, &opts).is_ok()));
+    let opts = lsys::internals::load::Options::default();
+    bencher.bench_local(|| black_box(lsys::internals::load::load(&input, &opts).is_ok()));
 }
 
 /// Load and compile (every stage `lsys check` runs).
@@ -198,6 +198,6 @@ fn load_generated(bencher: Bencher) {
 fn compile_generated(bencher: Bencher) {
     let dir = tempfile::tempdir().expect("temp dir");
     let input = edited_input(&dir, generated());
-    let opts = lsys::load::Options::default();
-    bencher.bench_local(|| black_box(lsys::pipeline::compile(&input, &opts).is_ok()));
+    let opts = lsys::internals::load::Options::default();
+    bencher.bench_local(|| black_box(lsys::internals::pipeline::compile(&input, &opts).is_ok()));
 }

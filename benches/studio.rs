@@ -6,8 +6,8 @@
 //! encoded (the two Toukungs, std:pailou). Medians are what divan prints.
 
 use divan::{black_box, Bencher};
-use lsys::pailou::{self, graph, PailouType};
-use lsys::studio::{GrammarSession, PailouSession};
+use lsys::internals::pailou::{self, graph, PailouType};
+use lsys::internals::studio::{GrammarSession, PailouSession};
 
 fn main() {
     divan::main();

@@ -36,7 +36,7 @@ struct Case {
     rules: &'static [&'static str],
     axiom: &'static str,
     steps: u32,
-    lsys: lsys::pipeline::Compilation,
+    lsys: lsys::internals::pipeline::Compilation,
 }
 
 fn main() {

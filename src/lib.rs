@@ -23,16 +23,21 @@
 //! ```
 //!
 //! The whole map, every folder of `src/` with what goes in and out of it,
-//! is `docs/architecture.md`. Each stage imports only the stages before it
-//! (`tests/architecture.rs` checks). Above them: [`pipeline`] (load to
-//! bytecode in one call), [`build`] (simulation to meshes in one call,
-//! building grammar components with the same options), [`pailou`] and the
-//! public API.
+//! is `docs/architecture.md` in the repository. Each stage imports only the stages before it
+//! (`tests/architecture.rs` checks). Above them: `pipeline` (load to
+//! bytecode in one call), `build` (simulation to meshes in one call,
+//! building grammar components with the same options), `pailou`, the
+//! public API and the [`driver`].
 //!
 //! # Using the library
 //!
-//! The public surface is [`Grammar`], [`Derived`], [`Scene`],
-//! [`GrammarOptions`] and [`Diagnostics`] (see `docs/library.md`):
+//! This is the door every front end uses (the command line, the REPL, the
+//! studio): [`Grammar`] (compile, [`derive`](Grammar::derive),
+//! [`steps`](Grammar::steps), a [`Derivation`] to drive, [`build`](Grammar::build)),
+//! [`GrammarOptions`], [`Derived`], [`Scene`], [`Diagnostics`] of typed
+//! [`Message`]s, and the [`driver`]: one [`driver::Job`] from its input to
+//! a file or bytes (Pailous from a style or a graph, guided scenes, the
+//! structural check, `--stats`). See `docs/library.md`:
 //!
 //! ```
 //! let g = lsys::Grammar::options()
@@ -43,13 +48,11 @@
 //! # Ok::<(), lsys::Diagnostics>(())
 //! ```
 //!
-//! The stage modules are public for tests, benchmarks and tools that go
-//! deeper; their items may change between versions.
+//! The stages are private; the crate's own tests, benchmarks and fuzzers
+//! reach them through a hidden `internals` module that is no API.
 //!
 //! With the default `cli` feature: [`cli`] (the binary's commands, `watch`
-//! among them), [`repl`] (`lsys repl`: step, edit, inspect a grammar
-//! interactively), [`lsp`] (`lsys lsp`: the language server for editors)
-//! and [`progress`] (progress bars on standard error).
+//! among them, the REPL, the language server and progress bars).
 //! `default-features = false` builds the library without them (no clap,
 //! rustyline, notify, ctrlc, indicatif, dirs, lsp-server, lsp-types).
 
@@ -59,36 +62,127 @@ pub use api::{Derivation, Derived, Drawn, Grammar, GrammarOptions, Numbers, Scen
 pub use diag::{Diagnostics, Level, Message};
 pub use lang::Dialect;
 
-pub mod build;
-pub mod bytecode;
 #[cfg(feature = "cli")]
 pub mod cli;
-pub mod derive;
-pub mod diag;
 pub mod driver;
-pub mod environment;
+
+// The stages and the layers above them are the implementation: private
+// here, reachable by the crate's own tests, benchmarks and fuzzers
+// through `internals` (no API; may change in any version).
+mod build;
+mod bytecode;
+mod derive;
+mod diag;
+mod environment;
 #[cfg(feature = "cli")]
-pub mod exit_code;
-pub mod export;
-pub mod guided;
-pub mod lang;
-pub mod load;
+mod exit_code;
+mod export;
+mod guided;
+mod lang;
+mod load;
 #[cfg(feature = "cli")]
-pub mod lsp;
-pub mod mesh;
-pub mod pailou;
-pub mod parse;
-pub mod pipeline;
-pub mod preprocess;
+mod lsp;
+mod mesh;
+mod pailou;
+mod parse;
+mod pipeline;
+mod preprocess;
 #[cfg(feature = "cli")]
-pub mod progress;
+mod progress;
 #[cfg(feature = "cli")]
-pub mod repl;
-pub mod resolve;
-pub mod simulation;
-pub mod source;
-pub mod stdlib;
+mod repl;
+mod resolve;
+mod simulation;
+mod source;
+mod stdlib;
 #[cfg(feature = "studio")]
-pub mod studio;
-pub mod support;
-pub mod turtle;
+mod studio;
+mod support;
+mod turtle;
+
+/// The crate's insides for its own tests, benchmarks and fuzzers: every
+/// stage and front end, as `lsys::internals::derive::...`. Not part of the
+/// API: programs use the crate root and [`driver`].
+#[doc(hidden)]
+pub mod internals {
+    pub mod build {
+        pub use crate::build::*;
+    }
+    pub mod bytecode {
+        pub use crate::bytecode::*;
+    }
+    pub mod derive {
+        pub use crate::derive::*;
+    }
+    pub mod diag {
+        pub use crate::diag::*;
+    }
+    pub mod environment {
+        pub use crate::environment::*;
+    }
+    pub mod export {
+        pub use crate::export::*;
+    }
+    pub mod guided {
+        pub use crate::guided::*;
+    }
+    pub mod lang {
+        pub use crate::lang::*;
+    }
+    pub mod load {
+        pub use crate::load::*;
+    }
+    pub mod mesh {
+        pub use crate::mesh::*;
+    }
+    pub mod pailou {
+        pub use crate::pailou::*;
+    }
+    pub mod parse {
+        pub use crate::parse::*;
+    }
+    pub mod pipeline {
+        pub use crate::pipeline::*;
+    }
+    pub mod preprocess {
+        pub use crate::preprocess::*;
+    }
+    pub mod resolve {
+        pub use crate::resolve::*;
+    }
+    pub mod simulation {
+        pub use crate::simulation::*;
+    }
+    pub mod source {
+        pub use crate::source::*;
+    }
+    pub mod stdlib {
+        pub use crate::stdlib::*;
+    }
+    pub mod support {
+        pub use crate::support::*;
+    }
+    pub mod turtle {
+        pub use crate::turtle::*;
+    }
+    #[cfg(feature = "cli")]
+    pub mod exit_code {
+        pub use crate::exit_code::*;
+    }
+    #[cfg(feature = "cli")]
+    pub mod lsp {
+        pub use crate::lsp::*;
+    }
+    #[cfg(feature = "cli")]
+    pub mod progress {
+        pub use crate::progress::*;
+    }
+    #[cfg(feature = "cli")]
+    pub mod repl {
+        pub use crate::repl::*;
+    }
+    #[cfg(feature = "studio")]
+    pub mod studio {
+        pub use crate::studio::*;
+    }
+}

@@ -4,7 +4,7 @@
 //! what the component said of itself before.
 
 use glam::Vec3;
-use lsys::mesh::scene::bounds_of;
+use lsys::internals::mesh::scene::bounds_of;
 
 #[test]
 fn nested_components_are_flattened_only_when_read() {
@@ -58,15 +58,21 @@ fn nested_components_are_flattened_only_when_read() {
 }
 
 /// Compiles `input` as `lsys build` does (`-D` defines none).
-fn compile(input: &lsys::load::Input) -> lsys::pipeline::Compilation {
-    lsys::pipeline::compile(input, &Default::default()).unwrap()
+fn compile(input: &lsys::internals::load::Input) -> lsys::internals::pipeline::Compilation {
+    lsys::internals::pipeline::compile(input, &Default::default()).unwrap()
 }
 
 /// What a build gives: the GLB's bytes, or the rendered diagnostics.
-fn glb_or_error(c: &lsys::pipeline::Compilation, opts: &lsys::build::BuildOptions) -> String {
-    match lsys::build::build(c, opts) {
-        Ok(b) => format!("{:?}", lsys::export::gltf::to_glb(&b.scene).unwrap()),
-        Err(e) => lsys::diag::render_plain(&e),
+fn glb_or_error(
+    c: &lsys::internals::pipeline::Compilation,
+    opts: &lsys::internals::build::BuildOptions,
+) -> String {
+    match lsys::internals::build::build(c, opts) {
+        Ok(b) => format!(
+            "{:?}",
+            lsys::internals::export::gltf::to_glb(&b.scene).unwrap()
+        ),
+        Err(e) => lsys::internals::diag::render_plain(&e),
     }
 }
 
@@ -81,8 +87,8 @@ fn components_started_early_give_the_same_model_and_errors() {
         .build()
         .unwrap();
     pool.install(|| {
-        let pailou = lsys::load::Input::Std("pailou".into());
-        let text = lsys::stdlib::get("pailou").unwrap();
+        let pailou = lsys::internals::load::Input::Std("pailou".into());
+        let text = lsys::internals::stdlib::get("pailou").unwrap();
         let dir = tempfile::tempdir().unwrap();
         std::fs::create_dir(dir.path().join("components")).unwrap();
         std::fs::write(
@@ -91,29 +97,33 @@ fn components_started_early_give_the_same_model_and_errors() {
         )
         .unwrap();
         let bad_text = "axiom: ~Bad(1, 1, 1)\n";
-        let bad = lsys::load::Input::Text {
+        let bad = lsys::internals::load::Input::Text {
             name: "bad.lsys".into(),
             text: bad_text.into(),
         };
         for (input, text, search) in [
-            (pailou, text, lsys::mesh::ComponentSearch::default()),
+            (
+                pailou,
+                text,
+                lsys::internals::mesh::ComponentSearch::default(),
+            ),
             (
                 bad,
                 bad_text,
-                lsys::mesh::ComponentSearch {
+                lsys::internals::mesh::ComponentSearch {
                     grammar_dir: Some(dir.path().to_path_buf()),
                     ..Default::default()
                 },
             ),
         ] {
             let c = compile(&input);
-            let opts = lsys::build::BuildOptions {
+            let opts = lsys::internals::build::BuildOptions {
                 components: search,
                 ..Default::default()
             };
             let placed = glb_or_error(&c, &opts);
             let mut early = opts.clone();
-            early.early = lsys::build::Early::start(text, &early);
+            early.early = lsys::internals::build::Early::start(text, &early);
             let started = early.early.waiting();
             assert!(!started.is_empty(), "nothing started for {text:.40}");
             let taken = glb_or_error(&c, &early);

@@ -76,12 +76,13 @@ fn query_modules_context_through_brackets_and_cuts() {
 /// file names (read before resolve starts).
 #[test]
 fn the_files_a_model_read_include_its_view_and_function_files() {
-    use lsys::load::{Input, Options};
+    use lsys::internals::load::{Input, Options};
     let root = fixture("funcs").join("plant.l");
-    let comp = match lsys::pipeline::compile(&Input::Path(root.clone()), &Options::default()) {
-        Ok(c) => c,
-        Err(_) => panic!("the funcs model compiles"),
-    };
+    let comp =
+        match lsys::internals::pipeline::compile(&Input::Path(root.clone()), &Options::default()) {
+            Ok(c) => c,
+            Err(_) => panic!("the funcs model compiles"),
+        };
     let read = comp.program.sources.disk_paths();
     let dir = fixture("funcs");
     for f in ["plant.l", "plant.v", "ramp.func", "more.fset"] {

@@ -95,9 +95,9 @@ fn curve_calls_share_one_function_per_curve_and_axis() {
         "Lsystem: 1\nderivation length: 1\nAxiom: P(0)\nP(s) --> Q(curveX(1, s), curveY(1, s))\nQ(x, y) --> R(curveX(1, x)) R(curveY(1, y))\nR(x) --> R(curveX(1, x))\nendlsystem\n",
     )
     .unwrap();
-    let c = lsys::pipeline::compile(
-        &lsys::load::Input::Path(path),
-        &lsys::load::Options::default(),
+    let c = lsys::internals::pipeline::compile(
+        &lsys::internals::load::Input::Path(path),
+        &lsys::internals::load::Options::default(),
     )
     .unwrap_or_else(|_| panic!("compiles"));
     let names: Vec<&str> = c

@@ -5,7 +5,7 @@
 
 mod common;
 
-use lsys::derive::Rand48;
+use lsys::internals::derive::Rand48;
 
 fn derive(file: &str, args: &[&str]) -> String {
     let mut all = vec!["derive"];

@@ -5,8 +5,8 @@
 //! that shrink, and derivations longer than the depth it expands; on one
 //! thread and on two (the string split in halves).
 
-use lsys::derive::{Derivation, DeriveOptions};
-use lsys::pipeline::Compilation;
+use lsys::internals::derive::{Derivation, DeriveOptions};
+use lsys::internals::pipeline::Compilation;
 
 mod common;
 
@@ -66,9 +66,14 @@ fn same(text: &str, steps: u32, opts: DeriveOptions) -> String {
             let got = pool.install(|| expanded(&c, &opts, n));
             assert_eq!(got, want, "{n} steps of\n{text} on {threads} threads");
         }
-        let sim = lsys::simulation::derive(&c.program, &c.compiled, opts.clone(), n);
-        let each =
-            lsys::simulation::derive_each(&c.program, &c.compiled, opts.clone(), n, |_, _| {});
+        let sim = lsys::internals::simulation::derive(&c.program, &c.compiled, opts.clone(), n);
+        let each = lsys::internals::simulation::derive_each(
+            &c.program,
+            &c.compiled,
+            opts.clone(),
+            n,
+            |_, _| {},
+        );
         match (sim, each) {
             (Ok(a), Ok(b)) => assert_eq!(a, b, "{n} steps of\n{text}"),
             (Err(a), Err(b)) => assert_eq!(format!("{a:?}"), format!("{b:?}")),

@@ -4,10 +4,12 @@
 //! builds a resolved `Program` from a line-based mini format whose text is
 //! also the source file, so spans point at real text.
 
-use lsys::bytecode::{self, disasm, Compiled};
-use lsys::derive::{homomorphism, Derivation, DeriveError, DeriveOptions, ModuleStore, Rand48};
-use lsys::resolve::*;
-use lsys::source::{Origin, SourceFile, SourceMap, Span};
+use lsys::internals::bytecode::{self, disasm, Compiled};
+use lsys::internals::derive::{
+    homomorphism, Derivation, DeriveError, DeriveOptions, ModuleStore, Rand48,
+};
+use lsys::internals::resolve::*;
+use lsys::internals::source::{Origin, SourceFile, SourceMap, Span};
 use std::sync::Arc;
 
 // ---------------------------------------------------------------------
@@ -476,7 +478,7 @@ fn strings(src: &str, steps: u32) -> Vec<String> {
     let p = program(src);
     let c = compile(&p);
     let mut out = Vec::new();
-    lsys::simulation::derive_each(&p, &c, opts(), steps, |_, s| {
+    lsys::internals::simulation::derive_each(&p, &c, opts(), steps, |_, s| {
         out.push(s.display(&p.symbols))
     })
     .expect("derives");
@@ -490,7 +492,7 @@ fn last(src: &str, steps: u32) -> String {
 fn err(src: &str, steps: u32) -> (Program, DeriveError) {
     let p = program(src);
     let c = compile(&p);
-    let e = lsys::simulation::derive(&p, &c, opts(), steps).expect_err("fails");
+    let e = lsys::internals::simulation::derive(&p, &c, opts(), steps).expect_err("fails");
     (p, e)
 }
 
@@ -601,7 +603,7 @@ p: A(x) : x == 0 || 1/x > 2 --> C(!x, -x, abs(0-2), min(1,2) != 1)
 ";
     let p = program(src);
     let c = compile(&p);
-    let s = lsys::simulation::derive(&p, &c, opts(), 1).unwrap();
+    let s = lsys::internals::simulation::derive(&p, &c, opts(), 1).unwrap();
     let ms: Vec<_> = s.iter().collect();
     assert_eq!(p.symbols.name(ms[0].sym), "C");
     assert_eq!(ms[0].params, [1.0, -0.0, 2.0, 0.0]);
@@ -754,7 +756,7 @@ fn stochastic_choice_follows_the_documented_draws() {
             seed: Some(seed),
             ..opts()
         };
-        lsys::simulation::derive(&p, &c, o, 1)
+        lsys::internals::simulation::derive(&p, &c, o, 1)
             .unwrap()
             .display(&p.symbols)
     };
@@ -774,7 +776,7 @@ fn stochastic_choice_follows_the_documented_draws() {
     let p2 = program(&format!("seed: 42\n{src}"));
     let c2 = compile(&p2);
     assert_eq!(
-        lsys::simulation::derive(&p2, &c2, opts(), 1)
+        lsys::internals::simulation::derive(&p2, &c2, opts(), 1)
             .unwrap()
             .display(&p2.symbols),
         expect(42)
@@ -826,7 +828,7 @@ fn module_limit_stops_the_step_early() {
         ..opts()
     };
     // 505 modules after 6 steps, 1017 after 7.
-    let e = lsys::simulation::derive(&p, &c, o, 10).expect_err("limit");
+    let e = lsys::internals::simulation::derive(&p, &c, o, 10).expect_err("limit");
     match &e {
         DeriveError::ModuleLimit {
             step,
@@ -846,7 +848,7 @@ fn module_limit_stops_the_step_early() {
     assert!(help.contains("--max-modules"), "{help}");
     // Six steps fit.
     assert_eq!(
-        lsys::simulation::derive(
+        lsys::internals::simulation::derive(
             &p,
             &c,
             DeriveOptions {
@@ -961,7 +963,7 @@ fn homomorphism_is_recursive_and_not_fed_back() {
     // Depth 1: F is left as it is, with a warning.
     let p1 = program(&format!("hdepth: 1\n{src}"));
     let c1 = compile(&p1);
-    let s = lsys::simulation::derive(&p1, &c1, opts(), 0).unwrap();
+    let s = lsys::internals::simulation::derive(&p1, &c1, opts(), 0).unwrap();
     let h1 = homomorphism(&p1, &c1, &s, &opts(), 0).unwrap();
     assert_eq!(h1.modules.display(&p1.symbols), "F F Y");
     assert_eq!(h1.warnings.len(), 1);
@@ -972,7 +974,7 @@ fn homomorphism_is_recursive_and_not_fed_back() {
 fn store_prints_and_counts() {
     let p = program("axiom: A(1, 2.5, 0.1) B C(-3) B(1000000)\n");
     let c = compile(&p);
-    let s = lsys::simulation::derive(&p, &c, opts(), 0).unwrap();
+    let s = lsys::internals::simulation::derive(&p, &c, opts(), 0).unwrap();
     assert_eq!(s.display(&p.symbols), "A(1,2.5,0.1) B C(-3) B(1000000)");
     assert_eq!(s.len(), 4);
     assert_eq!(s.param_count(), 5);
@@ -1047,7 +1049,7 @@ fn show_disassembly_and_diagnostic() {
     let p = program("axiom: A(ran(2))\np: A(x) : x > 0 && x < 2 --> B(x > 1 ? 1 : 2)[+(25)]A(x/0) ~ 0.5\nh: B(y) --> F\n");
     let c = compile(&p);
     println!("{}", disasm(&p, &c));
-    let e = lsys::simulation::derive(&p, &c, opts(), 1).unwrap_err();
+    let e = lsys::internals::simulation::derive(&p, &c, opts(), 1).unwrap_err();
     let mut s = String::new();
     miette::GraphicalReportHandler::new_themed(miette::GraphicalTheme::unicode_nocolor())
         .render_report(&mut s, &e)
@@ -1063,7 +1065,7 @@ fn w2_throughput() {
     let mut times = Vec::new();
     for _ in 0..7 {
         let t = std::time::Instant::now();
-        let s = lsys::simulation::derive(&p, &c, opts(), 18).unwrap();
+        let s = lsys::internals::simulation::derive(&p, &c, opts(), 18).unwrap();
         times.push(t.elapsed().as_secs_f64());
         assert_eq!(s.len(), 1_048_569);
     }

@@ -5,9 +5,9 @@
 
 use std::process::Command;
 
-use lsys::environment::collision::{Collision, Settings as CollisionSettings};
-use lsys::environment::light::{Light, Settings as LightSettings};
-use lsys::environment::{Program, Query};
+use lsys::internals::environment::collision::{Collision, Settings as CollisionSettings};
+use lsys::internals::environment::light::{Light, Settings as LightSettings};
+use lsys::internals::environment::{Program, Query};
 
 fn query(params: &[f64], pos: [f32; 3]) -> Query {
     Query {
@@ -316,7 +316,7 @@ fn a_lsys_file_selects_its_environment_in_a_header() {
 
 #[test]
 fn density_is_low_away_from_the_pattern_and_its_gradient_points_away() {
-    use lsys::environment::density::{Density, Settings as DensitySettings};
+    use lsys::internals::environment::density::{Density, Settings as DensitySettings};
     let at = |p: [f32; 3], params: &[f64]| query(params, p);
     let one_point = DensitySettings {
         one_point: true,

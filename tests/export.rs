@@ -8,10 +8,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::{Mat4, Quat, Vec3};
-use lsys::export::gltf::{to_glb, to_gltf};
-use lsys::export::obj::write_obj;
-use lsys::mesh::scene::bounds_of;
-use lsys::mesh::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};
+use lsys::internals::export::gltf::{to_glb, to_gltf};
+use lsys::internals::export::obj::write_obj;
+use lsys::internals::mesh::scene::bounds_of;
+use lsys::internals::mesh::{Component, Instance, Material, Part, Scene, Stroke, TriMesh};
 
 fn unit_box() -> TriMesh {
     TriMesh::cuboid(Vec3::splat(-0.5), Vec3::splat(0.5))
@@ -484,21 +484,21 @@ fn built(arg: &str) -> Scene {
 }
 
 /// As [`built`], with `opts`.
-fn built_with(arg: &str, opts: &lsys::build::BuildOptions) -> Scene {
+fn built_with(arg: &str, opts: &lsys::internals::build::BuildOptions) -> Scene {
     let input = match arg.strip_prefix("std:") {
-        Some(_) => lsys::load::Input::from_arg(arg),
-        None => lsys::load::Input::Path(Path::new(env!("CARGO_MANIFEST_DIR")).join(arg)),
+        Some(_) => lsys::internals::load::Input::from_arg(arg),
+        None => lsys::internals::load::Input::Path(Path::new(env!("CARGO_MANIFEST_DIR")).join(arg)),
     };
-    let Ok(comp) = lsys::pipeline::compile(&input, &Default::default()) else {
+    let Ok(comp) = lsys::internals::pipeline::compile(&input, &Default::default()) else {
         panic!("{arg} does not compile");
     };
-    lsys::build::build(&comp, opts)
-        .unwrap_or_else(|e| panic!("{arg}: {}", lsys::diag::render_plain(&e)))
+    lsys::internals::build::build(&comp, opts)
+        .unwrap_or_else(|e| panic!("{arg}: {}", lsys::internals::diag::render_plain(&e)))
         .scene
 }
 
-fn instanced() -> lsys::build::BuildOptions {
-    let mut opts = lsys::build::BuildOptions::default();
+fn instanced() -> lsys::internals::build::BuildOptions {
+    let mut opts = lsys::internals::build::BuildOptions::default();
     opts.mesh.instanced = true;
     opts
 }

@@ -2,8 +2,8 @@
 //! `parallel.rs`) against the general engine: the same strings, the same
 //! errors, and the fallback for grammars the fast path does not take.
 
-use lsys::derive::{Derivation, DeriveOptions};
-use lsys::pipeline::Compilation;
+use lsys::internals::derive::{Derivation, DeriveOptions};
+use lsys::internals::pipeline::Compilation;
 
 mod common;
 
@@ -142,8 +142,8 @@ fn seeded_stochastic_decomposition_keeps_its_numbers() {
 /// `derive::count` against counting the derived string.
 fn counts_agree(text: &str, steps: u32) -> bool {
     let c = compile(text);
-    let counted = lsys::derive::count(&c.program, &c.compiled, opts(), steps).unwrap();
-    let s = lsys::simulation::derive(&c.program, &c.compiled, opts(), steps).unwrap();
+    let counted = lsys::internals::derive::count(&c.program, &c.compiled, opts(), steps).unwrap();
+    let s = lsys::internals::simulation::derive(&c.program, &c.compiled, opts(), steps).unwrap();
     let want: Vec<u64> = s
         .counts(c.program.symbols.len())
         .into_iter()
@@ -188,7 +188,7 @@ fn count_reaches_billions_of_modules_without_building_them() {
         "A(1)",
         "A(x) : x < 40 --> F(x)[+(25)A(x+1)][-(25)A(x+1)]\nA(x) --> F(x)",
     ));
-    let n = lsys::derive::count(&c.program, &c.compiled, opts(), 30).unwrap();
+    let n = lsys::internals::derive::count(&c.program, &c.compiled, opts(), 30).unwrap();
     assert!(n.expanded);
     // Every rewrite of an A adds 8 modules; 2^30 - 1 rewrites.
     assert_eq!(n.total(), 8 * (1u64 << 30) - 7);

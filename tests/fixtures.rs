@@ -5,10 +5,10 @@
 
 use std::path::Path;
 
-use lsys::derive::{self, DeriveOptions, NumberFormat};
-use lsys::load::{Input, Options};
-use lsys::pipeline;
-use lsys::source::{Origin, SourceFile};
+use lsys::internals::derive::{self, DeriveOptions, NumberFormat};
+use lsys::internals::load::{Input, Options};
+use lsys::internals::pipeline;
+use lsys::internals::source::{Origin, SourceFile};
 
 /// The fixture's path relative to the package, so snapshots do not depend
 /// on where the repository is checked out.
@@ -77,13 +77,13 @@ fn compile(path: &Path) -> Result<pipeline::Compilation, String> {
 /// What a stage makes of a fixture: `ok` applied to the compilation of an
 /// `ok/` fixture, or the diagnostics of an `err/` one.
 fn outcome(path: &Path, ok: impl FnOnce(&pipeline::Compilation) -> String) -> String {
-    outcome_or_runtime(path, |c| Ok::<_, lsys::build::BuildError>(ok(c)))
+    outcome_or_runtime(path, |c| Ok::<_, lsys::internals::build::BuildError>(ok(c)))
 }
 
 fn warnings(c: &pipeline::Compilation) -> String {
     c.warnings
         .iter()
-        .map(|d| lsys::diag::render_plain(d.as_ref()))
+        .map(|d| lsys::internals::diag::render_plain(d.as_ref()))
         .collect()
 }
 
@@ -92,13 +92,14 @@ fn parse() {
     insta::glob!("fixtures/parse/*/*.lsys", |path| {
         let name = rel(path);
         let text = read_fixture(path);
-        let limits = lsys::parse::Limits {
-            max_nesting: fixture_limit(&text, "--max-nesting").unwrap_or(lsys::parse::MAX_NESTING),
+        let limits = lsys::internals::parse::Limits {
+            max_nesting: fixture_limit(&text, "--max-nesting")
+                .unwrap_or(lsys::internals::parse::MAX_NESTING),
             max_operators: fixture_limit(&text, "--max-operators")
-                .unwrap_or(lsys::parse::MAX_OPERATORS),
+                .unwrap_or(lsys::internals::parse::MAX_OPERATORS),
         };
         let file = SourceFile::new(name.clone(), Origin::Disk(name.clone().into()), text);
-        let (ast, errors) = lsys::parse::parse_limited(0, &file, limits);
+        let (ast, errors) = lsys::internals::parse::parse_limited(0, &file, limits);
         assert_eq!(
             expect_ok(path),
             errors.is_empty(),
@@ -106,7 +107,7 @@ fn parse() {
         );
         let mut out = ast.dump();
         for e in &errors {
-            out.push_str(&lsys::diag::render_plain(e));
+            out.push_str(&lsys::internals::diag::render_plain(e));
         }
         insta::assert_snapshot!(out);
     });
@@ -144,7 +145,9 @@ fn resolve() {
 #[test]
 fn bytecode() {
     insta::glob!("fixtures/bytecode/*/*.lsys", |path| {
-        let out = outcome(path, |c| lsys::bytecode::disasm(&c.program, &c.compiled));
+        let out = outcome(path, |c| {
+            lsys::internals::bytecode::disasm(&c.program, &c.compiled)
+        });
         insta::assert_snapshot!(out);
     });
 }
@@ -168,7 +171,7 @@ fn derive() {
         let mut out = warnings(&c);
         let mut run = || -> Result<derive::Derivation, derive::DeriveError> {
             let steps = p.derivation_length;
-            let mut d = lsys::simulation::Simulation::new(p, code, opts.clone(), steps)?;
+            let mut d = lsys::internals::simulation::Simulation::new(p, code, opts.clone(), steps)?;
             out.push_str(&format!(
                 "0: {}\n",
                 d.current().display_with(&p.symbols, fmt)
@@ -188,7 +191,7 @@ fn derive() {
             Ok(d) => {
                 assert!(expect_ok(path), "{}: expected a runtime error", rel(path));
                 for w in d.warnings() {
-                    out.push_str(&lsys::diag::render_plain(w));
+                    out.push_str(&lsys::internals::diag::render_plain(w));
                 }
                 if !p.homomorphism.is_empty() {
                     let h = d.homomorphism().unwrap();
@@ -197,7 +200,7 @@ fn derive() {
                         h.modules.display_with(&p.symbols, fmt)
                     ));
                     for w in &h.warnings {
-                        out.push_str(&lsys::diag::render_plain(w));
+                        out.push_str(&lsys::internals::diag::render_plain(w));
                     }
                 }
             }
@@ -206,9 +209,9 @@ fn derive() {
                     !expect_ok(path),
                     "{}: unexpected runtime error:\n{}",
                     rel(path),
-                    lsys::diag::render_plain(&e)
+                    lsys::internals::diag::render_plain(&e)
                 );
-                out.push_str(&lsys::diag::render_plain(&e));
+                out.push_str(&lsys::internals::diag::render_plain(&e));
             }
         }
         insta::assert_snapshot!(out);
@@ -223,20 +226,20 @@ fn turtle() {
     insta::glob!("fixtures/turtle/*/*.lsys", |path| {
         let text = read_fixture(path);
         let out = outcome_or_runtime(path, |c| {
-            let opts = lsys::build::BuildOptions {
-                components: lsys::mesh::ComponentSearch {
+            let opts = lsys::internals::build::BuildOptions {
+                components: lsys::internals::mesh::ComponentSearch {
                     grammar_dir: Some(Path::new(&rel(path)).parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
                     ..Default::default()
                 },
-                mesh: lsys::mesh::MeshOptions {
+                mesh: lsys::internals::mesh::MeshOptions {
                     max_triangles: fixture_limit(&text, "--max-triangles")
-                        .unwrap_or(lsys::mesh::MeshOptions::default().max_triangles),
+                        .unwrap_or(lsys::internals::mesh::MeshOptions::default().max_triangles),
                     ..Default::default()
                 },
                 ..Default::default()
             };
-            lsys::build::build(c, &opts).map(|b| {
+            lsys::internals::build::build(c, &opts).map(|b| {
                 let mut out = warnings(c);
                 out.push_str(&b.drawing.dump(|s| c.program.symbols.name(s).to_string()));
                 out.push_str("--\n");
@@ -262,16 +265,17 @@ fn examples_build() {
             }
             let c =
                 compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
-            let opts = lsys::build::BuildOptions {
-                components: lsys::mesh::ComponentSearch {
+            let opts = lsys::internals::build::BuildOptions {
+                components: lsys::internals::mesh::ComponentSearch {
                     grammar_dir: Some(path.parent().unwrap().to_path_buf()),
                     dirs: Vec::new(),
                     ..Default::default()
                 },
                 ..Default::default()
             };
-            let b = lsys::build::build(&c, &opts)
-                .unwrap_or_else(|e| panic!("{}: {}", rel(path), lsys::diag::render_plain(&e)));
+            let b = lsys::internals::build::build(&c, &opts).unwrap_or_else(|e| {
+                panic!("{}: {}", rel(path), lsys::internals::diag::render_plain(&e))
+            });
             let d = &b.drawing;
             let mut out = format!(
                 "modules {}: tubes {} (points {}), polygons {}, shapes {}, placements {}\n",
@@ -307,7 +311,7 @@ fn outcome_or_runtime<E: miette::Diagnostic>(
                     out.push_str(&s);
                 }
                 Err(e) => {
-                    let text = lsys::diag::render_plain(&e);
+                    let text = lsys::internals::diag::render_plain(&e);
                     assert!(!expect_ok(path), "{}: unexpected error:\n{text}", rel(path));
                     out.push_str(&text);
                 }
@@ -335,7 +339,7 @@ fn abop_examples() {
         |path| {
             let c =
                 compile(path).unwrap_or_else(|d| panic!("{}: does not compile:\n{d}", rel(path)));
-            let s = lsys::simulation::derive(
+            let s = lsys::internals::simulation::derive(
                 &c.program,
                 &c.compiled,
                 DeriveOptions::default(),

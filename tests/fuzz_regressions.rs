@@ -4,18 +4,18 @@
 //! must end in a model or in diagnostics that render, and none may take
 //! long (a fuzzer's timeout is a crash too).
 
-use lsys::build::{self, BuildOptions};
-use lsys::derive::DeriveOptions;
-use lsys::load::{Input, Options};
-use lsys::mesh::MeshOptions;
-use lsys::pipeline;
-use lsys::source::{Origin, SourceFile};
+use lsys::internals::build::{self, BuildOptions};
+use lsys::internals::derive::DeriveOptions;
+use lsys::internals::load::{Input, Options};
+use lsys::internals::mesh::MeshOptions;
+use lsys::internals::pipeline;
+use lsys::internals::source::{Origin, SourceFile};
 
 fn run(bytes: &[u8]) {
     let text = String::from_utf8_lossy(bytes).into_owned();
     let file = SourceFile::new("fuzz.lsys", Origin::Memory, text.clone());
-    for e in &lsys::parse::parse(0, &file).1 {
-        lsys::diag::render_plain(e);
+    for e in &lsys::internals::parse::parse(0, &file).1 {
+        lsys::internals::diag::render_plain(e);
     }
     let input = Input::Text {
         name: "fuzz.lsys".into(),
@@ -28,7 +28,7 @@ fn run(bytes: &[u8]) {
             return;
         }
     };
-    lsys::bytecode::disasm(&c.program, &c.compiled);
+    lsys::internals::bytecode::disasm(&c.program, &c.compiled);
     let opts = BuildOptions {
         steps: Some(c.program.derivation_length.min(8)),
         derive: DeriveOptions {
@@ -44,10 +44,10 @@ fn run(bytes: &[u8]) {
     };
     match build::build(&c, &opts) {
         Ok(b) => {
-            lsys::export::gltf::to_glb(&b.scene).expect("a built scene exports");
+            lsys::internals::export::gltf::to_glb(&b.scene).expect("a built scene exports");
         }
         Err(e) => {
-            lsys::diag::render_plain(&e);
+            lsys::internals::diag::render_plain(&e);
         }
     }
 }

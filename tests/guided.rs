@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use lsys::guided::{self, Loaded, Origin, Outcome};
+use lsys::internals::guided::{self, Loaded, Origin, Outcome};
 
 fn load(name: &str) -> Loaded {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -12,7 +12,7 @@ fn load(name: &str) -> Loaded {
         .join(name);
     match guided::load_file(&p, &Default::default()) {
         Ok(l) => l,
-        Err(e) => panic!("{}", lsys::diag::render_plain(e.as_ref())),
+        Err(e) => panic!("{}", lsys::internals::diag::render_plain(e.as_ref())),
     }
 }
 
@@ -530,7 +530,7 @@ fn an_element_tagged_by_x_answers_with_its_id() {
     );
     let l = match guided::load_file(&dir.path().join("scene.toml"), &Default::default()) {
         Ok(l) => l,
-        Err(e) => panic!("{}", lsys::diag::render_plain(e.as_ref())),
+        Err(e) => panic!("{}", lsys::internals::diag::render_plain(e.as_ref())),
     };
     let o = run(&l);
     let probe = &o.seeds.iter().find(|s| s.index == 1).unwrap().string;
@@ -581,14 +581,20 @@ fn each_seed_places_the_components_of_its_own_grammar() {
     );
     let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
     let o = run(&l);
-    let search = lsys::mesh::ComponentSearch {
+    let search = lsys::internals::mesh::ComponentSearch {
         grammar_dir: Some(dir.path().to_path_buf()),
         dirs: Vec::new(),
         within: Vec::new(),
         detail: Default::default(),
     };
-    let scene =
-        guided::build::scene(&l, &o, false, &search, &lsys::mesh::MeshOptions::default()).unwrap();
+    let scene = guided::build::scene(
+        &l,
+        &o,
+        false,
+        &search,
+        &lsys::internals::mesh::MeshOptions::default(),
+    )
+    .unwrap();
     let counts = scene.instance_counts();
     assert_eq!(counts.get("MCa"), Some(&3), "{counts:?}");
     assert_eq!(counts.get("MP"), Some(&1), "{counts:?}");

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use lsys::load::{Input, Options};
-use lsys::pipeline;
+use lsys::internals::load::{Input, Options};
+use lsys::internals::pipeline;
 
 fn compile(root: &Path, include_dirs: &[&Path]) -> Result<String, String> {
     let opts = Options {
@@ -127,7 +127,8 @@ fn huge_files_are_refused_unread() {
     let tmp = tempfile::tempdir().unwrap();
     let big = tmp.path().join("big.lsys");
     let f = std::fs::File::create(&big).unwrap();
-    f.set_len(lsys::load::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    f.set_len(lsys::internals::load::MAX_SOURCE_BYTES + 1)
+        .unwrap(); // sparse
     let err = compile(&big, &[]).unwrap_err();
     assert!(err.contains("lsys::load::input_not_source"), "{err}");
     assert!(err.contains("67108865 bytes long"), "{err}");
@@ -144,7 +145,8 @@ fn huge_cpfg_includes_are_refused_unread() {
     let tmp = tempfile::tempdir().unwrap();
     let big = tmp.path().join("big.h");
     let f = std::fs::File::create(&big).unwrap();
-    f.set_len(lsys::load::MAX_SOURCE_BYTES + 1).unwrap(); // sparse
+    f.set_len(lsys::internals::load::MAX_SOURCE_BYTES + 1)
+        .unwrap(); // sparse
     let root = tmp.path().join("main.l");
     write(
         &root,

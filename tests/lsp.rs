@@ -43,7 +43,7 @@ impl Client {
         let (server, conn) = Connection::memory();
         let server = std::thread::Builder::new()
             .stack_size(64 << 20)
-            .spawn(move || lsys::lsp::serve(server, Default::default()).unwrap())
+            .spawn(move || lsys::internals::lsp::serve(server, Default::default()).unwrap())
             .unwrap();
         let mut c = Client {
             conn,
@@ -165,7 +165,9 @@ fn position_of(text: &str, needle: &str) -> (u32, u32) {
 #[test]
 fn initialize_reports_capabilities() {
     let (server, conn) = Connection::memory();
-    let t = std::thread::spawn(move || lsys::lsp::serve(server, Default::default()).unwrap());
+    let t = std::thread::spawn(move || {
+        lsys::internals::lsp::serve(server, Default::default()).unwrap()
+    });
     let id = RequestId::from(1);
     conn.sender
         .send(Request::new(id, "initialize".into(), json!({"capabilities": {}})).into())
@@ -416,7 +418,7 @@ impl Client {
     }
 
     fn init_legend(&self) -> Vec<String> {
-        lsys::lsp::capabilities()
+        lsys::internals::lsp::capabilities()
             .semantic_tokens_provider
             .map(|p| match p {
                 lsp_types::SemanticTokensServerCapabilities::SemanticTokensOptions(o) => o.legend,

@@ -6,9 +6,9 @@
 
 use std::process::{Command, Output};
 
-use lsys::derive::{DeriveOptions, ModuleStore, NumberFormat, NumberStyle};
-use lsys::load::{Input, Options};
-use lsys::pipeline::{self, Compilation};
+use lsys::internals::derive::{DeriveOptions, ModuleStore, NumberFormat, NumberStyle};
+use lsys::internals::load::{Input, Options};
+use lsys::internals::pipeline::{self, Compilation};
 
 const F64: NumberFormat = NumberFormat {
     f32: false,
@@ -201,7 +201,7 @@ const THIRDS: &str =
     "derivation length: 2\naxiom: I(1) F(0.1)\nI(x) --> I(x*1.1+1/3)\nF(x) --> F(x/3)\n";
 
 fn derived(c: &Compilation) -> ModuleStore {
-    lsys::simulation::derive(
+    lsys::internals::simulation::derive(
         &c.program,
         &c.compiled,
         DeriveOptions::default(),

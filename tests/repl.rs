@@ -11,7 +11,7 @@ use std::sync::atomic::Ordering;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use lsys::repl::{Session, Settings};
+use lsys::internals::repl::{Session, Settings};
 
 const TREE: &str = "\
 // A small parametric tree: the REPL transcripts' grammar.
@@ -160,7 +160,7 @@ fn tour_of_every_command() {
         assert!(len > 50, "{f} has {len} bytes");
     }
     // Every command of the table is in the tour.
-    for c in lsys::repl::COMMANDS {
+    for c in lsys::internals::repl::COMMANDS {
         assert!(
             TOUR.lines().any(|l| l.starts_with(&format!(":{}", c.name))),
             ":{} is not in the tour",

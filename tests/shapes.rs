@@ -6,8 +6,8 @@ mod common;
 
 use std::path::Path;
 
-use lsys::build::Built;
-use lsys::load::{Input, Options};
+use lsys::internals::build::Built;
+use lsys::internals::load::{Input, Options};
 
 /// Builds an example with `-D` overrides.
 fn build(file: &str, defines: &[(&str, &str)]) -> Built {
@@ -19,10 +19,10 @@ fn build(file: &str, defines: &[(&str, &str)]) -> Built {
             .collect(),
         ..Options::default()
     };
-    let comp = lsys::pipeline::compile(&Input::Path(path), &opts)
+    let comp = lsys::internals::pipeline::compile(&Input::Path(path), &opts)
         .unwrap_or_else(|d| panic!("{file}: {}", d.render_plain()));
-    lsys::build::build(&comp, &Default::default())
-        .unwrap_or_else(|e| panic!("{file}: {}", lsys::diag::render_plain(&e)))
+    lsys::internals::build::build(&comp, &Default::default())
+        .unwrap_or_else(|e| panic!("{file}: {}", lsys::internals::diag::render_plain(&e)))
 }
 
 fn primitives(b: &Built, kind: &str) -> usize {

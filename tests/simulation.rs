@@ -6,8 +6,8 @@ mod common;
 
 use common::lsys;
 
-use lsys::derive::{DeriveError, DeriveOptions, ModuleStore};
-use lsys::simulation::{Environment, Simulation, StepContext};
+use lsys::internals::derive::{DeriveError, DeriveOptions, ModuleStore};
+use lsys::internals::simulation::{Environment, Simulation, StepContext};
 
 const END_FIXTURE: &str = "tests/fixtures/simulation/end_after_target.lsys";
 
@@ -74,8 +74,8 @@ fn an_environment_answers_after_the_axiom_and_every_step_before_end_each() {
     // turtle's own answer, so the custom one wins); B copies the answer.
     let text = "Lsystem: 1\nderivation length: 2\nAxiom: A ?P(0,0,0)\n\
                 ?P(x,y,z) --> ?P(x,y,z) B(x)\nendlsystem\n";
-    let c = lsys::pipeline::compile(
-        &lsys::load::Input::Text {
+    let c = lsys::internals::pipeline::compile(
+        &lsys::internals::load::Input::Text {
             name: "q.l".into(),
             text: text.into(),
         },

@@ -7,7 +7,7 @@ use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
 
-use lsys::studio::{start, Config, Handle};
+use lsys::internals::studio::{start, Config, Handle};
 use serde_json::{json, Value};
 
 fn studio(path: &Path) -> Handle {
@@ -234,7 +234,11 @@ fn paths_stay_inside_the_folder() {
     std::fs::create_dir(&inside).unwrap();
     let outside = dir.path().join("secret");
     std::fs::create_dir(&outside).unwrap();
-    std::fs::write(outside.join("g.toml"), lsys::studio::DEFAULT_ENTRANCE).unwrap();
+    std::fs::write(
+        outside.join("g.toml"),
+        lsys::internals::studio::DEFAULT_ENTRANCE,
+    )
+    .unwrap();
     #[cfg(unix)]
     std::os::unix::fs::symlink(&outside, inside.join("link")).unwrap();
     let h = studio(&inside);
@@ -352,7 +356,7 @@ fn grammar_mode_keeps_the_last_good_model() {
 /// editor and written again, reads back to the same layout and defines.
 #[test]
 fn example_graphs_survive_the_editor() {
-    use lsys::pailou::graph::{read, RELATIONS};
+    use lsys::internals::pailou::graph::{read, RELATIONS};
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/pailou");
     let mut n = 0;
     for e in std::fs::read_dir(dir).unwrap().flatten() {
@@ -361,7 +365,7 @@ fn example_graphs_survive_the_editor() {
             continue;
         }
         let text = std::fs::read_to_string(&p).unwrap();
-        let g = lsys::studio::EditGraph::parse(&text).unwrap();
+        let g = lsys::internals::studio::EditGraph::parse(&text).unwrap();
         let again = g.to_toml();
         let (a, b) = (
             read("a", &text, RELATIONS).unwrap(),
@@ -370,7 +374,7 @@ fn example_graphs_survive_the_editor() {
         assert_eq!(a.layout, b.layout, "{}", p.display());
         assert_eq!(a.defines, b.defines, "{}", p.display());
         assert_eq!(
-            lsys::studio::EditGraph::parse(&again).unwrap(),
+            lsys::internals::studio::EditGraph::parse(&again).unwrap(),
             g,
             "{}",
             p.display()

@@ -2,9 +2,9 @@
 //! `benches/grammars/` (or the standard library / Pailou generator).
 #![allow(dead_code)]
 
-use lsys::derive::{DeriveOptions, ModuleStore};
-use lsys::load::{Input, Options};
-use lsys::pipeline::{self, Compilation};
+use lsys::internals::derive::{DeriveOptions, ModuleStore};
+use lsys::internals::load::{Input, Options};
+use lsys::internals::pipeline::{self, Compilation};
 
 /// Compile `input` with `-D` overrides; panics on any error (the
 /// workloads are fixed).
@@ -49,14 +49,15 @@ pub fn big() -> DeriveOptions {
 
 /// Derive `steps` steps of `c`.
 pub fn run(c: &Compilation, steps: u32) -> ModuleStore {
-    lsys::simulation::derive(&c.program, &c.compiled, big(), steps).expect("workload derives")
+    lsys::internals::simulation::derive(&c.program, &c.compiled, big(), steps)
+        .expect("workload derives")
 }
 
 /// Derive `steps` steps of `c` one step at a time, every intermediate
 /// string built (as `--every` and the REPL do): the engine before the
 /// depth-first expansion of issue 19.
 pub fn run_stepwise(c: &Compilation, steps: u32) -> ModuleStore {
-    lsys::simulation::derive_each(&c.program, &c.compiled, big(), steps, |_, _| {})
+    lsys::internals::simulation::derive_each(&c.program, &c.compiled, big(), steps, |_, _| {})
         .expect("workload derives")
 }
 

@@ -3,11 +3,11 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lsys::build::{self, BuildOptions};
-use lsys::derive::DeriveOptions;
-use lsys::load::{Input, Options};
-use lsys::mesh::MeshOptions;
-use lsys::pipeline;
+use lsys::internals::build::{self, BuildOptions};
+use lsys::internals::derive::DeriveOptions;
+use lsys::internals::load::{Input, Options};
+use lsys::internals::mesh::MeshOptions;
+use lsys::internals::pipeline;
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {
@@ -32,10 +32,10 @@ fuzz_target!(|data: &[u8]| {
     };
     match build::build(&c, &opts) {
         Ok(b) => {
-            let _ = lsys::export::gltf::to_glb(&b.scene);
+            let _ = lsys::internals::export::gltf::to_glb(&b.scene);
         }
         Err(e) => {
-            let _ = lsys::diag::render_plain(&e);
+            let _ = lsys::internals::diag::render_plain(&e);
         }
     }
 });

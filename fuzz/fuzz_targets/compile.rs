@@ -3,8 +3,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lsys::pipeline;
-use lsys::load::{Input, Options};
+use lsys::internals::pipeline;
+use lsys::internals::load::{Input, Options};
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {
@@ -14,9 +14,9 @@ fuzz_target!(|data: &[u8]| {
     match pipeline::compile(&input, &Options::default()) {
         Ok(c) => {
             for w in &c.warnings {
-                let _ = lsys::diag::render_plain(w.as_ref());
+                let _ = lsys::internals::diag::render_plain(w.as_ref());
             }
-            let _ = lsys::bytecode::disasm(&c.program, &c.compiled);
+            let _ = lsys::internals::bytecode::disasm(&c.program, &c.compiled);
         }
         Err(d) => {
             let _ = d.render_plain();

@@ -4,9 +4,9 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lsys::derive::{self, DeriveOptions};
-use lsys::load::{Input, Options};
-use lsys::pipeline;
+use lsys::internals::derive::{self, DeriveOptions};
+use lsys::internals::load::{Input, Options};
+use lsys::internals::pipeline;
 
 fuzz_target!(|data: &[u8]| {
     let input = Input::Text {
@@ -24,19 +24,19 @@ fuzz_target!(|data: &[u8]| {
     let mut d = match derive::Derivation::new(&c.program, &c.compiled, opts) {
         Ok(d) => d,
         Err(e) => {
-            let _ = lsys::diag::render_plain(&e);
+            let _ = lsys::internals::diag::render_plain(&e);
             return;
         }
     };
     for _ in 0..c.program.derivation_length.min(8) {
         if let Err(e) = d.step() {
-            let _ = lsys::diag::render_plain(&e);
+            let _ = lsys::internals::diag::render_plain(&e);
             return;
         }
     }
     if !c.program.homomorphism.is_empty() {
         if let Err(e) = d.homomorphism() {
-            let _ = lsys::diag::render_plain(&e);
+            let _ = lsys::internals::diag::render_plain(&e);
         }
     }
 });

@@ -3,14 +3,14 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use lsys::source::{Origin, SourceFile};
+use lsys::internals::source::{Origin, SourceFile};
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data).into_owned();
     let file = SourceFile::new("fuzz.lsys", Origin::Memory, text);
-    let (_ast, errors) = lsys::parse::parse(0, &file);
+    let (_ast, errors) = lsys::internals::parse::parse(0, &file);
     // Rendering walks the spans: a span outside the text would panic here.
     for e in &errors {
-        let _ = lsys::diag::render_plain(e);
+        let _ = lsys::internals::diag::render_plain(e);
     }
 });

@@ -61,8 +61,18 @@ impl Scene {
         self.built.scene.instances.len()
     }
 
-    /// The meshes, materials and instances, for code that goes further
-    /// than writing a file.
+    /// The box around everything drawn, `(min, max)` corners; `None`
+    /// when nothing is.
+    pub fn bounds(&self) -> Option<([f32; 3], [f32; 3])> {
+        self.built
+            .scene
+            .bounds()
+            .map(|(lo, hi)| (lo.to_array(), hi.to_array()))
+    }
+
+    /// The internal meshes, materials and instances, for the crate's own
+    /// tests (`lsys::internals`); no API.
+    #[doc(hidden)]
     pub fn mesh(&self) -> &crate::mesh::Scene {
         &self.built.scene
     }

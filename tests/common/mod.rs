@@ -48,12 +48,12 @@ pub fn stderr(o: &Output) -> String {
 }
 
 /// Compiles `text` (named `name`); panics when it does not compile.
-pub fn compile_text(name: &str, text: &str) -> lsys::pipeline::Compilation {
-    let input = lsys::load::Input::Text {
+pub fn compile_text(name: &str, text: &str) -> lsys::internals::pipeline::Compilation {
+    let input = lsys::internals::load::Input::Text {
         name: name.into(),
         text: text.into(),
     };
-    match lsys::pipeline::compile(&input, &lsys::load::Options::default()) {
+    match lsys::internals::pipeline::compile(&input, &lsys::internals::load::Options::default()) {
         Ok(c) => c,
         Err(_) => panic!("does not compile:\n{text}"),
     }
