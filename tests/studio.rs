@@ -361,7 +361,7 @@ fn example_graphs_survive_the_editor() {
             continue;
         }
         let text = std::fs::read_to_string(&p).unwrap();
-        let g = lsys::studio::EditGraph::parse(&text).unwrap();
+        let g = lsys::pailou::GraphDocument::parse(&text).unwrap();
         let again = g.to_toml();
         let (a, b) = (
             read("a", &text, RELATIONS).unwrap(),
@@ -370,7 +370,7 @@ fn example_graphs_survive_the_editor() {
         assert_eq!(a.layout, b.layout, "{}", p.display());
         assert_eq!(a.defines, b.defines, "{}", p.display());
         assert_eq!(
-            lsys::studio::EditGraph::parse(&again).unwrap(),
+            lsys::pailou::GraphDocument::parse(&again).unwrap(),
             g,
             "{}",
             p.display()
