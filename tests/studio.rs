@@ -365,7 +365,7 @@ fn example_graphs_survive_the_editor() {
             continue;
         }
         let text = std::fs::read_to_string(&p).unwrap();
-        let g = lsys::internals::studio::EditGraph::parse(&text).unwrap();
+        let g = lsys::internals::pailou::GraphDocument::parse(&text).unwrap();
         let again = g.to_toml();
         let (a, b) = (
             read("a", &text, RELATIONS).unwrap(),
@@ -374,7 +374,7 @@ fn example_graphs_survive_the_editor() {
         assert_eq!(a.layout, b.layout, "{}", p.display());
         assert_eq!(a.defines, b.defines, "{}", p.display());
         assert_eq!(
-            lsys::internals::studio::EditGraph::parse(&again).unwrap(),
+            lsys::internals::pailou::GraphDocument::parse(&again).unwrap(),
             g,
             "{}",
             p.display()

@@ -35,7 +35,9 @@ pub use crate::build::Stage;
 pub use crate::export::output::Format;
 pub use crate::export::render::{RenderOptions as Picture, View};
 pub use crate::load::Input;
+pub use crate::pailou::kinds::is_graph_kind;
 pub use crate::pailou::structure::Problem;
+pub use crate::pailou::GraphDocument;
 
 // What a front end needs of the stages besides running jobs: the worker
 // thread's stack, rendering a diagnostic, atomic writes of its own

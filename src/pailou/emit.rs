@@ -1,13 +1,21 @@
-//! The canonical component graph of a layout: a [`Layout`] and its type ->
-//! the TOML that `lsys pailou --emit-graph` prints and `graph::read` reads
-//! back to the same layout (one id per component: `P1R`, `L11`, `TM12`...).
+//! The canonical component graph of a layout. Input: a [`Layout`] and its
+//! type; output: its [`GraphDocument`] (one id per component: `P1R`,
+//! `L11`, `TM12`...), and that document's text, which `lsys pailou
+//! --emit-graph` prints and `graph::read` reads back to the same layout.
 
-use std::fmt::Write;
-
+use super::document::GraphDocument;
 use super::style::*;
 
-/// The canonical graph of a layout, as TOML (what `--emit-graph` prints).
+/// The canonical graph of a layout, as TOML (what `--emit-graph` prints),
+/// under the heading `title`.
 pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
+    document(layout, kind).write(&format!(
+        "{title}: a Pailou as a component graph (docs/pailou.md)."
+    ))
+}
+
+/// The canonical graph of a layout, as a document.
+pub fn document(layout: &Layout, kind: PailouType) -> GraphDocument {
     let mut comps: Vec<(String, &str)> = Vec::new();
     let mut attach: Vec<(String, Vec<String>)> = Vec::new();
     let half = layout.exists.iter().filter(|e| e[0]).count();
@@ -120,28 +128,18 @@ pub fn emit(layout: &Layout, kind: PailouType, title: &str) -> String {
             }
         }
     }
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "# {title}: a Pailou as a component graph (docs/pailou.md)."
-    );
-    let _ = writeln!(
-        out,
-        "type = \"{}\"",
-        if kind == PailouType::Ridge {
-            "ridge"
-        } else {
-            "pillar"
+    GraphDocument {
+        kind: match kind {
+            PailouType::Ridge => "ridge",
+            PailouType::Pillar => "pillar",
         }
-    );
-    let _ = writeln!(out, "centre = \"L11\"\n\n[components]");
-    for (id, k) in &comps {
-        let _ = writeln!(out, "{id} = \"{k}\"");
+        .to_string(),
+        centre: "L11".to_string(),
+        components: comps
+            .into_iter()
+            .map(|(id, k)| (id, k.to_string()))
+            .collect(),
+        attach,
+        ..Default::default()
     }
-    let _ = writeln!(out, "\n[attach]");
-    for (id, targets) in &attach {
-        let t: Vec<String> = targets.iter().map(|t| format!("\"{t}\"")).collect();
-        let _ = writeln!(out, "{id} = [{}]", t.join(", "));
-    }
-    out
 }

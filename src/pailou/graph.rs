@@ -1,7 +1,12 @@
-//! Component graphs: a TOML file of components and attachments (the
-//! paper's iconized graph, Sec. 4.1–4.2) -> every attachment checked against
-//! the relation matrix -> the layout chart, as a [`Layout`]. The reverse,
-//! the canonical graph of a style, is [`emit`] (in `emit.rs`).
+//! Component graphs checked. Input: a graph file's text, a TOML file of
+//! components and attachments (the paper's iconized graph, Sec. 4.1–4.2),
+//! and a relation matrix; output: a [`Graph`], the layout chart as a
+//! [`Layout`] with the graph's type, defines and the components the layout
+//! has no place for, or a diagnostic pointing into the text. The text is
+//! parsed into a [`GraphDocument`] (`document.rs`, the format's one reader
+//! and writer), every attachment checked against the matrix, and the
+//! document walked for the layout. The reverse, the canonical graph of a
+//! style, is [`emit`] (in `emit.rs`).
 //!
 //! ```toml
 //! type = "ridge"            # or "pillar"
@@ -19,10 +24,9 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::sync::Arc;
 
 use miette::{Diagnostic, NamedSource, SourceSpan};
-use serde::Deserialize;
 use thiserror::Error;
-use toml::Spanned;
 
+use super::document::GraphDocument;
 pub use super::emit::emit;
 use super::style::*;
 
@@ -57,20 +61,6 @@ pub enum GraphError {
         #[help]
         help: String,
     },
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct GraphFile {
-    #[serde(rename = "type")]
-    kind: Option<Spanned<String>>,
-    centre: Spanned<String>,
-    components: BTreeMap<String, Spanned<String>>,
-    #[serde(default)]
-    attach: BTreeMap<String, Spanned<Vec<Spanned<String>>>>,
-    /// Overrides of the Pailou grammar's #defines, e.g. `"ω" = 10`.
-    #[serde(default)]
-    defines: BTreeMap<String, toml::Value>,
 }
 
 /// A graph read and checked: the layout it describes and its type.
@@ -145,7 +135,7 @@ impl Reader<'_> {
 /// Reads a graph file (`name` for messages) against a relation matrix.
 pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphError>> {
     let src = NamedSource::new(name, Arc::new(text.to_string()));
-    let file: GraphFile = toml::from_str(text).map_err(|e| {
+    let (doc, spans) = GraphDocument::parse_spanned(text).map_err(|e| {
         Box::new(GraphError::Syntax {
             file: name.to_string(),
             message: e.message().to_string(),
@@ -168,11 +158,15 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         under: BTreeMap::new(),
         used: Default::default(),
     };
-    for (id, kind) in &file.components {
-        if !super::kinds::is_graph_kind(kind.get_ref()) {
+    // Checked in the order of the ids, so that the first problem reported
+    // does not depend on where the file lists it.
+    let mut components: Vec<&(String, String)> = doc.components.iter().collect();
+    components.sort();
+    for (id, kind) in components {
+        if !super::kinds::is_graph_kind(kind) {
             return Err(r.err(
-                kind.span(),
-                format!("`{id}` has the unknown kind `{}`", kind.get_ref()),
+                spans.component(id),
+                format!("`{id}` has the unknown kind `{kind}`"),
                 "this kind",
                 format!(
                     "the kinds are: {}",
@@ -180,25 +174,26 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
                 ),
             ));
         }
-        r.kinds.insert(id, kind.get_ref());
+        r.kinds.insert(id, kind);
     }
-    for (id, targets) in &file.attach {
+    let mut attach: Vec<&(String, Vec<String>)> = doc.attach.iter().collect();
+    attach.sort_by(|a, b| a.0.cmp(&b.0));
+    for (id, targets) in attach {
+        let (list, target_spans) = spans.attachment(id);
         let Some(&kind) = r.kinds.get(id.as_str()) else {
             return Err(r.err(
-                targets.span(),
+                list,
                 format!("`{id}` attaches to something but is not in [components]"),
                 "its attachments",
                 format!("declare it: `{id} = \"lintel\"` (or another kind) under [components]"),
             ));
         };
-        for t in targets.get_ref() {
-            let Some(&tkind) = r.kinds.get(t.get_ref().as_str()) else {
+        for (i, t) in targets.iter().enumerate() {
+            let span = target_spans.get(i).cloned().unwrap_or_default();
+            let Some(&tkind) = r.kinds.get(t.as_str()) else {
                 return Err(r.err(
-                    t.span(),
-                    format!(
-                        "`{id}` attaches to `{}`, which is not in [components]",
-                        t.get_ref()
-                    ),
+                    span,
+                    format!("`{id}` attaches to `{t}`, which is not in [components]"),
                     "unknown component",
                     "declare it under [components], or correct the name".to_string(),
                 ));
@@ -209,11 +204,8 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             if !legal {
                 let accepts = matrix.get(tkind).map(|v| v.join(", ")).unwrap_or_default();
                 return Err(r.err(
-                    t.span(),
-                    format!(
-                        "`{id}` ({kind}) cannot attach to `{}` ({tkind})",
-                        t.get_ref()
-                    ),
+                    span,
+                    format!("`{id}` ({kind}) cannot attach to `{t}` ({tkind})"),
                     "this attachment",
                     format!(
                         "by the relation matrix a {tkind} accepts: {}",
@@ -225,27 +217,26 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
                     ),
                 ));
             }
-            r.on.entry(id).or_default().push(t.get_ref());
-            r.under.entry(t.get_ref()).or_default().push(id);
+            r.on.entry(id).or_default().push(t);
+            r.under.entry(t).or_default().push(id);
         }
     }
-    let kind = match file.kind.as_ref().map(|k| k.get_ref().as_str()) {
-        None | Some("ridge") => PailouType::Ridge,
-        Some("pillar") => PailouType::Pillar,
-        Some(other) => {
-            let span = file.kind.as_ref().expect("matched Some").span();
+    let kind = match doc.kind.as_str() {
+        "ridge" => PailouType::Ridge,
+        "pillar" => PailouType::Pillar,
+        other => {
             return Err(r.err(
-                span,
+                spans.kind.clone().unwrap_or_default(),
                 format!("`{other}` is not a Pailou type"),
                 "this type",
                 "write `type = \"ridge\"` or `type = \"pillar\"`".to_string(),
             ));
         }
     };
-    let centre = file.centre.get_ref().as_str();
+    let centre = doc.centre.as_str();
     if r.kind(centre) != "lintel" {
         return Err(r.err(
-            file.centre.span(),
+            spans.centre.clone(),
             format!("the centre `{centre}` is not a lintel"),
             "the centre",
             "name the central entrance's lintel".to_string(),
@@ -254,7 +245,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
     let pillars = r.supports(centre);
     if pillars.len() != 2 || pillars.iter().any(|p| r.kind(p) != "pillar") {
         return Err(r.err(
-            file.centre.span(),
+            spans.centre.clone(),
             format!(
                 "the central lintel `{centre}` must rest on two ground pillars; it rests on {}",
                 pillars.len()
@@ -286,7 +277,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
     }
     if halves[0].len() != halves[1].len() {
         return Err(r.err(
-            file.centre.span(),
+            spans.centre.clone(),
             format!(
                 "the Pailou is not symmetric: {} entrances on one side of `{centre}`, {} on the other",
                 halves[0].len(),
@@ -298,7 +289,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
     }
     if halves[0].len() > MAX_HALF {
         return Err(r.err(
-            file.centre.span(),
+            spans.centre.clone(),
             format!(
                 "{} entrances per half: at most {MAX_HALF} are supported",
                 halves[0].len()
@@ -310,7 +301,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
     let layouts: Vec<Layout> = halves.iter().map(|h| half_layout(&r, h, kind)).collect();
     if layouts[0] != layouts[1] {
         return Err(r.err(
-            file.centre.span(),
+            spans.centre.clone(),
             "the Pailou is not symmetric: the two halves carry different decorations".to_string(),
             "the centre",
             "the Pailou grammar mirrors one half; decorate both halves alike".to_string(),
@@ -338,7 +329,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             })
             .collect()
     };
-    let defines = file
+    let defines = doc
         .defines
         .iter()
         .map(|(k, v)| (k.clone(), v.to_string().trim_matches('"').to_string()))

@@ -1,14 +1,19 @@
 //! The Pailou front-end: a style (`4-3-7`, ridge or pillar type, in
-//! `style.rs`) or a component graph (TOML, in `graph.rs`) -> a [`Layout`]
-//! -> the standard library's Pailou grammar with its layout tables filled
-//! in, ready to compile (or to print for an expert to continue by hand);
-//! and a layout's canonical graph back out (`emit.rs`).
+//! `style.rs`) or a component graph (TOML, read into a document by
+//! `document.rs` and checked by `graph.rs`) -> a [`Layout`] -> the standard
+//! library's Pailou grammar with its layout tables filled in, ready to
+//! compile (or to print for an expert to continue by hand); and a layout's
+//! canonical graph back out (`emit.rs`, written by `document.rs`).
+//! `kinds.rs` names the component kinds, `structure.rs` checks a built
+//! Pailou's parts against the relation matrix.
+pub mod document;
 mod emit;
 pub mod graph;
 pub mod kinds;
 pub mod structure;
 pub mod style;
 
+pub use document::GraphDocument;
 pub use style::{layout, parse_style, Layout, PailouType, StyleError};
 
 use crate::load::Input;

@@ -9,7 +9,6 @@
 //! inside the opened folder, limits request bodies, and never lets a bad
 //! graph or grammar take it down (docs/studio.md).
 
-mod edit;
 mod grammar;
 mod http;
 mod model;
@@ -22,7 +21,6 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::Duration;
 
-pub use edit::EditGraph;
 pub use grammar::{defines_of, Define, GrammarSession};
 pub use model::Model;
 pub use pailou::{PailouSession, DEFAULT_ENTRANCE};

@@ -9,16 +9,14 @@ use std::collections::BTreeMap;
 
 use serde_json::{json, Value};
 
-use super::edit::EditGraph;
 use super::model::{self, Model};
-use crate::driver::{Pailou, PailouError};
-use crate::pailou::{self, graph};
+use crate::driver::{is_graph_kind, GraphDocument, Pailou, PailouError, PailouType};
 use crate::Grammar;
 
 pub struct PailouSession {
     /// The graph file (relative to the opened folder), if one was opened.
     pub file: Option<String>,
-    pub graph: EditGraph,
+    pub graph: GraphDocument,
     pub model: Option<Model>,
     /// Why the opened graph or the last edit was refused.
     pub error: Option<Value>,
@@ -41,7 +39,7 @@ impl PailouSession {
     pub fn open(name: &str, text: &str, file: Option<String>) -> PailouSession {
         let mut s = PailouSession {
             file,
-            graph: EditGraph::parse(text).unwrap_or_default(),
+            graph: GraphDocument::parse(text).unwrap_or_default(),
             model: None,
             error: None,
             unplaced: Vec::new(),
@@ -142,13 +140,17 @@ impl PailouSession {
             "style" => {
                 let style = edit["style"].as_str().unwrap_or("");
                 let kind = match edit["type"].as_str().unwrap_or(&g.kind) {
-                    "pillar" => pailou::PailouType::Pillar,
-                    _ => pailou::PailouType::Ridge,
+                    "pillar" => PailouType::Pillar,
+                    _ => PailouType::Ridge,
                 };
-                let layout = pailou::style_layout(style, kind)
-                    .map_err(|e| refuse(format!("the style {style}: {e}")))?;
+                let pailou = Pailou::style(style, kind).map_err(|e| match e {
+                    PailouError::Style { error, .. } => {
+                        refuse(format!("the style {style}: {error}"))
+                    }
+                    e => refuse(e.to_string()),
+                })?;
                 let defines = std::mem::take(&mut g.defines);
-                g = EditGraph::parse(&graph::emit(&layout, kind, style)).map_err(refuse)?;
+                g = GraphDocument::parse(&pailou.graph_toml()).map_err(refuse)?;
                 g.defines = defines;
             }
             _ => return Err(refuse(format!("unknown edit `{op}`"))),
@@ -202,7 +204,7 @@ impl PailouSession {
     }
 }
 
-fn first_diagnostic(d: &crate::diag::Diagnostics) -> Value {
+fn first_diagnostic(d: &crate::Diagnostics) -> Value {
     model::diagnostics_json(d)
         .into_iter()
         .next()
@@ -210,24 +212,19 @@ fn first_diagnostic(d: &crate::diag::Diagnostics) -> Value {
 }
 
 /// The kinds the relation matrix lets attach to `id` (graph kinds only).
-pub fn palette(g: &EditGraph, id: &str) -> Vec<String> {
+pub fn palette(g: &GraphDocument, id: &str) -> Vec<String> {
     let kind = g.kind_of(id).unwrap_or("");
     crate::driver::library_rules()
         .accepts
         .get(kind)
-        .map(|v| {
-            v.iter()
-                .filter(|k| pailou::kinds::is_graph_kind(k))
-                .cloned()
-                .collect()
-        })
+        .map(|v| v.iter().filter(|k| is_graph_kind(k)).cloned().collect())
         .unwrap_or_default()
 }
 
 /// Where each icon is drawn: dragged ones where they were left; ground
 /// pillars in a row by their entrance; everything else above (resting on)
 /// or below (hanging from) what it attaches to, siblings side by side.
-fn positions(g: &EditGraph) -> BTreeMap<String, (f64, f64)> {
+fn positions(g: &GraphDocument) -> BTreeMap<String, (f64, f64)> {
     const GROUND: f64 = 460.0;
     let mut at: BTreeMap<String, (f64, f64)> = BTreeMap::new();
     for (chain, sign) in g.chains().iter().zip([1.0, -1.0]) {

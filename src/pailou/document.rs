@@ -1,29 +1,86 @@
-//! The editor's component graph: a graph file's text -> components,
-//! attachments, defines and icon positions that the studio's clicks edit
-//! -> graph text again (the same format `lsys pailou GRAPH` reads; icon
-//! positions ride along as `# @pos` comments, which the reader ignores).
+//! The component graph as a document, the one reader and writer of the
+//! graph format (TOML, docs/pailou.md). Input: a graph file's text; output:
+//! a [`GraphDocument`] (type, centre, components, attachments, defines and
+//! icon positions, in file order) with the [`Spans`] of its parts in the
+//! text. Edits (add, remove, duplicate an entrance set, defines) change the
+//! document, and [`GraphDocument::write`] turns it into graph text again.
 //!
-//! Edits never check legality themselves: the session reads every edited
+//! [`crate::pailou::graph::read`] checks a parsed document against the
+//! relation matrix and points its diagnostics at the spans;
+//! [`crate::pailou::graph::emit`] writes a layout's canonical document; the
+//! studio's Pailou mode edits one. Icon positions ride along as `# @pos`
+//! comments, which the graph reader ignores.
+//!
+//! Edits never check legality themselves: the studio reads every edited
 //! text with [`crate::pailou::graph::read`] and refuses an edit whose graph
 //! does not read, so the studio and the CLI share one set of rules and one
 //! set of diagnostics.
 
 use std::collections::{BTreeMap, BTreeSet};
+use std::ops::Range;
 
-/// A graph as the editor holds it (order kept, so a saved file reads like
-/// the one that was opened).
+use serde::Deserialize;
+use toml::Spanned;
+
+/// A graph as a document (order kept, so a saved file reads like the one
+/// that was opened).
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct EditGraph {
+pub struct GraphDocument {
+    /// `type`: "ridge" (also when the file does not say) or "pillar"; the
+    /// graph reader refuses any other.
     pub kind: String,
     pub centre: String,
     /// (id, kind) in file order.
     pub components: Vec<(String, String)>,
     /// (id, what it attaches to) in file order.
     pub attach: Vec<(String, Vec<String>)>,
-    /// (name, value as TOML) in file order.
+    /// (name, value as TOML), ordered by name.
     pub defines: Vec<(String, toml::Value)>,
     /// Icon positions the user dragged (others are laid out).
     pub positions: BTreeMap<String, (f64, f64)>,
+}
+
+/// Where the parts of a parsed document are in its text (byte ranges),
+/// for the graph reader's diagnostics.
+#[derive(Clone, Debug, Default)]
+pub struct Spans {
+    /// `type`'s value, if the file gives one.
+    pub kind: Option<Range<usize>>,
+    /// `centre`'s value.
+    pub centre: Range<usize>,
+    /// Each component's kind, by id.
+    pub components: BTreeMap<String, Range<usize>>,
+    /// Each attachment's list and each id in it, by the attaching id.
+    pub attach: BTreeMap<String, (Range<usize>, Vec<Range<usize>>)>,
+}
+
+impl Spans {
+    /// Where `id`'s kind is (empty when the text has no such component).
+    pub fn component(&self, id: &str) -> Range<usize> {
+        self.components.get(id).cloned().unwrap_or_default()
+    }
+
+    /// Where `id`'s attachment list is, and each id in it.
+    pub fn attachment(&self, id: &str) -> (Range<usize>, &[Range<usize>]) {
+        self.attach.get(id).map_or((0..0, &[][..]), |(list, ids)| {
+            (list.clone(), ids.as_slice())
+        })
+    }
+}
+
+/// The file's shape, as TOML deserializes it.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GraphFile {
+    #[serde(rename = "type")]
+    kind: Option<Spanned<String>>,
+    centre: Spanned<String>,
+    components: BTreeMap<String, Spanned<String>>,
+    #[serde(default)]
+    attach: BTreeMap<String, Spanned<Vec<Spanned<String>>>>,
+    /// Overrides of the Pailou grammar's #defines, e.g. `"ω" = 10`.
+    #[serde(default)]
+    defines: BTreeMap<String, toml::Value>,
 }
 
 /// Id prefixes, as `lsys pailou --emit-graph` names components.
@@ -45,69 +102,82 @@ fn prefix(kind: &str) -> &'static str {
     }
 }
 
-impl EditGraph {
-    /// Reads a graph's text leniently (no relation matrix, no layout):
-    /// `Err` only when it is not TOML of the graph's shape.
-    pub fn parse(text: &str) -> Result<EditGraph, String> {
-        let table: toml::Table = toml::from_str(text).map_err(|e| e.message().to_string())?;
-        let string = |v: &toml::Value| v.as_str().map(str::to_string);
-        let mut g = EditGraph {
-            kind: table
-                .get("type")
-                .and_then(string)
-                .unwrap_or_else(|| "ridge".into()),
-            centre: table.get("centre").and_then(string).unwrap_or_default(),
+/// The heading of a graph the studio saves.
+const SAVED_BY_STUDIO: &str = "A Pailou component graph (docs/pailou.md), saved by `lsys studio`.";
+
+impl GraphDocument {
+    /// Parses a graph's text: `Err` (with the place, where TOML knows it)
+    /// when it is not TOML of the graph's shape. Nothing is checked
+    /// against the relation matrix or the layout (that is
+    /// [`crate::pailou::graph::read`]'s).
+    pub fn parse_spanned(text: &str) -> Result<(GraphDocument, Spans), toml::de::Error> {
+        let file: GraphFile = toml::from_str(text)?;
+        let mut spans = Spans {
+            kind: file.kind.as_ref().map(Spanned::span),
+            centre: file.centre.span(),
             ..Default::default()
         };
-        if let Some(c) = table.get("components").and_then(|v| v.as_table()) {
-            for (id, kind) in c {
-                g.components
-                    .push((id.clone(), string(kind).unwrap_or_default()));
-            }
+        let mut components: Vec<(Range<usize>, String, String)> = Vec::new();
+        for (id, kind) in file.components {
+            spans.components.insert(id.clone(), kind.span());
+            components.push((kind.span(), id, kind.into_inner()));
         }
-        if let Some(a) = table.get("attach").and_then(|v| v.as_table()) {
-            for (id, on) in a {
-                let on = on
-                    .as_array()
-                    .map(|v| v.iter().filter_map(string).collect())
-                    .unwrap_or_default();
-                g.attach.push((id.clone(), on));
-            }
+        let mut attach: Vec<(Range<usize>, String, Vec<String>)> = Vec::new();
+        for (id, on) in file.attach {
+            let span = on.span();
+            let (ids, id_spans): (Vec<String>, Vec<Range<usize>>) = on
+                .into_inner()
+                .into_iter()
+                .map(|t| {
+                    let span = t.span();
+                    (t.into_inner(), span)
+                })
+                .unzip();
+            spans.attach.insert(id.clone(), (span.clone(), id_spans));
+            attach.push((span, id, ids));
         }
-        if let Some(d) = table.get("defines").and_then(|v| v.as_table()) {
-            g.defines = d.iter().map(|(k, v)| (k.clone(), v.clone())).collect();
-        }
-        // toml's tables are sorted; take the file's order back from the text.
-        let at = |id: &str| {
-            text.find(&format!("\n{id} ="))
-                .or_else(|| text.find(&format!("\n\"{id}\" =")))
-                .unwrap_or(usize::MAX)
-        };
-        g.components.sort_by_key(|(id, _)| at(id));
+        // TOML's tables are sorted by key; the file's order is the spans'.
+        components.sort_by_key(|(span, _, _)| span.start);
+        attach.sort_by_key(|(span, _, _)| span.start);
+        let mut positions = BTreeMap::new();
         for line in text.lines() {
             let mut w = line.split_whitespace();
             if let (Some("#"), Some("@pos"), Some(id), Some(x), Some(y)) =
                 (w.next(), w.next(), w.next(), w.next(), w.next())
             {
                 if let (Ok(x), Ok(y)) = (x.parse(), y.parse()) {
-                    g.positions.insert(id.to_string(), (x, y));
+                    positions.insert(id.to_string(), (x, y));
                 }
             }
         }
-        let attach_at = |id: &str| {
-            let a = text.find("[attach]").unwrap_or(0);
-            text[a..]
-                .find(&format!("\n{id} ="))
-                .map_or(usize::MAX, |n| n + a)
+        let doc = GraphDocument {
+            kind: file
+                .kind
+                .map_or_else(|| "ridge".to_string(), Spanned::into_inner),
+            centre: file.centre.into_inner(),
+            components: components.into_iter().map(|(_, id, k)| (id, k)).collect(),
+            attach: attach.into_iter().map(|(_, id, on)| (id, on)).collect(),
+            defines: file.defines.into_iter().collect(),
+            positions,
         };
-        g.attach.sort_by_key(|(id, _)| attach_at(id));
-        Ok(g)
+        Ok((doc, spans))
     }
 
-    /// The graph as a file `lsys pailou` reads.
-    pub fn to_toml(&self) -> String {
-        let mut s =
-            String::from("# A Pailou component graph (docs/pailou.md), saved by `lsys studio`.\n");
+    /// Parses a graph's text ([`GraphDocument::parse_spanned`] without the
+    /// places): `Err` with TOML's message.
+    pub fn parse(text: &str) -> Result<GraphDocument, String> {
+        GraphDocument::parse_spanned(text)
+            .map(|(doc, _)| doc)
+            .map_err(|e| e.message().to_string())
+    }
+
+    /// The graph's text, under a `# heading` comment: what `lsys pailou`
+    /// reads (and `--emit-graph` prints).
+    pub fn write(&self, heading: &str) -> String {
+        let mut s = String::new();
+        for line in heading.lines() {
+            s += &format!("# {line}\n");
+        }
         s += &format!(
             "type = {}\ncentre = {}\n\n[components]\n",
             quote(&self.kind),
@@ -134,6 +204,11 @@ impl EditGraph {
             }
         }
         s
+    }
+
+    /// The graph's text as the studio saves it.
+    pub fn to_toml(&self) -> String {
+        self.write(SAVED_BY_STUDIO)
     }
 
     pub fn kind_of(&self, id: &str) -> Option<&str> {
@@ -289,7 +364,7 @@ impl EditGraph {
                 "`{lintel}` is not the lintel of a ground entrance: pick one to duplicate"
             ));
         }
-        let outer_of = |g: &EditGraph, l: &str, inner: Option<&str>| {
+        let outer_of = |g: &GraphDocument, l: &str, inner: Option<&str>| {
             g.on(l).iter().find(|p| Some(p.as_str()) != inner).cloned()
         };
         // The lintel's outer pillar: for the centre, either (the halves
@@ -432,5 +507,74 @@ fn key(s: &str) -> String {
         s.to_string()
     } else {
         quote(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pailou::graph::{read, RELATIONS};
+    use crate::pailou::{emit, layout, parse_style, PailouType};
+
+    /// `--emit-graph`'s text is its document's, written by the one writer,
+    /// and parses back to the same document.
+    #[test]
+    fn emitted_graphs_are_documents_written() {
+        for style in ["2-1-1", "4-3-7", "6-5-15", "8-7-7"] {
+            for kind in [PailouType::Ridge, PailouType::Pillar] {
+                let (np, ne, nr) = parse_style(style).unwrap();
+                let l = layout(np, ne, nr, kind).unwrap();
+                let doc = emit::document(&l, kind);
+                let text = emit::emit(&l, kind, style);
+                let heading = format!("{style}: a Pailou as a component graph (docs/pailou.md).");
+                assert_eq!(doc.write(&heading), text);
+                assert_eq!(GraphDocument::parse(&text).unwrap(), doc, "{text}");
+            }
+        }
+    }
+
+    /// The document keeps the file's order (not TOML's sorted keys), and
+    /// its spans point at the text of each part.
+    #[test]
+    fn order_and_spans_are_the_files() {
+        let text = "centre = \"L11\"\n[attach]\nL11 = [\"P1R\", \"P1L\"]\nB = [\"P1R\"]\n[components]\nP1R = \"pillar\"\nL11 = \"lintel\"\nB = \"pillar_base\"\nP1L = \"pillar\"\n[defines]\n\"ω\" = 10\n# @pos B 3 -4\n";
+        let (doc, spans) = GraphDocument::parse_spanned(text).unwrap();
+        let ids: Vec<&str> = doc.components.iter().map(|(i, _)| i.as_str()).collect();
+        assert_eq!(ids, ["P1R", "L11", "B", "P1L"]);
+        let ids: Vec<&str> = doc.attach.iter().map(|(i, _)| i.as_str()).collect();
+        assert_eq!(ids, ["L11", "B"]);
+        assert_eq!(doc.kind, "ridge");
+        assert_eq!(spans.kind, None);
+        assert_eq!(doc.positions["B"], (3.0, -4.0));
+        assert_eq!(&text[spans.centre.clone()], "\"L11\"");
+        assert_eq!(&text[spans.component("B")], "\"pillar_base\"");
+        let (list, ids) = spans.attachment("L11");
+        assert_eq!(&text[list], "[\"P1R\", \"P1L\"]");
+        assert_eq!(&text[ids[1].clone()], "\"P1L\"");
+        // Written and parsed again: the same document.
+        let again = doc.to_toml();
+        assert_eq!(GraphDocument::parse(&again).unwrap(), doc, "{again}");
+        assert!(GraphDocument::parse("centre = 1").is_err());
+    }
+
+    /// Edits keep the two halves alike: an entrance added beside on one
+    /// pillar comes on its mirror too, and goes with it.
+    #[test]
+    fn edits_mirror_and_read() {
+        let mut doc = GraphDocument::parse(
+            "centre = \"L11\"\n[components]\nP1R = \"pillar\"\nL11 = \"lintel\"\nP1L = \"pillar\"\n[attach]\nL11 = [\"P1L\", \"P1R\"]\n",
+        )
+        .unwrap();
+        let added = doc.add("P1R", "lintel").unwrap();
+        assert_eq!(added, ["Pn1R", "Ln1R", "Pn1L", "Ln1L"]);
+        doc.add("L11", "flower_board").unwrap();
+        let g = read("g.toml", &doc.to_toml(), RELATIONS).unwrap();
+        assert!(g.layout.chart().starts_with("level 1  [G21 ][G11 ][G21 ]"));
+        assert_eq!(doc.chains()[0].len(), 2);
+        let gone = doc.remove("Ln1L").unwrap();
+        assert_eq!(gone, ["Ln1L", "Ln1R"]);
+        doc.set_define("ω", Some(toml::Value::Integer(10)));
+        let g = read("g.toml", &doc.to_toml(), RELATIONS).unwrap();
+        assert_eq!(g.defines, [("ω".to_string(), "10".to_string())]);
     }
 }
