@@ -21,6 +21,8 @@ mod pailou;
 mod run;
 mod stats;
 mod structure;
+#[cfg(feature = "cli")]
+mod watch;
 
 pub use guided::{run_scene, SceneDone, SceneJob};
 pub use job::{grammar_dir, Check, Job, Output};
@@ -28,6 +30,8 @@ pub use pailou::{Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};
 pub use stats::ms;
 pub use structure::library_rules;
+#[cfg(feature = "cli")]
+pub use watch::{Change, WatchError, Watcher};
 
 pub use crate::build::Stage;
 pub use crate::export::output::Format;
