@@ -27,8 +27,8 @@ fn pailou_graph_4_3_7(bencher: Bencher) {
 
 /// Grammar mode: a save of `name` (a standard library grammar), rebuilt.
 fn grammar(bencher: Bencher, name: &str) {
-    // A standard library grammar is in no folder: the watcher's snapshot
-    // (taken on every rebuild) is of an empty one.
+    // A standard library grammar is in no folder (an empty one stands
+    // in), and no watcher is told its files (`open` gives none).
     let folder = tempfile::tempdir().unwrap();
     let mut s = GrammarSession::open(folder.path().into(), name.into(), name.into());
     assert!(s.current, "{:?}", s.diagnostics);

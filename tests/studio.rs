@@ -352,6 +352,80 @@ fn grammar_mode_keeps_the_last_good_model() {
     h.stop();
 }
 
+/// `GET /api/state` until `done` says yes (20 s at most).
+fn state_until(h: &Handle, what: &str, done: impl Fn(&Value) -> bool) -> Value {
+    let t0 = std::time::Instant::now();
+    loop {
+        let (_, s) = get(h, "/api/state");
+        if done(&s) {
+            return s;
+        }
+        assert!(
+            t0.elapsed() < std::time::Duration::from_secs(20),
+            "{what}: still {s}"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}
+
+/// Grammar mode follows saves of the file: one made by rename (as editors
+/// save) while the first build runs, after it has read the file, which
+/// is missed unless the file was watched before that read; then one in
+/// place.
+#[test]
+fn grammar_mode_follows_saves_even_right_after_opening() {
+    use notify::event::{AccessKind, EventKind};
+    use notify::Watcher as _;
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("bush.lsys");
+    let grammar = |n: u32| {
+        format!("#define N {n}\nangle: 25.7\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n")
+    };
+    // A first build long enough for the save to come while it runs.
+    std::fs::write(&g, grammar(7)).unwrap();
+    // The test's own watcher, to see the studio open the file.
+    let (tx, rx) = std::sync::mpsc::channel();
+    let mut reads = notify::recommended_watcher(tx).unwrap();
+    reads
+        .watch(dir.path(), notify::RecursiveMode::NonRecursive)
+        .unwrap();
+    let opening = {
+        let g = g.clone();
+        std::thread::spawn(move || studio(&g))
+    };
+    let key = dir.path().canonicalize().unwrap().join("bush.lsys");
+    loop {
+        let ev = rx
+            .recv_timeout(std::time::Duration::from_secs(30))
+            .expect("the studio reads the grammar")
+            .unwrap();
+        if matches!(ev.kind, EventKind::Access(AccessKind::Open(_))) && ev.paths.contains(&key) {
+            break;
+        }
+    }
+    let tmp = dir.path().join(".bush.lsys.new");
+    std::fs::write(&tmp, grammar(2)).unwrap();
+    std::fs::rename(&tmp, &g).unwrap();
+    let during = !opening.is_finished();
+    drop(reads);
+    let h = opening.join().unwrap();
+    let s = state_until(&h, "the save right after opening", |s| {
+        s["defines"][0]["value"] == "2" && s["length"] == 2
+    });
+    assert_eq!(s["current"], true, "{s}");
+    let t2 = s["triangles"].as_u64().unwrap();
+    // Said after the rebuild, so that a failure above is the rebuild's.
+    assert!(
+        during,
+        "the save came after the first build ended: the test proves nothing"
+    );
+    std::fs::write(&g, grammar(3)).unwrap();
+    let s = state_until(&h, "a save in place", |s| s["defines"][0]["value"] == "3");
+    assert_eq!(s["length"], 3, "{s}");
+    assert!(s["triangles"].as_u64().unwrap() > t2, "{s}");
+    h.stop();
+}
+
 /// The studio saves what it opened: every example graph, parsed by the
 /// editor and written again, reads back to the same layout and defines.
 #[test]

@@ -22,6 +22,8 @@ mod run;
 mod stats;
 mod structure;
 mod toml_file;
+#[cfg(feature = "cli")]
+mod watch;
 
 pub use guided::{run_scene, SceneDone, SceneJob};
 pub use job::{grammar_dir, Check, Job, Output};
@@ -30,6 +32,8 @@ pub use run::{run, Done, Event, Failure, Reason};
 pub use stats::ms;
 pub use structure::library_rules;
 pub use toml_file::{toml_file, NeitherFormat, TomlFile};
+#[cfg(feature = "cli")]
+pub use watch::{Change, WatchError, Watcher};
 
 pub use crate::build::Stage;
 pub use crate::export::output::Format;

@@ -2,14 +2,21 @@
 //! compiled with the page's `-D` overrides, built at the page's step ->
 //! the model and its diagnostics. The root file's `#define`s become the
 //! page's sliders. A failed build keeps the last good model.
+//!
+//! With a [`Watcher`] (the server's; see `watch` in studio/mod.rs), every
+//! build gives it the files to watch: before it reads them, the root file
+//! and the files the last build read, so that a save during the build (or
+//! right after opening) is the watcher's next change; after, the files
+//! this build read.
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use serde_json::{json, Value};
 
 use super::model::{self, Model};
-use super::watch::Snapshot;
+use crate::driver::Watcher;
 
 /// A `#define` of the root file, as the page shows it.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,10 +31,13 @@ pub struct Define {
 }
 
 pub struct GrammarSession {
-    /// The opened folder, which the watcher watches.
+    /// The opened folder.
     pub folder: PathBuf,
-    /// The folder as it was just before the last build read it.
-    pub seen: Snapshot,
+    /// The files the last build read (root, includes, view and function
+    /// files), which the watcher watches.
+    pub sources: Vec<PathBuf>,
+    /// Told the files to watch on every build (`None`: no watching).
+    watcher: Option<Arc<Watcher>>,
     /// The root file, absolute.
     pub path: PathBuf,
     /// The same, relative to the opened folder (for the page).
@@ -45,9 +55,21 @@ pub struct GrammarSession {
 
 impl GrammarSession {
     pub fn open(folder: PathBuf, path: PathBuf, file: String) -> GrammarSession {
+        GrammarSession::open_watched(folder, path, file, None)
+    }
+
+    /// [`GrammarSession::open`], telling `watcher` the files to watch on
+    /// every build, starting with the first.
+    pub fn open_watched(
+        folder: PathBuf,
+        path: PathBuf,
+        file: String,
+        watcher: Option<Arc<Watcher>>,
+    ) -> GrammarSession {
         let mut s = GrammarSession {
             folder,
-            seen: Snapshot::default(),
+            sources: Vec::new(),
+            watcher,
             path,
             file,
             defines: Vec::new(),
@@ -64,7 +86,8 @@ impl GrammarSession {
 
     /// Compiles and builds again (after a save, or a change on the page).
     pub fn rebuild(&mut self) {
-        self.seen = Snapshot::take(&self.folder, &self.path);
+        // Watched before they are read: a save from here on is a change.
+        self.watch();
         if let Ok(text) = std::fs::read_to_string(&self.path) {
             self.defines = defines_of(&text);
         }
@@ -76,7 +99,14 @@ impl GrammarSession {
         let name = self.path.to_string_lossy().into_owned();
         let input = crate::driver::Input::Path(self.path.clone());
         let job = model::job(input, &name, &defines, self.step, false);
-        match model::build(&job) {
+        let (built, sources) = model::build_reading(&job);
+        // None read (the root file is unreadable): the last build's, as
+        // a fix may come in any of them.
+        if !sources.is_empty() {
+            self.sources = sources;
+        }
+        self.watch();
+        match built {
             Ok((m, g)) => {
                 self.length = g.derivation_length();
                 self.model = Some(m);
@@ -89,6 +119,17 @@ impl GrammarSession {
             }
         }
         self.relative_paths();
+    }
+
+    /// Tells the watcher the root file and the last build's sources
+    /// (where they cannot be watched, saves are not seen: nothing to tell
+    /// the page).
+    fn watch(&self) {
+        if let Some(w) = &self.watcher {
+            let mut files = self.sources.clone();
+            files.push(self.path.clone());
+            let _ = w.watch_files(&files);
+        }
     }
 
     /// Diagnostics name files relative to the opened folder, as the page

@@ -194,9 +194,13 @@ fn route(
             let Some(rel) = rel else {
                 return text(400, "say which file: {\"path\": \"name.toml\"}");
             };
-            match open_file(&sh.root, &rel) {
+            // Under the session's lock: the watcher thread cannot rebuild
+            // the old grammar (and tell the watcher its files) meanwhile.
+            let mut session = lock(&sh.session);
+            match open_file(&sh.root, &rel, sh.watcher.as_ref()) {
                 Ok(s) => {
-                    *lock(&sh.session) = s;
+                    *session = s;
+                    drop(session);
                     sh.bump();
                     json_reply(200, state(sh))
                 }

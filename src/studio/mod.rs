@@ -1,7 +1,10 @@
 //! `lsys studio`: a local web server for the Pailou editor and the live
 //! grammar preview. Input: a folder (and optionally a `.lsys` or graph
 //! `.toml` in it) and an address; output: the page, a JSON API and GLB
-//! models over HTTP, updates pushed as server-sent events.
+//! models over HTTP, updates pushed as server-sent events. In grammar mode
+//! a save of a file the grammar read rebuilds the model: the driver's file
+//! watcher ([`crate::driver::Watcher`], the one `lsys watch` uses), told
+//! the files by every build before it reads them.
 //!
 //! The server is synchronous (tiny_http, one thread per request) like the
 //! rest of the crate. It binds to loopback unless told otherwise, answers
@@ -14,12 +17,13 @@ mod http;
 mod model;
 mod pailou;
 mod safety;
-mod watch;
 
 use std::net::SocketAddr;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::Duration;
+
+use crate::driver::{Change, Watcher};
 
 pub use grammar::{defines_of, Define, GrammarSession};
 pub use model::Model;
@@ -102,6 +106,9 @@ pub(crate) struct Shared {
     pub version: Mutex<u64>,
     pub changed: Condvar,
     pub stopped: Mutex<bool>,
+    /// Grammar mode's watcher (`None`: the system's could not be made;
+    /// saves then wait for the page's next change).
+    pub watcher: Option<Arc<Watcher>>,
 }
 
 impl Shared {
@@ -124,7 +131,16 @@ pub fn default_assets() -> PathBuf {
 
 /// Opens `config.path` and starts serving; returns once listening.
 pub fn start(config: Config) -> Result<Handle, String> {
-    let (root, session) = open_path(config.path.as_deref())?;
+    // Made before the first session reads its grammar: a save right after
+    // opening is its first change.
+    let watcher = match Watcher::new() {
+        Ok(w) => Some(Arc::new(w)),
+        Err(e) => {
+            eprintln!("lsys: {e}; the page will not follow saves");
+            None
+        }
+    };
+    let (root, session) = open_path(config.path.as_deref(), watcher.as_ref())?;
     let server = tiny_http::Server::http(SocketAddr::new(config.bind, config.port))
         .map_err(|e| format!("cannot listen on {}:{}: {e}", config.bind, config.port))?;
     let addr = server
@@ -153,14 +169,17 @@ pub fn start(config: Config) -> Result<Handle, String> {
         version: Mutex::new(1),
         changed: Condvar::new(),
         stopped: Mutex::new(false),
+        watcher,
     });
     let server = Arc::new(server);
-    let watcher = shared.clone();
-    std::thread::Builder::new()
-        .name("studio-watch".into())
-        .stack_size(crate::driver::WORKER_STACK)
-        .spawn(move || watch(&watcher))
-        .map_err(|e| e.to_string())?;
+    if let Some(w) = shared.watcher.clone() {
+        let sh = shared.clone();
+        std::thread::Builder::new()
+            .name("studio-watch".into())
+            .stack_size(crate::driver::WORKER_STACK)
+            .spawn(move || watch(&sh, &w))
+            .map_err(|e| e.to_string())?;
+    }
     let (s, sh) = (server.clone(), shared.clone());
     let thread = std::thread::Builder::new()
         .name("studio-accept".into())
@@ -175,7 +194,10 @@ pub fn start(config: Config) -> Result<Handle, String> {
 }
 
 /// The folder and first session for a path from the command line.
-fn open_path(path: Option<&Path>) -> Result<(PathBuf, Session), String> {
+fn open_path(
+    path: Option<&Path>,
+    watcher: Option<&Arc<Watcher>>,
+) -> Result<(PathBuf, Session), String> {
     let path = path.unwrap_or(Path::new("."));
     let full = path
         .canonicalize()
@@ -196,11 +218,16 @@ fn open_path(path: Option<&Path>) -> Result<(PathBuf, Session), String> {
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    Ok((root.clone(), open_file(&root, &name)?))
+    Ok((root.clone(), open_file(&root, &name, watcher)?))
 }
 
-/// A session for `rel` (a graph `.toml` or a grammar), inside `root`.
-pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
+/// A session for `rel` (a graph `.toml` or a grammar), inside `root`; a
+/// grammar tells `watcher` its files.
+pub(crate) fn open_file(
+    root: &Path,
+    rel: &str,
+    watcher: Option<&Arc<Watcher>>,
+) -> Result<Session, String> {
     let full = confine(root, rel).map_err(|e| e.to_string())?;
     if rel.ends_with(".toml") {
         let text = std::fs::read_to_string(&full).map_err(|e| format!("cannot read {rel}: {e}"))?;
@@ -217,16 +244,21 @@ pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
                 return Err(format!("{e}; {help}"));
             }
         }
+        // Pailou mode follows no files.
+        if let Some(w) = watcher {
+            let _ = w.watch_files(&[]);
+        }
         Ok(Session::Pailou(pailou::PailouSession::open(
             rel,
             &text,
             Some(rel.to_string()),
         )))
     } else if full.is_file() {
-        Ok(Session::Grammar(grammar::GrammarSession::open(
+        Ok(Session::Grammar(grammar::GrammarSession::open_watched(
             root.to_path_buf(),
             full,
             rel.to_string(),
+            watcher.cloned(),
         )))
     } else {
         Err(format!(
@@ -235,21 +267,23 @@ pub(crate) fn open_file(root: &Path, rel: &str) -> Result<Session, String> {
     }
 }
 
-/// Grammar mode's watcher thread: rebuilds when the folder no longer
-/// matches the snapshot the session took before its last read.
-fn watch(shared: &Shared) {
+/// Grammar mode's watcher thread: rebuilds when one of the files the
+/// grammar session gave `watcher` changes (it gives them before each
+/// build reads them, so a save during a build is the next change). Looks
+/// whether the server stopped every [`STOP_CHECK`].
+fn watch(shared: &Shared, watcher: &Watcher) {
     loop {
-        std::thread::sleep(Duration::from_millis(150));
+        let change = watcher.wait_for_change(Some(STOP_CHECK));
         if *lock(&shared.stopped) {
             return;
         }
-        let root_file = match &*lock(&shared.session) {
-            Session::Grammar(g) => g.path.clone(),
-            _ => continue,
-        };
-        let now = watch::Snapshot::take(&shared.root, &root_file);
+        match change {
+            Change::Changed => {}
+            Change::TimedOut => continue,
+            Change::Closed => return,
+        }
         let rebuilt = match &mut *lock(&shared.session) {
-            Session::Grammar(g) if g.path == root_file && g.seen != now => {
+            Session::Grammar(g) => {
                 g.rebuild();
                 true
             }
@@ -260,3 +294,7 @@ fn watch(shared: &Shared) {
         }
     }
 }
+
+/// How long the watcher thread waits before it looks whether the server
+/// stopped.
+const STOP_CHECK: Duration = Duration::from_millis(150);

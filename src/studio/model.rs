@@ -2,6 +2,8 @@
 //! GLB bytes the 3D view loads, the structural check's problems with the
 //! parts they name, and diagnostics as JSON (file:line:col, code, text).
 
+use std::path::PathBuf;
+
 use miette::Diagnostic;
 use serde_json::{json, Value};
 
@@ -48,7 +50,27 @@ pub fn for_page(job: Job) -> Job {
 /// Runs `job` (warnings and progress are the page's to show, from the
 /// result); the model and its grammar.
 pub fn build(job: &Job) -> Result<(Model, Grammar), Diagnostics> {
-    let done = driver::run(job, &mut |_| {}).map_err(|f| f.diagnostics())?;
+    build_reading(job).0
+}
+
+/// [`build`], and the files the grammar was read from (root, includes,
+/// view and function files; as far as it was read when it failed, none
+/// when it could not be read), for the watcher.
+pub fn build_reading(job: &Job) -> (Result<(Model, Grammar), Diagnostics>, Vec<PathBuf>) {
+    match driver::run(job, &mut |_| {}) {
+        Ok(mut done) => {
+            let sources = std::mem::take(&mut done.sources);
+            (Ok(model_of(done)), sources)
+        }
+        Err(mut f) => {
+            let sources = std::mem::take(&mut f.sources);
+            (Err(f.diagnostics()), sources)
+        }
+    }
+}
+
+/// The page's model of a finished job, and its grammar.
+fn model_of(done: driver::Done) -> (Model, Grammar) {
     let problems = done
         .problems
         .iter()
@@ -61,7 +83,7 @@ pub fn build(job: &Job) -> Result<(Model, Grammar), Diagnostics> {
         problems,
         scene: done.scene,
     };
-    Ok((model, done.grammar))
+    (model, done.grammar)
 }
 
 fn parts_of(p: &Problem) -> Vec<String> {
