@@ -183,6 +183,15 @@ fn build_component(opts: &BuildOptions, w: &mesh::Wanted) -> SceneOrDiagnostics 
         .map_err(|e| crate::diag::render_plain(&e))
 }
 
+/// The grammar components of a build with `opts`, compiled and built by
+/// this crate's own pipeline (guided scenes mesh their seeds with it).
+pub fn grammar_components(opts: &BuildOptions) -> impl mesh::GrammarComponents + '_ {
+    SubGrammars {
+        opts,
+        built: HashMap::new(),
+    }
+}
+
 /// Grammar components built by this crate's own pipeline, with the outer
 /// build's options (see [`BuildOptions::for_component`]).
 struct SubGrammars<'a> {

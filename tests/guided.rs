@@ -593,6 +593,7 @@ fn each_seed_places_the_components_of_its_own_grammar() {
         false,
         &search,
         &lsys::internals::mesh::MeshOptions::default(),
+        &mut lsys::internals::mesh::NoGrammars,
     )
     .unwrap();
     let counts = scene.instance_counts();
@@ -634,4 +635,45 @@ fn queries_stand_where_the_homomorphism_draws_them() {
     let o = run(&l);
     // β 180: the closest point is straight behind the heading.
     assert_eq!(o.seeds[0].string, "A ?DG(1,4,180,1,0)");
+}
+
+/// A seed's grammar may place a grammar component (`~TS`: the standard
+/// library's side Toukung, a whole build of its own), as a grammar built
+/// alone may: the scene has its instances and the Toukung's parts.
+#[test]
+fn a_seed_places_a_grammar_component() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    w("g.lsys", "axiom: F(1) ~TS(1)\n");
+    w(
+        "scene.toml",
+        "steps = 1\n\
+         [[guide]]\nname = \"a\"\ngrammar = \"g.lsys\"\npoints = [[0, 0], [4, 0], [4, 4], [0, 4]]\n\
+         [[seeds]]\nguide = \"a\"\nposition = [2, 1]\nheading = 90\n",
+    );
+    let job = lsys::driver::SceneJob {
+        path: dir.path().join("scene.toml"),
+        options: lsys::Grammar::options().define("TS.NTL", 2),
+        guides: false,
+        output: lsys::driver::Output::Bytes {
+            format: lsys::driver::Format::Glb,
+            picture: Default::default(),
+        },
+    };
+    let done = lsys::driver::run_scene(&job).unwrap_or_else(|f| panic!("{}", f.diagnostics()));
+    let bytes = done.bytes.unwrap();
+    let glb = gltf::Gltf::from_slice(&bytes).unwrap();
+    let names: Vec<String> = glb
+        .nodes()
+        .filter_map(|n| n.name().map(str::to_string))
+        .collect();
+    assert!(
+        names.iter().any(|n| n.starts_with("TS#")),
+        "no placement of TS: {names:?}"
+    );
+    assert!(
+        done.triangles > 100,
+        "the Toukung was meshed: {}",
+        done.triangles
+    );
 }

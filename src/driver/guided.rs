@@ -59,8 +59,16 @@ pub fn run_scene(job: &SceneJob) -> Result<SceneDone, Failure> {
     let t2 = Instant::now();
     let mut search = opts.components.clone();
     search.grammar_dir = job.path.parent().map(PathBuf::from);
-    let scene = guided::build::scene(&loaded, &outcome, job.guides, &search, &opts.mesh)
-        .map_err(|e| fail(Box::new(e)))?;
+    let mut grammars = crate::build::grammar_components(opts);
+    let scene = guided::build::scene(
+        &loaded,
+        &outcome,
+        job.guides,
+        &search,
+        &opts.mesh,
+        &mut grammars,
+    )
+    .map_err(|e| fail(Box::new(e)))?;
     let (written, bytes) = write_output(&scene, &job.output, &[])?;
     Ok(SceneDone {
         seeds: outcome.seeds.len(),

@@ -14,28 +14,15 @@ use crate::turtle::drawing::Drawing;
 pub const GUIDE_COLOUR: u32 = 1;
 pub const LINK_COLOUR: u32 = 4;
 
-struct NoGrammars;
-
-impl mesh::GrammarComponents for NoGrammars {
-    fn scene(
-        &mut self,
-        name: &str,
-        _input: &crate::load::Input,
-        _search: &ComponentSearch,
-    ) -> Result<Scene, String> {
-        Err(format!(
-            "grammar component `{name}` is not available in a guided scene"
-        ))
-    }
-}
-
-/// Meshes `o` (and the overlay).
+/// Meshes `o` (and the overlay); the grammar components its seeds place
+/// (`~TM`: a grammar of their own) are asked of `grammars`.
 pub fn scene(
     l: &Loaded,
     o: &Outcome,
     overlay: bool,
     search: &ComponentSearch,
     opts: &MeshOptions,
+    grammars: &mut dyn mesh::GrammarComponents,
 ) -> Result<Scene, MeshError> {
     let first = l.guide_grammar.first().copied().unwrap_or(0);
     let mut d = o.drawing();
@@ -67,10 +54,10 @@ pub fn scene(
         let o = draw::overlay(&l.spec, width, GUIDE_COLOUR, LINK_COLOUR);
         d.chains.extend(o.chains);
     }
-    let build = |grammar: usize, d: &Drawing| {
+    let mut build = |grammar: usize, d: &Drawing| {
         let program = &l.grammars[grammar].program;
         let palette = Palette::new(&program.turtle.palette);
-        mesh::assemble_scene(program, d, &palette, search, opts, &mut NoGrammars)
+        mesh::assemble_scene(program, d, &palette, search, opts, grammars)
     };
     let mut scene = build(first, &d)?;
     for (grammar, d) in by_grammar.iter().filter(|(_, d)| !d.placements.is_empty()) {
