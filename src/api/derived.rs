@@ -4,11 +4,8 @@
 use std::fmt;
 use std::sync::Arc;
 
-use super::grammar::Grammar;
 use crate::derive::{ModuleStore, NumberFormat, NumberStyle};
-use crate::diag::Diagnostics;
 use crate::pipeline::Compilation;
-use crate::simulation::Simulation;
 
 /// The string of one derivation step. `Display` prints it as `lsys derive`
 /// does: modules separated by one space, parameters as `A(1,2.5)` with the
@@ -78,76 +75,5 @@ impl fmt::Display for Derived {
 impl fmt::Debug for Derived {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "Derived(step {}: {self})", self.step)
-    }
-}
-
-/// The axiom and the string after each step ([`Grammar::steps`]); `End:`
-/// runs with the last. After an error the iterator ends.
-pub struct Steps<'g> {
-    grammar: &'g Grammar,
-    sim: Option<Simulation<'g>>,
-    /// An error to hand out before ending.
-    pending: Option<Diagnostics>,
-    target: u32,
-    started: bool,
-}
-
-/// A short form: the grammar's name, the last step and whether it ended.
-impl std::fmt::Debug for Steps<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Steps")
-            .field("grammar", &self.grammar.name())
-            .field("to", &self.target)
-            .field("ended", &self.sim.is_none())
-            .finish()
-    }
-}
-
-impl<'g> Steps<'g> {
-    pub(crate) fn new(grammar: &'g Grammar, target: u32) -> Steps<'g> {
-        let (sim, pending) = match grammar.simulation(target) {
-            Ok(s) => (Some(s), None),
-            Err(e) => (None, Some(e)),
-        };
-        Steps {
-            grammar,
-            sim,
-            pending,
-            target,
-            started: false,
-        }
-    }
-}
-
-impl Iterator for Steps<'_> {
-    type Item = Result<Derived, Diagnostics>;
-
-    fn next(&mut self) -> Option<Self::Item> {
-        if let Some(e) = self.pending.take() {
-            self.sim = None;
-            return Some(Err(e));
-        }
-        let sim = self.sim.as_mut()?;
-        if !self.started {
-            self.started = true;
-            if self.target == 0 {
-                // No step follows: End: runs after the axiom.
-                self.pending = sim.finish().err().map(Diagnostics::one);
-            }
-            return Some(Ok(self.grammar.derived(sim.current().clone(), 0)));
-        }
-        if sim.step_number() >= self.target {
-            self.sim = None;
-            return None;
-        }
-        Some(match sim.step() {
-            Ok(()) => Ok(self
-                .grammar
-                .derived(sim.current().clone(), sim.step_number())),
-            Err(e) => {
-                self.sim = None;
-                Err(Diagnostics::one(e))
-            }
-        })
     }
 }

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::derived::{Derived, Steps};
+use super::derived::Derived;
 use super::options::GrammarOptions;
 use super::scene::Scene;
 use crate::diag::Diagnostics;
@@ -93,17 +93,6 @@ impl Grammar {
         let mut sim = self.simulation(steps)?;
         sim.run(&mut |_, _| {}).map_err(Diagnostics::one)?;
         Ok(self.derived(sim.current().clone(), sim.step_number()))
-    }
-
-    /// The axiom and the string after each step, up to the file's
-    /// `derivation length:`.
-    pub fn steps(&self) -> Steps<'_> {
-        self.steps_to(self.derivation_length())
-    }
-
-    /// The axiom and the string after each step, up to `steps`.
-    pub fn steps_to(&self, steps: u32) -> Steps<'_> {
-        Steps::new(self, steps)
     }
 
     /// Derives `steps` steps and builds the model: the homomorphism, the

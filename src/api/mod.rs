@@ -14,13 +14,15 @@ mod derived;
 mod grammar;
 mod options;
 mod scene;
+mod steps;
 
 pub use derivation::{Derivation, Drawn, Numbers};
-pub use derived::{Derived, Steps};
+pub use derived::Derived;
 pub use grammar::Grammar;
 pub use options::GrammarOptions;
 pub use scene::Scene;
 pub(crate) use scene::WriteFailed;
+pub use steps::Steps;
 
 #[cfg(test)]
 mod tests;

@@ -3,8 +3,6 @@
 
 use std::io::{self, BufWriter, Write};
 
-use miette::Diagnostic;
-
 use super::args::{CheckArgs, Command, Common, DeriveArgs};
 use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK};
 use crate::driver;
@@ -43,10 +41,6 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
             color: repl_color,
         }),
     }
-}
-
-pub(super) fn report(d: &dyn Diagnostic, color: bool) {
-    eprint!("{}", driver::render_diagnostic(d, color));
 }
 
 /// Options with `defines` set, in order.

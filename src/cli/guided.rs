@@ -5,7 +5,8 @@
 use std::path::{Path, PathBuf};
 
 use super::args::{ModelArgs, PictureArgs};
-use super::model::{grammar_options, picture, write_failed};
+use super::options::{grammar_options, picture};
+use super::report::write_failed;
 use super::EX_OK;
 use crate::driver::{self, Format, Output, SceneJob};
 

@@ -6,6 +6,8 @@ mod args;
 mod commands;
 mod guided;
 mod model;
+mod options;
+mod report;
 #[cfg(feature = "studio")]
 mod studio;
 mod watch;

@@ -5,17 +5,12 @@
 
 use std::path::{Path, PathBuf};
 
-use super::args::{
-    BuildArgs, DeriveRun, LookArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs,
-    SourceArgs,
-};
-use super::commands::report;
-use super::{EX_DATAERR, EX_IOERR, EX_NOINPUT, EX_OK, EX_USAGE};
-use crate::driver::{
-    self, Check, Event, Format, Job, Output, Pailou, PailouError, PailouType, Reason, TomlFile,
-};
+use super::args::{BuildArgs, ModelArgs, PailouArgs, PailouTypeArg, PictureArgs, RenderArgs};
+use super::options::{grammar_options, picture};
+use super::report::{failed, pailou_failed, report};
+use super::{EX_DATAERR, EX_OK, EX_USAGE};
+use crate::driver::{self, Check, Event, Format, Job, Output, Pailou, PailouType, TomlFile};
 use crate::progress::Progress;
-use crate::GrammarOptions;
 
 pub fn build_cmd(b: &BuildArgs, color: bool) -> i32 {
     match format_of(&b.output) {
@@ -98,24 +93,6 @@ fn build_toml(m: &ModelArgs, out: &Path, pic: &PictureArgs, format: Format, colo
     }
 }
 
-/// Prints why a Pailou could not be read; the exit code.
-fn pailou_failed(e: PailouError, color: bool) -> i32 {
-    match e {
-        PailouError::Graph(e) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        e @ PailouError::Read { .. } => {
-            eprintln!("lsys: {e}");
-            EX_NOINPUT
-        }
-        e @ PailouError::Style { .. } => {
-            eprintln!("lsys: {e}");
-            EX_USAGE
-        }
-    }
-}
-
 pub fn pailou_cmd(p: &PailouArgs, color: bool) -> i32 {
     let pailou = match &p.graph {
         Some(path) => Pailou::graph_file(path, p.relations.as_deref()),
@@ -183,30 +160,6 @@ pub(super) fn model_job(m: &ModelArgs) -> Job {
     Job::for_arg(&m.common.file, options).check(check)
 }
 
-/// The options of a build from the command line's flags.
-pub(super) fn grammar_options(
-    defines: &[(String, String)],
-    source: Option<&SourceArgs>,
-    run: &DeriveRun,
-    look: &LookArgs,
-) -> GrammarOptions {
-    let mut o = GrammarOptions::default();
-    for (name, value) in defines {
-        o = o.define(name, value);
-    }
-    if let Some(s) = source {
-        o = s.apply(o);
-    }
-    o = o
-        .steps(run.steps)
-        .max_modules(run.max_modules)
-        .max_params(run.max_params);
-    if let Some(seed) = run.seed {
-        o = o.seed(seed);
-    }
-    look.apply(o)
-}
-
 /// The format of `lsys build`'s output, or the usage error to print.
 pub(super) fn format_of(out: &Path) -> Result<Format, String> {
     Format::of(out).ok_or_else(|| {
@@ -215,26 +168,6 @@ pub(super) fn format_of(out: &Path) -> Result<Format, String> {
             out.display()
         )
     })
-}
-
-/// Reports an output that was not written; the exit code (65 when the
-/// exporter refused the model, 74 when the file could not be written).
-pub(super) fn write_failed(reason: Reason, color: bool) -> i32 {
-    match reason {
-        Reason::Export(e) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        Reason::Write { path, error } => {
-            eprintln!("lsys: cannot write {}: {error}", path.display());
-            EX_IOERR
-        }
-        Reason::Scene(e) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        other => failed(other, "", color),
-    }
 }
 
 /// What a successful build prints on standard output.
@@ -309,39 +242,5 @@ pub(super) fn build_once(
             sources: (!f.sources.is_empty()).then_some(f.sources),
             code: failed(f.reason, &job.name, color),
         },
-    }
-}
-
-/// Prints why a job failed; the exit code.
-fn failed(reason: Reason, name: &str, color: bool) -> i32 {
-    match reason {
-        Reason::Input(d) => {
-            eprint!("{}", d.render(color));
-            EX_NOINPUT
-        }
-        Reason::Grammar(d) => {
-            let errors = d.error_count();
-            eprint!("{}", d.render(color));
-            eprintln!(
-                "{}: {errors} error{}",
-                name,
-                if errors == 1 { "" } else { "s" }
-            );
-            EX_DATAERR
-        }
-        Reason::Build(e) => {
-            report(e.as_ref(), color);
-            EX_DATAERR
-        }
-        other => write_failed(other, color),
-    }
-}
-
-pub(super) fn picture(pic: &PictureArgs) -> driver::Picture {
-    driver::Picture {
-        view: pic.view,
-        width: pic.size.0,
-        height: pic.size.1,
-        ..Default::default()
     }
 }
