@@ -7,7 +7,7 @@ use std::process::Command;
 
 use lsys::internals::environment::collision::{Collision, Settings as CollisionSettings};
 use lsys::internals::environment::light::{Light, Settings as LightSettings};
-use lsys::internals::environment::{Program, Query};
+use lsys::internals::environment::{EnvironmentalProgram, Query};
 
 fn query(params: &[f64], pos: [f32; 3]) -> Query {
     Query {

@@ -651,7 +651,7 @@ fn a_seed_places_a_grammar_component() {
          [[guide]]\nname = \"a\"\ngrammar = \"g.lsys\"\npoints = [[0, 0], [4, 0], [4, 4], [0, 4]]\n\
          [[seeds]]\nguide = \"a\"\nposition = [2, 1]\nheading = 90\n",
     );
-    let job = lsys::driver::SceneJob {
+    let job = lsys::driver::GuidedJob {
         path: dir.path().join("scene.toml"),
         options: lsys::Grammar::options().define("TS.NTL", 2),
         guides: false,
@@ -660,7 +660,7 @@ fn a_seed_places_a_grammar_component() {
             picture: Default::default(),
         },
     };
-    let done = lsys::driver::run_scene(&job).unwrap_or_else(|f| panic!("{}", f.diagnostics()));
+    let done = lsys::driver::run_guided(&job).unwrap_or_else(|f| panic!("{}", f.diagnostics()));
     let bytes = done.bytes.unwrap();
     let glb = gltf::Gltf::from_slice(&bytes).unwrap();
     let names: Vec<String> = glb

@@ -8,7 +8,7 @@ use super::args::{ModelArgs, PictureArgs};
 use super::options::{grammar_options, picture};
 use super::report::write_failed;
 use super::EX_OK;
-use crate::driver::{self, Format, Output, SceneJob};
+use crate::driver::{self, Format, GuidedJob, Output};
 
 /// Runs, meshes and writes a guided scene; the exit code.
 pub fn build_scene(
@@ -18,7 +18,7 @@ pub fn build_scene(
     format: Format,
     color: bool,
 ) -> i32 {
-    let job = SceneJob {
+    let job = GuidedJob {
         path: PathBuf::from(&m.common.file),
         options: grammar_options(&m.common.define, Some(&m.common.source), &m.run, &m.look),
         guides: m.look.guides,
@@ -28,7 +28,7 @@ pub fn build_scene(
             picture: picture(pic),
         },
     };
-    match driver::run_scene(&job) {
+    match driver::run_guided(&job) {
         Ok(done) => {
             if m.look.stats {
                 println!("{}", done.stats());

@@ -24,7 +24,7 @@ pub(super) fn write_failed(reason: Reason, color: bool) -> i32 {
             eprintln!("lsys: cannot write {}: {error}", path.display());
             EX_IOERR
         }
-        Reason::Scene(e) => {
+        Reason::Guided(e) => {
             report(e.as_ref(), color);
             EX_DATAERR
         }

@@ -1,6 +1,6 @@
 //! A guided scene's job (docs/guided.md): a scene file (`FILE.toml`) and
 //! options -> every seed run along its guides, meshed (with the guides and
-//! links drawn, if asked) and written -> [`SceneDone`] with its figures,
+//! links drawn, if asked) and written -> [`GuidedDone`] with its figures,
 //! or a [`Failure`].
 
 use std::path::PathBuf;
@@ -14,7 +14,7 @@ use crate::guided;
 
 /// One guided scene to run and write.
 #[derive(Clone, Debug)]
-pub struct SceneJob {
+pub struct GuidedJob {
     pub path: PathBuf,
     /// Defines, include folders, seed, steps, component folders, facets;
     /// the steps and seed given here override the scene's.
@@ -25,7 +25,7 @@ pub struct SceneJob {
 }
 
 /// A guided scene run, meshed and written.
-pub struct SceneDone {
+pub struct GuidedDone {
     pub seeds: usize,
     pub messages: usize,
     pub triangles: usize,
@@ -40,9 +40,9 @@ pub struct SceneDone {
 }
 
 /// Runs, meshes and writes the guided scene of `job`.
-pub fn run_scene(job: &SceneJob) -> Result<SceneDone, Failure> {
+pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
     let fail = |e: Box<dyn miette::Diagnostic + Send + Sync>| Failure {
-        reason: Reason::Scene(e),
+        reason: Reason::Guided(e),
         sources: Vec::new(),
     };
     let opts = &job.options.build;
@@ -70,7 +70,7 @@ pub fn run_scene(job: &SceneJob) -> Result<SceneDone, Failure> {
     )
     .map_err(|e| fail(Box::new(e)))?;
     let (written, bytes) = write_output(&scene, &job.output, &[])?;
-    Ok(SceneDone {
+    Ok(GuidedDone {
         seeds: outcome.seeds.len(),
         messages: outcome.messages.len(),
         triangles: scene.triangle_count(),
@@ -86,7 +86,7 @@ pub fn run_scene(job: &SceneJob) -> Result<SceneDone, Failure> {
     })
 }
 
-impl SceneDone {
+impl GuidedDone {
     /// The `--stats` figures of a guided scene.
     pub fn stats(&self) -> serde_json::Value {
         let path = self

@@ -25,7 +25,7 @@ mod toml_file;
 #[cfg(feature = "cli")]
 mod watch;
 
-pub use guided::{run_scene, SceneDone, SceneJob};
+pub use guided::{run_guided, GuidedDone, GuidedJob};
 pub use job::{grammar_dir, Check, Job, Output};
 pub use pailou::{Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};

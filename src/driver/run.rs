@@ -71,7 +71,7 @@ pub enum Reason {
     /// Deriving, interpreting or meshing failed.
     Build(Box<BuildError>),
     /// A guided scene did not read, or one of its seeds failed.
-    Scene(Box<dyn Diagnostic + Send + Sync>),
+    Guided(Box<dyn Diagnostic + Send + Sync>),
     /// The exporter refused the model (too large for the format, ...).
     Export(Box<dyn Diagnostic + Send + Sync>),
     /// The output file could not be written; nothing was.
@@ -97,7 +97,7 @@ impl Failure {
         match self.reason {
             Reason::Input(d) | Reason::Grammar(d) => d,
             Reason::Build(e) => Diagnostics::one(*e),
-            Reason::Export(e) | Reason::Scene(e) => {
+            Reason::Export(e) | Reason::Guided(e) => {
                 Diagnostics::new(vec![miette::Report::new_boxed(e)])
             }
             Reason::Write { path, error } => Diagnostics::one(crate::api::WriteFailed {

@@ -19,7 +19,7 @@ use miette::SourceSpan;
 
 use super::communication::{lines, number};
 use super::error::EnvironmentError;
-use super::{Program, Query, Reply};
+use super::{EnvironmentalProgram, Query, Reply};
 
 /// A cell of the grid.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -226,7 +226,7 @@ impl Clover {
     }
 }
 
-impl Program for Clover {
+impl EnvironmentalProgram for Clover {
     fn respond(&mut self, queries: &[Query]) -> Vec<Reply> {
         if self.settings.remove_old_leaves {
             self.cells.iter_mut().for_each(|c| c.objects = 0);

@@ -10,7 +10,7 @@ use miette::SourceSpan;
 
 use super::communication::{lines, number, switch};
 use super::error::EnvironmentError;
-use super::{Program, Query, Reply};
+use super::{EnvironmentalProgram, Query, Reply};
 
 /// `radius:` (0 when not given: only coincident queries collide) and
 /// `3d case:` (off when not given).
@@ -52,7 +52,7 @@ impl Collision {
     }
 }
 
-impl Program for Collision {
+impl EnvironmentalProgram for Collision {
     fn respond(&mut self, queries: &[Query]) -> Vec<Reply> {
         let r2 = self.settings.radius * self.settings.radius;
         // (vigor, group, point) of the queries the program stores: those

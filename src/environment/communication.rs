@@ -1,5 +1,5 @@
 //! A cpfg communication file (`.e`) and its program's specification file
-//! in; the [`Environment`] a simulation runs out: which program answers
+//! in; the [`EnvironmentSpec`] a simulation runs out: which program answers
 //! `?E`, with which settings, and which turtle fields it is sent in which
 //! format. Unknown programs and unreadable values are diagnostics that
 //! point at the line.
@@ -8,7 +8,7 @@ use miette::SourceSpan;
 
 use super::error::EnvironmentError;
 use super::format::Conversion;
-use super::{clover, collision, density, light, Program};
+use super::{clover, collision, density, light, EnvironmentalProgram};
 use crate::load::EnvironmentFiles;
 use crate::source::SourceMap;
 
@@ -59,16 +59,16 @@ pub enum Settings {
 /// An environment as configured by a model's files: what a simulation
 /// needs to run environment passes.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Environment {
+pub struct EnvironmentSpec {
     pub settings: Settings,
     /// The turtle fields each query carries.
     pub fields: Vec<Field>,
 }
 
-impl Environment {
+impl EnvironmentSpec {
     /// A fresh program with these settings (programs keep no state
     /// between passes, but each simulation gets its own).
-    pub fn program(&self) -> Box<dyn Program> {
+    pub fn program(&self) -> Box<dyn EnvironmentalProgram> {
         match &self.settings {
             Settings::Collision(s) => Box::new(collision::Collision::new(s.clone())),
             Settings::Light(s) => Box::new(light::Light::new(s.clone())),
@@ -113,11 +113,11 @@ pub(super) fn lines(text: &str) -> Vec<Line<'_>> {
 }
 
 /// Reads the communication file `communication` and the specification
-/// file `specification` of `sources` into an [`Environment`].
+/// file `specification` of `sources` into an [`EnvironmentSpec`].
 pub fn configure(
     sources: &SourceMap,
     files: &EnvironmentFiles,
-) -> Result<Environment, Box<EnvironmentError>> {
+) -> Result<EnvironmentSpec, Box<EnvironmentError>> {
     let (communication, specification) = (files.communication, files.specification);
     let file = sources.get(communication);
     let text = file.text.as_str();
@@ -177,7 +177,7 @@ pub fn configure(
             }))
         }
     };
-    Ok(Environment { settings, fields })
+    Ok(EnvironmentSpec { settings, fields })
 }
 
 /// The first number of `value` (cpfg reads values with `atof`, which

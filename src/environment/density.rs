@@ -15,7 +15,7 @@ use miette::SourceSpan;
 
 use super::communication::lines;
 use super::error::EnvironmentError;
-use super::{Program, Query, Reply};
+use super::{EnvironmentalProgram, Query, Reply};
 
 /// The specification file's settings (both off by default).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -83,7 +83,7 @@ impl Field {
     }
 }
 
-impl Program for Density {
+impl EnvironmentalProgram for Density {
     fn respond(&mut self, queries: &[Query]) -> Vec<Reply> {
         let mut field = Field {
             parts: Vec::new(),

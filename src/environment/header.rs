@@ -1,5 +1,5 @@
 //! The `environment:` header of a `.lsys` file: `NAME` or `NAME(key:
-//! value, ...)` in; the [`Environment`] it selects out. Names are the
+//! value, ...)` in; the [`EnvironmentSpec`] it selects out. Names are the
 //! programs' own (`collision` or `honda81`, `light` or `chiba`) and keys
 //! are those of the program's specification file (`radius`, `3d case`,
 //! `transmittance`, `source direction`, ...), so a cpfg model's settings
@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use miette::{NamedSource, SourceSpan};
 
-use super::communication::{Environment, Field, FieldKind, Settings};
+use super::communication::{EnvironmentSpec, Field, FieldKind, Settings};
 use super::error::EnvironmentError;
 use super::{clover, collision, density, light};
 
@@ -31,7 +31,7 @@ pub fn environment_header(
     images: &[(String, crate::load::HeaderImage)],
     src: NamedSource<Arc<String>>,
     span: SourceSpan,
-) -> Result<Environment, Box<EnvironmentError>> {
+) -> Result<EnvironmentSpec, Box<EnvironmentError>> {
     let trimmed = text.trim();
     let (name, args) = match trimmed.split_once('(') {
         Some((n, rest)) => {
@@ -122,5 +122,5 @@ pub fn environment_header(
         conversions: Vec::new(),
     })
     .collect();
-    Ok(Environment { settings, fields })
+    Ok(EnvironmentSpec { settings, fields })
 }

@@ -24,7 +24,7 @@ use miette::SourceSpan;
 
 use super::communication::{lines, number, switch};
 use super::error::EnvironmentError;
-use super::{Program, Query, Reply};
+use super::{EnvironmentalProgram, Query, Reply};
 
 /// The specification file's settings, with the program's defaults.
 #[derive(Clone, Debug, PartialEq)]
@@ -340,7 +340,7 @@ fn chord(pt: [f32; 3], dir: [f32; 3], other: &Sphere, grow: f32) -> f32 {
     }
 }
 
-impl Program for Light {
+impl EnvironmentalProgram for Light {
     fn respond(&mut self, queries: &[Query]) -> Vec<Reply> {
         let s = &self.settings;
         // The spheres: queries with 1 or at least 4 parameters and a

@@ -22,7 +22,7 @@ mod header;
 pub mod light;
 mod sgi;
 
-pub use communication::{configure, Environment, Field};
+pub use communication::{configure, EnvironmentSpec, Field};
 pub use error::EnvironmentError;
 pub use header::environment_header;
 
@@ -51,7 +51,7 @@ pub type Reply = Vec<Option<f64>>;
 /// An environmental program: sees every query of a pass, then answers
 /// (cpfg's "delayed" mode, which every vlab program uses). Answers must
 /// depend only on the queries and their order, never on hashing.
-pub trait Program: Send {
+pub trait EnvironmentalProgram: Send {
     /// One reply per query, in the queries' order.
     fn respond(&mut self, queries: &[Query]) -> Vec<Reply>;
 }

@@ -328,7 +328,7 @@ pub struct Program {
     /// `~NAME` draws one.
     pub cpfg_surfaces: Vec<crate::load::CpfgSurface>,
     /// The environment that answers `?E` (a cpfg model's `-e FILE.e`).
-    pub environment: Option<crate::environment::Environment>,
+    pub environment: Option<crate::environment::EnvironmentSpec>,
 }
 
 /// A table of constants: `#define dec[1..3, 1..2, 0..7] {...}`.

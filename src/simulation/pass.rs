@@ -7,16 +7,16 @@
 use super::environment::{Environment, StepContext};
 use crate::derive::{DeriveError, ModuleStore};
 use crate::environment::communication::FieldKind;
-use crate::environment::{self, Program, Query};
+use crate::environment::{self, EnvironmentalProgram, Query};
 
 /// Runs a model's environmental program before every step.
 pub struct EnvironmentPass {
-    env: environment::Environment,
-    program: Box<dyn Program>,
+    env: environment::EnvironmentSpec,
+    program: Box<dyn EnvironmentalProgram>,
 }
 
 impl EnvironmentPass {
-    pub fn new(env: &environment::Environment) -> EnvironmentPass {
+    pub fn new(env: &environment::EnvironmentSpec) -> EnvironmentPass {
         EnvironmentPass {
             program: env.program(),
             env: env.clone(),

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use lsys::driver::{self, Format, Job, Output, Pailou, PailouError, PailouType, SceneJob};
+use lsys::driver::{self, Format, GuidedJob, Job, Output, Pailou, PailouError, PailouType};
 use lsys::{Grammar, Message};
 
 fn examples() -> PathBuf {
@@ -85,13 +85,13 @@ fn a_mistake_in_a_graph_has_a_code_and_a_place() {
 
 #[test]
 fn a_guided_scene() {
-    let job = SceneJob {
+    let job = GuidedJob {
         path: examples().join("guided/links.toml"),
         options: Grammar::options(),
         guides: true,
         output: glb(),
     };
-    let done = driver::run_scene(&job).expect("the scene runs");
+    let done = driver::run_guided(&job).expect("the scene runs");
     let bytes = done.bytes.as_deref().expect("bytes were asked for");
     assert_eq!(&bytes[..4], b"glTF");
     let mut stats = done.stats();
