@@ -197,7 +197,6 @@ const REPL_STILL_NAMES: &[&str] = &[
     "build",
     "bytecode",
     "derive",
-    "diag",
     "export",
     "load",
     "mesh",

@@ -5,6 +5,12 @@
 //! document symbols and links, inlay hints, quick fixes and code lenses
 //! with production firing counts. See docs/editors.md.
 //!
+//! Unlike the other front ends, which go through the API and the driver
+//! (`tests/architecture.rs`), the server reaches into the parser, loader
+//! and resolver: it must answer on text that does not compile (hovers,
+//! completions and symbols of a half-typed file), which no API for whole
+//! grammars gives.
+//!
 //! The structure is ruff's and ty's: one synchronous loop (`server.rs`)
 //! owns the open documents (text and version), applies edits in the order
 //! they arrive, analyses a document again only once no message is waiting

@@ -15,7 +15,7 @@ use rustyline::Context;
 use super::commands::{self, Arg, COMMANDS};
 use super::input::needs_more;
 use super::session::Names;
-use crate::export::render::View;
+use crate::driver::View;
 
 /// What to complete at the cursor.
 #[derive(Debug, PartialEq, Eq)]

@@ -26,7 +26,7 @@ impl Session {
         if !errors.is_empty() {
             return Err(errors
                 .iter()
-                .map(|e| crate::diag::render(e, self.color))
+                .map(|e| crate::driver::render_diagnostic(e, self.color))
                 .collect());
         }
         match ast.items.as_slice() {
@@ -179,8 +179,9 @@ warning: rule {n} can never apply: rule {} ({}) comes first and applies wherever
         let (probe, _) = grammar::set_axiom(&text, &modules.replace('\n', " "));
         let comp = self.compile(&source, &probe, &self.overrides)?;
         let mut d = Simulation::new(&comp.program, &comp.compiled, self.opts.clone(), 1)
-            .map_err(|e| crate::diag::render(&e, self.color))?;
-        d.step().map_err(|e| crate::diag::render(&e, self.color))?;
+            .map_err(|e| crate::driver::render_diagnostic(&e, self.color))?;
+        d.step()
+            .map_err(|e| crate::driver::render_diagnostic(&e, self.color))?;
         Ok(show::abbreviate(
             d.current(),
             &comp.program.symbols,

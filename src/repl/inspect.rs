@@ -209,7 +209,7 @@ impl Session {
         };
         let progress = Progress::new(self.progress);
         build::build_string(&g.comp, s, self.pos, &opts, &mut |st| progress.stage(st))
-            .map_err(|e| crate::diag::render(&e, self.color))
+            .map_err(|e| crate::driver::render_diagnostic(&e, self.color))
     }
 
     /// `:stats`.
@@ -256,7 +256,7 @@ impl Session {
         );
         for w in &built.warnings {
             out.push('\n');
-            out.push_str(crate::diag::render(w, self.color).trim_end());
+            out.push_str(crate::driver::render_diagnostic(w, self.color).trim_end());
         }
         Ok(out)
     }
@@ -288,7 +288,7 @@ impl Session {
         let view = match words.next() {
             Some(v) => v
                 .parse::<View>()
-                .map_err(|e| crate::diag::render(&e, self.color))?,
+                .map_err(|e| crate::driver::render_diagnostic(&e, self.color))?,
             None => View::Iso,
         };
         if let Some(extra) = words.next() {
@@ -308,12 +308,12 @@ impl Session {
         let written = write_scene(&built.scene, path, format, &opts);
         drop(progress);
         let bytes = written.map_err(|e| match e {
-            WriteError::Export(d) => crate::diag::render(d.as_ref(), self.color),
+            WriteError::Export(d) => crate::driver::render_diagnostic(d.as_ref(), self.color),
             WriteError::Io(e) => format!("cannot write {}: {e}", path.display()),
         })?;
         let mut out = String::new();
         for w in &built.warnings {
-            out.push_str(&crate::diag::render(w, self.color));
+            out.push_str(&crate::driver::render_diagnostic(w, self.color));
         }
         let _ = write!(
             out,

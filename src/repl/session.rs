@@ -317,7 +317,7 @@ impl Session {
         let mut warnings = String::new();
         for w in &comp.warnings {
             if !old.contains(&w.to_string()) {
-                warnings.push_str(&crate::diag::render(w.as_ref(), self.color));
+                warnings.push_str(&crate::driver::render_diagnostic(w.as_ref(), self.color));
             }
         }
         self.grammar = Some(Grammar {
@@ -444,7 +444,7 @@ impl Session {
     fn derive_to(&mut self, target: u32) -> Result<(), String> {
         let t0 = Instant::now();
         let color = self.color;
-        let render = |e: &dyn miette::Diagnostic| crate::diag::render(e, color);
+        let render = |e: &dyn miette::Diagnostic| crate::driver::render_diagnostic(e, color);
         let Session {
             grammar,
             history,
