@@ -224,6 +224,18 @@ impl Diagnostics {
         Diagnostics::new(vec![miette::Report::new(d)])
     }
 
+    /// One diagnostic already boxed (an exporter's, a guided scene's).
+    pub(crate) fn boxed(d: Box<dyn Diagnostic + Send + Sync>) -> Diagnostics {
+        Diagnostics::new(vec![miette::Report::new_boxed(d)])
+    }
+
+    /// Each of `ds`, in order (warnings handed back beside a result).
+    pub(crate) fn all<D: Diagnostic + Send + Sync + 'static>(
+        ds: impl IntoIterator<Item = D>,
+    ) -> Diagnostics {
+        Diagnostics::new(ds.into_iter().map(miette::Report::new).collect())
+    }
+
     /// The root input could not be read (`d` says why).
     pub fn input(d: impl Diagnostic + Send + Sync + 'static) -> Diagnostics {
         Diagnostics {

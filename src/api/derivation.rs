@@ -9,7 +9,7 @@
 use std::io::{self, Write};
 
 use super::grammar::Grammar;
-use crate::derive::{NumberFormat, NumberStyle};
+use crate::derive::{ModuleStore, NumberFormat, NumberStyle};
 use crate::diag::Diagnostics;
 use crate::simulation::Simulation;
 
@@ -77,14 +77,7 @@ impl Grammar {
     /// options' folders), as `lsys check` reports them; nothing is read
     /// or built.
     pub fn missing_components(&self) -> Diagnostics {
-        let search = &self.options.build.components;
-        Diagnostics::new(
-            search
-                .find_all(&self.comp.program)
-                .into_iter()
-                .map(miette::Report::new)
-                .collect(),
-        )
+        Diagnostics::all(self.options.build.components.find_all(&self.comp.program))
     }
 
     /// Productions, decomposition and homomorphism rules.
@@ -98,13 +91,21 @@ impl Grammar {
         self.comp.program.symbols.len()
     }
 
-    fn number_format(&self, numbers: Numbers) -> NumberFormat {
+    /// Writes `string` as `lsys derive` prints it, parameters as `numbers`
+    /// says (no newline).
+    fn write_string(
+        &self,
+        string: &ModuleStore,
+        numbers: Numbers,
+        out: &mut dyn Write,
+    ) -> io::Result<()> {
         let style = match numbers {
             Numbers::Shortest => NumberStyle::Shortest,
             Numbers::Decimals(n) => NumberStyle::Decimals(n),
             Numbers::Cpfg => NumberStyle::PrintfG,
         };
-        NumberFormat::for_program(&self.comp.program).with_style(style)
+        let fmt = NumberFormat::for_program(&self.comp.program).with_style(style);
+        string.write_string_with(&self.comp.program.symbols, fmt, &mut &mut *out)
     }
 }
 
@@ -138,25 +139,12 @@ impl Derivation<'_> {
 
     /// Depth-limit warnings of the decomposition so far.
     pub fn warnings(&self) -> Diagnostics {
-        Diagnostics::new(
-            self.sim
-                .derivation()
-                .warnings()
-                .iter()
-                .cloned()
-                .map(miette::Report::new)
-                .collect(),
-        )
+        Diagnostics::all(self.sim.derivation().warnings().iter().cloned())
     }
 
     /// Writes the current string (no newline).
     pub fn write_current(&self, numbers: Numbers, out: &mut dyn Write) -> io::Result<()> {
-        let fmt = self.grammar.number_format(numbers);
-        self.sim.current().write_string_with(
-            &self.grammar.comp.program.symbols,
-            fmt,
-            &mut &mut *out,
-        )
+        self.grammar.write_string(self.sim.current(), numbers, out)
     }
 
     /// The string the turtle draws from the current one (the homomorphism
@@ -167,7 +155,7 @@ impl Derivation<'_> {
         Ok(Drawn {
             grammar: self.grammar,
             modules: h.modules,
-            warnings: Diagnostics::new(h.warnings.into_iter().map(miette::Report::new).collect()),
+            warnings: Diagnostics::all(h.warnings),
         })
     }
 }
@@ -175,7 +163,7 @@ impl Derivation<'_> {
 /// The string the turtle draws ([`Derivation::drawn`]).
 pub struct Drawn<'g> {
     grammar: &'g Grammar,
-    modules: crate::derive::ModuleStore,
+    modules: ModuleStore,
     /// Depth warnings of its homomorphism.
     pub warnings: Diagnostics,
 }
@@ -183,8 +171,6 @@ pub struct Drawn<'g> {
 impl Drawn<'_> {
     /// Writes it (no newline).
     pub fn write(&self, numbers: Numbers, out: &mut dyn Write) -> io::Result<()> {
-        let fmt = self.grammar.number_format(numbers);
-        self.modules
-            .write_string_with(&self.grammar.comp.program.symbols, fmt, &mut &mut *out)
+        self.grammar.write_string(&self.modules, numbers, out)
     }
 }

@@ -38,6 +38,14 @@ impl GrammarOptions {
         self
     }
 
+    /// Each of `defines` as [`define`](Self::define), in order (the last
+    /// of a name wins): the command line's `-D`s, a graph's `[defines]`.
+    pub fn defines_from(self, defines: &[(String, String)]) -> Self {
+        defines
+            .iter()
+            .fold(self, |o, (name, value)| o.define(name, value))
+    }
+
     /// The random generator's seed (overrides the file's `seed:`).
     pub fn seed(mut self, seed: u64) -> Self {
         self.build.derive.seed = Some(seed);

@@ -92,14 +92,7 @@ impl Scene {
 
     /// An isometric picture `width` × `height` pixels, as PNG bytes.
     pub fn to_png(&self, width: u32, height: u32) -> Result<Vec<u8>, Diagnostics> {
-        let pic = RenderOptions {
-            view: View::Iso,
-            width,
-            height,
-            ..RenderOptions::default()
-        };
-        pic.validate().map_err(Diagnostics::one)?;
-        self.to_bytes(Format::Png, &pic, "model.mtl")
+        self.to_bytes(Format::Png, &iso(width, height)?, "model.mtl")
     }
 
     fn to_bytes(
@@ -108,8 +101,7 @@ impl Scene {
         pic: &RenderOptions,
         mtl_name: &str,
     ) -> Result<Vec<u8>, Diagnostics> {
-        scene_bytes(&self.built.scene, format, pic, mtl_name)
-            .map_err(|d| Diagnostics::new(vec![miette::Report::new_boxed(d)]))
+        scene_bytes(&self.built.scene, format, pic, mtl_name).map_err(Diagnostics::boxed)
     }
 
     /// Writes a binary glTF file; returns its size in bytes.
@@ -129,23 +121,28 @@ impl Scene {
         width: u32,
         height: u32,
     ) -> Result<u64, Diagnostics> {
-        let pic = RenderOptions {
-            view: View::Iso,
-            width,
-            height,
-            ..RenderOptions::default()
-        };
-        pic.validate().map_err(Diagnostics::one)?;
-        self.write(path.as_ref(), Format::Png, &pic)
+        self.write(path.as_ref(), Format::Png, &iso(width, height)?)
     }
 
     fn write(&self, path: &Path, format: Format, pic: &RenderOptions) -> Result<u64, Diagnostics> {
         write_scene(&self.built.scene, path, format, pic).map_err(|e| match e {
-            WriteError::Export(d) => Diagnostics::new(vec![miette::Report::new_boxed(d)]),
+            WriteError::Export(d) => Diagnostics::boxed(d),
             WriteError::Io(e) => Diagnostics::one(WriteFailed {
                 path: path.display().to_string(),
                 cause: e.to_string(),
             }),
         })
     }
+}
+
+/// An isometric picture's settings at `width` × `height` pixels, checked.
+fn iso(width: u32, height: u32) -> Result<RenderOptions, Diagnostics> {
+    let pic = RenderOptions {
+        view: View::Iso,
+        width,
+        height,
+        ..RenderOptions::default()
+    };
+    pic.validate().map_err(Diagnostics::one)?;
+    Ok(pic)
 }

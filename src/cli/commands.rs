@@ -26,7 +26,10 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         Command::Watch(b) => super::watch::watch_cmd(b, color),
         // The language server keeps its own access to the parser and the
         // resolver: it must work on broken text (src/lsp/mod.rs).
-        Command::Lsp(l) => crate::lsp::run_stdio(l.source.apply(defined(&l.define))),
+        Command::Lsp(l) => crate::lsp::run_stdio(
+            l.source
+                .apply(GrammarOptions::default().defines_from(&l.define)),
+        ),
         #[cfg(feature = "studio")]
         Command::Studio(s) => super::studio::studio_cmd(s),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {
@@ -43,21 +46,14 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
     }
 }
 
-/// Options with `defines` set, in order.
-fn defined(defines: &[(String, String)]) -> GrammarOptions {
-    defines
-        .iter()
-        .fold(GrammarOptions::default(), |o, (k, v)| o.define(k, v))
-}
-
 /// Compiles the FILE of `c` with its flags on top of `more`, printing
 /// warnings; on failure prints every diagnostic and returns the exit code.
 fn compile(c: &Common, more: GrammarOptions, color: bool) -> Result<Grammar, i32> {
-    let mut o = more;
-    for (k, v) in &c.define {
-        o = o.define(k, v);
-    }
-    match c.source.apply(o).from_path(&c.file) {
+    match c
+        .source
+        .apply(more.defines_from(&c.define))
+        .from_path(&c.file)
+    {
         Ok(g) => {
             eprint!("{}", g.warnings().render(color));
             Ok(g)

@@ -162,12 +162,7 @@ pub(super) fn model_job(m: &ModelArgs) -> Job {
 
 /// The format of `lsys build`'s output, or the usage error to print.
 pub(super) fn format_of(out: &Path) -> Result<Format, String> {
-    Format::of(out).ok_or_else(|| {
-        format!(
-            "lsys: cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
-            out.display()
-        )
-    })
+    driver::format_of(out).map_err(|why| format!("lsys: {why}"))
 }
 
 /// What a successful build prints on standard output.

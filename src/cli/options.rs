@@ -12,10 +12,7 @@ pub(super) fn grammar_options(
     run: &DeriveRun,
     look: &LookArgs,
 ) -> GrammarOptions {
-    let mut o = GrammarOptions::default();
-    for (name, value) in defines {
-        o = o.define(name, value);
-    }
+    let mut o = GrammarOptions::default().defines_from(defines);
     if let Some(s) = source {
         o = s.apply(o);
     }

@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use super::job::Output;
 use super::run::{write_output, Failure, Reason};
-use super::stats::ms;
+use super::stats::{ms, shown};
 use crate::api::GrammarOptions;
 use crate::guided;
 
@@ -74,10 +74,7 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
         seeds: outcome.seeds.len(),
         messages: outcome.messages.len(),
         triangles: scene.triangle_count(),
-        output: match &job.output {
-            Output::File { path, .. } => Some(path.clone()),
-            _ => None,
-        },
+        output: job.output.path().map(PathBuf::from),
         written,
         bytes,
         steps: loaded.spec.steps,
@@ -89,10 +86,7 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
 impl GuidedDone {
     /// The `--stats` figures of a guided scene.
     pub fn stats(&self) -> serde_json::Value {
-        let path = self
-            .output
-            .as_ref()
-            .map_or(String::new(), |p| p.display().to_string());
+        let path = shown(&self.output);
         serde_json::json!({
             "seeds": self.seeds,
             "messages": self.messages,

@@ -80,14 +80,6 @@ impl Job {
         self.output = output;
         self
     }
-
-    /// The path the job writes, if it writes a file.
-    pub fn output_path(&self) -> Option<&Path> {
-        match &self.output {
-            Output::File { path, .. } => Some(path),
-            _ => None,
-        }
-    }
 }
 
 impl Output {
@@ -95,16 +87,18 @@ impl Output {
     /// or the sentence to show when it names none.
     pub fn file(path: impl Into<PathBuf>, picture: RenderOptions) -> Result<Output, String> {
         let path = path.into();
-        match Format::of(&path) {
-            Some(format) => Ok(Output::File {
-                path,
-                format,
-                picture,
-            }),
-            None => Err(format!(
-                "cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
-                path.display()
-            )),
+        Ok(Output::File {
+            format: format_of(&path)?,
+            path,
+            picture,
+        })
+    }
+
+    /// The file it writes, if it writes one.
+    pub fn path(&self) -> Option<&Path> {
+        match self {
+            Output::File { path, .. } => Some(path),
+            _ => None,
         }
     }
 
@@ -114,6 +108,17 @@ impl Output {
             Output::Nothing => None,
         }
     }
+}
+
+/// The format `path`'s extension names, or the sentence to show when it
+/// names none.
+pub fn format_of(path: &Path) -> Result<Format, String> {
+    Format::of(path).ok_or_else(|| {
+        format!(
+            "cannot tell the format of `{}` from its extension; name the output .glb, .gltf, .obj or .png",
+            path.display()
+        )
+    })
 }
 
 /// The folder whose `components/` is searched first: the grammar file's.

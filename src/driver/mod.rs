@@ -26,7 +26,7 @@ mod toml_file;
 mod watch;
 
 pub use guided::{run_guided, GuidedDone, GuidedJob};
-pub use job::{grammar_dir, Check, Job, Output};
+pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};
 pub use stats::ms;

@@ -97,9 +97,7 @@ impl Failure {
         match self.reason {
             Reason::Input(d) | Reason::Grammar(d) => d,
             Reason::Build(e) => Diagnostics::one(*e),
-            Reason::Export(e) | Reason::Guided(e) => {
-                Diagnostics::new(vec![miette::Report::new_boxed(e)])
-            }
+            Reason::Export(e) | Reason::Guided(e) => Diagnostics::boxed(e),
             Reason::Write { path, error } => Diagnostics::one(crate::api::WriteFailed {
                 path: path.display().to_string(),
                 cause: error.to_string(),
@@ -178,7 +176,7 @@ pub fn run(job: &Job, observe: &mut dyn FnMut(Event)) -> Result<Done, Failure> {
         grammar: Grammar::compiled(comp, options),
         scene: Scene { built },
         problems,
-        output: job.output_path().map(PathBuf::from),
+        output: job.output.path().map(PathBuf::from),
         written,
         bytes,
         sources,

@@ -3,11 +3,19 @@
 //! shape grammars the primitives, constraints and attributes) and the
 //! one-line summary `lsys watch` prints.
 
+use std::path::PathBuf;
 use std::time::Duration;
 
 use super::run::Done;
 use crate::build::Built;
 use crate::resolve::Program;
+
+/// The file written as the figures name it (empty when none was).
+pub(super) fn shown(output: &Option<PathBuf>) -> String {
+    output
+        .as_ref()
+        .map_or(String::new(), |p| p.display().to_string())
+}
 
 /// Milliseconds with three decimals.
 pub fn ms(d: Duration) -> f64 {
@@ -30,10 +38,7 @@ impl Done {
             .bounds()
             .map(|(lo, hi)| serde_json::json!([short(lo), short(hi)]));
         let t = &built.timings;
-        let path = self
-            .output
-            .as_ref()
-            .map_or(String::new(), |p| p.display().to_string());
+        let path = shown(&self.output);
         let mut json = serde_json::json!({
             "modules": built.modules,
             "instances": s.instance_counts(),
@@ -55,10 +60,7 @@ impl Done {
 
     /// One line for `watch`: what was written and how big the model is.
     pub fn summary(&self) -> String {
-        let path = self
-            .output
-            .as_ref()
-            .map_or(String::new(), |p| p.display().to_string());
+        let path = shown(&self.output);
         format!(
             "wrote {path}: {} modules, {} triangles, {} bytes in {} ms",
             self.scene.built.modules,

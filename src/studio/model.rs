@@ -7,9 +7,9 @@ use std::path::PathBuf;
 use miette::Diagnostic;
 use serde_json::{json, Value};
 
-use crate::api::{Grammar, GrammarOptions, Scene};
+use crate::api::{Grammar, Scene};
 use crate::driver::{self, Check, Job, Output, Problem};
-use crate::Diagnostics;
+use crate::{Diagnostics, Message};
 
 /// A model built for the page.
 pub struct Model {
@@ -32,10 +32,7 @@ pub fn job(
     steps: Option<u32>,
     check: bool,
 ) -> Job {
-    let mut o: GrammarOptions = Grammar::options().steps(steps);
-    for (k, v) in defines {
-        o = o.define(k, v);
-    }
+    let o = Grammar::options().steps(steps).defines_from(defines);
     for_page(Job::new(input, name, o).check(if check { Check::Library } else { Check::None }))
 }
 
@@ -102,30 +99,17 @@ pub fn diagnostics_json(d: &Diagnostics) -> Vec<Value> {
     d.iter().map(|d| one_json(d)).collect()
 }
 
-/// One diagnostic as [`diagnostics_json`] gives it.
+/// One diagnostic as [`diagnostics_json`] gives it (no place: an empty
+/// file and line and column 0).
 pub fn one_json(d: &dyn Diagnostic) -> Value {
-    let code = d.code().map(|c| c.to_string()).unwrap_or_default();
-    let severity = match d.severity() {
-        Some(miette::Severity::Warning) => "warning",
-        Some(miette::Severity::Advice) => "advice",
-        _ => "error",
-    };
-    let (mut file, mut line, mut col) = (String::new(), 0, 0);
-    let label = d.labels().and_then(|mut l| l.next());
-    if let (Some(src), Some(l)) = (d.source_code(), label) {
-        if let Ok(c) = src.read_span(l.inner(), 0, 0) {
-            file = c.name().unwrap_or_default().to_string();
-            line = c.line() + 1;
-            col = c.column() + 1;
-        }
-    }
+    let m = Message::from_diagnostic(d);
     json!({
-        "severity": severity,
-        "file": file,
-        "line": line,
-        "col": col,
-        "code": code,
-        "message": d.to_string(),
-        "rendered": crate::driver::render_diagnostic(d, false),
+        "severity": m.severity.as_str(),
+        "file": m.file.as_deref().unwrap_or_default(),
+        "line": m.line.unwrap_or(0),
+        "col": m.column.unwrap_or(0),
+        "code": m.code.as_deref().unwrap_or_default(),
+        "message": m.message,
+        "rendered": m.rendered(),
     })
 }
