@@ -189,30 +189,10 @@ fn behind_the_door(m: &str) -> bool {
     rank(m).is_some() || ["pipeline", "build", "guided", "pailou"].contains(&m)
 }
 
-/// The REPL inspects a grammar's insides (symbols, tables, bytecode,
-/// shadowed strings) that the API does not offer yet; these are the
-/// stages it still names. The list may only shrink: a new name here is a
-/// new side door.
-const REPL_STILL_NAMES: &[&str] = &[
-    "build",
-    "bytecode",
-    "derive",
-    "export",
-    "load",
-    "mesh",
-    "parse",
-    "pipeline",
-    "resolve",
-    "simulation",
-    "source",
-    "stdlib",
-];
-
 #[test]
 fn front_ends_go_through_the_door() {
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
     let mut side_doors = Vec::new();
-    let mut repl_names = BTreeSet::new();
     for front in FRONT_ENDS {
         let mut files = Vec::new();
         rust_files(&src.join(front), &mut files);
@@ -220,12 +200,6 @@ fn front_ends_go_through_the_door() {
         for f in &files {
             let text = std::fs::read_to_string(f).unwrap();
             for i in imports(&text).into_iter().filter(|i| behind_the_door(i)) {
-                if *front == "repl" {
-                    repl_names.insert(i.clone());
-                    if REPL_STILL_NAMES.contains(&i.as_str()) {
-                        continue;
-                    }
-                }
                 side_doors.push(format!(
                     "{} names crate::{i}",
                     f.strip_prefix(&src).unwrap().display()
@@ -237,13 +211,5 @@ fn front_ends_go_through_the_door() {
         side_doors.is_empty(),
         "front ends reaching past the API and the driver:\n{}",
         side_doors.join("\n")
-    );
-    let gone: Vec<_> = REPL_STILL_NAMES
-        .iter()
-        .filter(|n| !repl_names.contains(**n))
-        .collect();
-    assert!(
-        gone.is_empty(),
-        "the REPL no longer names {gone:?}: take them off REPL_STILL_NAMES"
     );
 }

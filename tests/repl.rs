@@ -11,7 +11,7 @@ use std::sync::atomic::Ordering;
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-use lsys::internals::repl::{Session, Settings};
+use lsys::internals::repl::{execute, Session, Settings};
 
 const TREE: &str = "\
 // A small parametric tree: the REPL transcripts' grammar.
@@ -275,12 +275,12 @@ fn stochastic_steps_repeat_after_going_back() {
     s.start("examples/abop/stochastic_1_27.lsys", 0).unwrap();
     let straight = s.goto(5).unwrap();
     s.goto(2).unwrap();
-    s.execute(":step 3");
+    execute(&mut s, ":step 3");
     assert_eq!(s.goto(5).unwrap(), straight);
     // Derived again from the axiom after an edit undone, still the same.
-    assert!(s.execute(":seed 1").ok);
+    assert!(execute(&mut s, ":seed 1").ok);
     assert_eq!(s.goto(5).unwrap(), straight);
-    assert!(s.execute(":seed 2").ok);
+    assert!(execute(&mut s, ":seed 2").ok);
     assert_ne!(s.goto(5).unwrap(), straight);
 }
 
@@ -293,7 +293,7 @@ fn an_interrupt_stops_the_derivation_between_steps() {
     assert!(e.starts_with("interrupted: stopped at step 0"), "{e}");
     assert_eq!(s.step(), 0);
     // The flag is spent: the next command derives.
-    assert!(s.execute(":goto 6").ok);
+    assert!(execute(&mut s, ":goto 6").ok);
     assert_eq!(s.step(), 6);
 }
 
@@ -303,21 +303,21 @@ fn reload_reads_the_changed_file_and_keeps_the_grammar_on_errors() {
     let tree = dir.path().join("tree.lsys");
     let mut s = Session::new(Settings::default());
     s.start(tree.to_str().unwrap(), 2).unwrap();
-    let before = s.execute(":show all").text;
+    let before = execute(&mut s, ":show all").text;
     std::fs::write(&tree, TREE.replace("[-A(s+1)]", "[-A(t)]")).unwrap();
-    let r = s.execute(":reload");
+    let r = execute(&mut s, ":reload");
     assert!(!r.ok, "t is unknown: {}", r.text);
     assert!(
         r.text.contains("keeping the previous grammar"),
         "{}",
         r.text
     );
-    assert_eq!(s.execute(":show all").text, before);
+    assert_eq!(execute(&mut s, ":show all").text, before);
     std::fs::write(&tree, TREE.replace("F(1) [", "F(2) [")).unwrap();
-    let r = s.execute(":reload");
+    let r = execute(&mut s, ":reload");
     assert!(r.ok, "{}", r.text);
     assert_eq!(s.step(), 2, "the step is kept");
-    assert!(s.execute(":show all").text.starts_with("F(3)"));
+    assert!(execute(&mut s, ":show all").text.starts_with("F(3)"));
 }
 
 /// Lines of a child's standard output, as they come.
@@ -396,16 +396,15 @@ fn cpfg_dialect_strings_show_f32_parameters() {
     let mut s = Session::new(Settings::default());
     s.start(thirds.to_str().unwrap(), 2).unwrap();
     // Stored as f32s: shown in the f32's shortest form.
-    assert_eq!(s.execute(":show all").text, "I(1.91) F(0.011111111)");
-    assert!(s
-        .execute(":show")
+    assert_eq!(execute(&mut s, ":show all").text, "I(1.91) F(0.011111111)");
+    assert!(execute(&mut s, ":show")
         .text
         .ends_with("\nI(1.91) F(0.011111111)"));
-    let d = s.execute(":diff").text;
+    let d = execute(&mut s, ":diff").text;
     assert!(
         d.contains("«I(1.4333333) F(0.033333335) → I(1.91) F(0.011111111)»"),
         "{d}"
     );
-    let r = s.execute("I(1.4333333)").text;
+    let r = execute(&mut s, "I(1.4333333)").text;
     assert_eq!(r, "I(1.91)");
 }

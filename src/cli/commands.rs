@@ -34,9 +34,9 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         Command::Studio(s) => super::studio::studio_cmd(s),
         Command::Repl(r) => crate::repl::run(crate::repl::Config {
             file: r.file.clone(),
-            defines: r.define.clone(),
             step: r.step,
             options: GrammarOptions::default()
+                .defines_from(&r.define)
                 .max_modules(r.max_modules)
                 .max_params(r.max_params)
                 .seed_option(r.seed),

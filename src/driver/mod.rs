@@ -13,12 +13,17 @@
 //! the other core (`build::Early`), compile, derive, interpret, mesh (the
 //! grammar components with the same options), check the structure, warn
 //! when nothing was drawn, write.
+//!
+//! [`session`] is the other kind of job: an interactive one (the REPL's),
+//! a grammar kept as text that is edited, stepped and inspected one input
+//! at a time.
 
 mod empty;
 mod guided;
 mod job;
 mod pailou;
 mod run;
+pub mod session;
 mod stats;
 mod structure;
 mod toml_file;

@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use super::session::{Out, Session};
+use crate::driver::session::{Out, Session};
 
 /// What tab completion offers for a command's argument.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -205,7 +205,7 @@ pub const COMMANDS: &[Command] = &[
         help: "leave (Ctrl-D, `quit` or `exit` too)",
         arg: Arg::None,
         run: |s, _| {
-            s.quit = true;
+            s.request_quit();
             Ok(String::new())
         },
     },
@@ -233,12 +233,6 @@ pub fn find(name: &str) -> Result<&'static Command, String> {
                 .join(", ")
         )),
     }
-}
-
-/// Runs `:name args`.
-pub fn dispatch(session: &mut Session, name: &str, args: &str) -> Out {
-    let cmd = find(name)?;
-    (cmd.run)(session, args)
 }
 
 /// `:help [COMMAND]`.

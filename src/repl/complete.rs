@@ -14,7 +14,7 @@ use rustyline::Context;
 
 use super::commands::{self, Arg, COMMANDS};
 use super::input::needs_more;
-use super::session::Names;
+use crate::driver::session::Names;
 use crate::driver::View;
 
 /// What to complete at the cursor.

@@ -5,26 +5,22 @@
 //! output: each input's reply on standard output, errors included, in
 //! order.
 //!
-//! * `session.rs`: the state and what every input does (no terminal I/O);
+//! The REPL is a front end: what each command does to the grammar and its
+//! derivation (load, step, edit, undo, inspect, export) is the driver's
+//! [`crate::driver::session`], which names the stages; these files read
+//! and print, and name only the driver and the API.
+//!
+//! * `execute.rs`: one input line to the session's reply;
 //! * `commands.rs`: the table of `:commands` (dispatch, `:help`, completion);
-//! * `edit.rs`: typed productions, `:drop`, `:axiom`, `:set`, `:seed`;
-//! * `inspect.rs`: the commands that look (`:show`, `:diff`, `:export`, ...);
-//! * `grammar.rs`: edits of the grammar's text; `show.rs`: printing strings;
 //! * `input.rs`: continuation and classification of input lines;
 //! * `complete.rs`: the line editor's completer and validator;
-//! * `shadow.rs`: rules an earlier one always shadows (never applied);
-//! * `undo.rs`: `:undo`, the stack of the grammar before each edit.
+//! * `meter.rs`: the progress bar the session's long operations show.
 
 mod commands;
 mod complete;
-mod edit;
-mod grammar;
+mod execute;
 mod input;
-mod inspect;
-mod session;
-mod shadow;
-mod show;
-mod undo;
+mod meter;
 
 use std::io::{self, BufRead, IsTerminal, Write};
 use std::path::PathBuf;
@@ -34,8 +30,9 @@ use rustyline::error::ReadlineError;
 use rustyline::history::FileHistory;
 use rustyline::{CompletionType, Editor};
 
+pub use crate::driver::session::{Names, Reply, Session, Settings, Source};
 pub use commands::{Arg, Command, COMMANDS};
-pub use session::{Names, Reply, Session, Settings, Source};
+pub use execute::execute;
 
 use crate::exit_code::{EX_DATAERR, EX_IOERR, EX_OK};
 
@@ -43,10 +40,9 @@ use crate::exit_code::{EX_DATAERR, EX_IOERR, EX_OK};
 #[derive(Clone, Debug, Default)]
 pub struct Config {
     pub file: Option<String>,
-    pub defines: Vec<(String, String)>,
     /// The step to derive to after loading `file`.
     pub step: u32,
-    /// Seed and limits of derivations.
+    /// Seed and limits of derivations, and the `-D` overrides.
     pub options: crate::GrammarOptions,
     /// Print each piped input as `> input` before its reply.
     pub echo: bool,
@@ -62,10 +58,11 @@ pub fn run(cfg: Config) -> i32 {
     );
     let mut session = Session::new(Settings {
         color,
-        progress: interactive,
-        derive: cfg.options.build.derive.clone(),
-        defines: cfg.defines.clone(),
+        options: cfg.options.clone(),
     });
+    if interactive {
+        session.set_meters(Box::new(|| Box::new(meter::Bar::new())));
+    }
     let mut failed = false;
     if interactive {
         println!(
@@ -145,7 +142,7 @@ fn interactive_loop(session: &mut Session) -> io::Result<bool> {
                 if !line.trim().is_empty() {
                     let _ = ed.add_history_entry(line.as_str());
                 }
-                let reply = session.execute(&line);
+                let reply = execute(session, &line);
                 print(&reply.text)?;
                 if session.quit_requested() {
                     break;
@@ -206,7 +203,7 @@ fn run_piped(session: &mut Session, input: &str, echo: bool) -> io::Result<bool>
         }
         print(&shown)?;
     }
-    let reply = session.execute(input);
+    let reply = execute(session, input);
     print(&reply.text)?;
     Ok(reply.ok)
 }

@@ -9,15 +9,13 @@ use std::fmt::Write;
 use std::path::Path;
 
 use super::edit::rule;
-use super::session::{Out, Session};
-use super::show;
+use super::{show, Out, Session};
 use crate::build::{self, BuildOptions, Built};
 use crate::bytecode::{disasm, disasm_production, one_line};
 use crate::derive::{ModuleStore, NumberFormat};
 use crate::export::output::{write_scene, Format, WriteError};
 use crate::export::render::{RenderOptions, View};
 use crate::mesh::ComponentSearch;
-use crate::progress::Progress;
 use crate::resolve::Table;
 
 impl Session {
@@ -207,7 +205,7 @@ impl Session {
             },
             ..Default::default()
         };
-        let progress = Progress::new(self.progress);
+        let progress = super::meter(&self.meters);
         build::build_string(&g.comp, s, self.pos, &opts, &mut |st| progress.stage(st))
             .map_err(|e| crate::driver::render_diagnostic(&e, self.color))
     }
@@ -299,7 +297,7 @@ impl Session {
             view,
             ..Default::default()
         };
-        let progress = Progress::new(self.progress);
+        let progress = super::meter(&self.meters);
         progress.message(if format == Format::Png {
             "rendering"
         } else {

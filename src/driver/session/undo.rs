@@ -5,7 +5,7 @@
 //! to the same step. `:load` and `:reload` start over: they are not edits
 //! and cannot be undone.
 
-use super::session::{Out, Session, Source};
+use super::{Out, Session, Source};
 
 /// Everything an edit can change.
 #[derive(Clone, Debug, PartialEq)]

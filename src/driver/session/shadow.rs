@@ -7,7 +7,7 @@
 //! it, or a comparison of a parameter with a number that implies it
 //! (`x > 3` implies `x > 0`).
 
-use super::edit::{expr_eq, is_catch_all, pred_eq, rctx_eq};
+use super::same::{expr_eq, is_catch_all, pred_eq, rctx_eq};
 use crate::parse::ast::BinaryOp;
 use crate::resolve::{Cond, Expr, ExprKind, Production};
 

@@ -1,5 +1,14 @@
-//! The REPL's state, without terminal I/O: one input (a command, a
-//! production, a module string) in, a [`Reply`] (text, success) out.
+//! An interactive job (the REPL's), without terminal I/O: one input (a
+//! command, a production, a module string), read by the front end as a
+//! [`Typed`], in; a [`Reply`] (text, success) out.
+//!
+//! * `mod.rs`: the state, loading, compiling, deriving to a step;
+//! * `edit.rs`: typed productions, `:drop`, `:axiom`, `:set`, `:seed`;
+//! * `inspect.rs`: what looks (`:show`, `:diff`, `:rules`, `:export`, ...);
+//! * `grammar.rs`: edits of the grammar's text; `show.rs`: printing strings;
+//! * `shadow.rs`: rules an earlier one always shadows (never applied);
+//! * `same.rs`: whether two productions are the same rule;
+//! * `undo.rs`: `:undo`, the stack of the grammar before each edit.
 //!
 //! The grammar is kept as source text ([`Grammar::text`]: the loaded
 //! file's text with the productions typed or dropped in the session) and
@@ -14,13 +23,66 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::input::{self, Kind};
-use super::{commands, show};
+use crate::build::Stage;
 use crate::derive::{Checkpoint, DeriveOptions, ModuleStore, NumberFormat};
 use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
-use crate::progress::Progress;
 use crate::simulation::Simulation;
+
+mod edit;
+mod grammar;
+mod inspect;
+mod same;
+mod shadow;
+mod show;
+mod undo;
+
+/// Progress of one long operation (deriving, building, writing): told
+/// each stage as it starts, and done when dropped. The REPL's is a
+/// progress bar on a terminal.
+pub trait Meter {
+    /// A stage has started (each derivation step once).
+    fn stage(&self, stage: Stage);
+    /// Work after the derivation (`rendering`, `writing`).
+    fn message(&self, what: &'static str);
+}
+
+/// Makes a [`Meter`] for each long operation.
+pub type Meters = Box<dyn Fn() -> Box<dyn Meter>>;
+
+struct NoMeter;
+
+impl Meter for NoMeter {
+    fn stage(&self, _: Stage) {}
+    fn message(&self, _: &'static str) {}
+}
+
+/// The meter of one operation: the session's, or one that shows nothing.
+fn meter(meters: &Option<Meters>) -> Box<dyn Meter> {
+    match meters {
+        Some(m) => m(),
+        None => Box::new(NoMeter),
+    }
+}
+
+/// One input as the front end read it (the REPL: `src/repl/input.rs`).
+pub enum Typed<'a> {
+    /// A blank line.
+    Empty,
+    /// A command, found in the front end's table: its name (what `:undo`
+    /// reports), what it does, and its argument text.
+    Command {
+        name: &'static str,
+        run: fn(&mut Session, &str) -> Out,
+        args: &'a str,
+    },
+    /// A command the front end does not know: why.
+    Unknown(String),
+    /// A production or `Axiom:` statement: the grammar is edited.
+    Statement,
+    /// A module string: rewritten once with the grammar.
+    Modules,
+}
 
 /// A command's result: its text, or the text of what went wrong.
 pub type Out = Result<String, String>;
@@ -111,12 +173,9 @@ pub struct Grammar {
 pub struct Settings {
     /// ANSI colour in diagnostics.
     pub color: bool,
-    /// Progress bars on standard error (shown only on a terminal).
-    pub progress: bool,
-    /// The seed override and the module limits.
-    pub derive: DeriveOptions,
-    /// `-D` overrides.
-    pub defines: Vec<(String, String)>,
+    /// The seed, the module limits and the `-D` overrides (`:set` changes
+    /// the overrides later).
+    pub options: crate::GrammarOptions,
 }
 
 /// What one input produced.
@@ -135,7 +194,8 @@ pub struct Names {
 
 pub struct Session {
     pub(super) color: bool,
-    pub(super) progress: bool,
+    /// Makes the meter of one long operation; none by default.
+    meters: Option<Meters>,
     interrupt: Arc<AtomicBool>,
     pub(super) opts: DeriveOptions,
     pub(super) overrides: Vec<(String, String)>,
@@ -150,7 +210,7 @@ pub struct Session {
     /// Productions typed in the session (one line each), for `:rules`.
     pub(super) typed: Vec<String>,
     /// The edits `:undo` can take back, the last on top.
-    pub(super) undo: Vec<super::undo::Edit>,
+    undo: Vec<undo::Edit>,
     /// Time of the last derivation.
     pub(super) derive_time: Duration,
     pub(super) quit: bool,
@@ -160,10 +220,10 @@ impl Session {
     pub fn new(settings: Settings) -> Session {
         Session {
             color: settings.color,
-            progress: settings.progress,
+            meters: None,
             interrupt: Arc::new(AtomicBool::new(false)),
-            opts: settings.derive,
-            overrides: settings.defines,
+            opts: settings.options.build.derive,
+            overrides: settings.options.build.source.defines,
             target: None,
             grammar: None,
             history: Vec::new(),
@@ -176,6 +236,11 @@ impl Session {
         }
     }
 
+    /// Shows the progress of long operations through meters `make` makes.
+    pub fn set_meters(&mut self, make: Meters) {
+        self.meters = Some(make);
+    }
+
     /// Set this (from a Ctrl-C handler) to stop a derivation between steps.
     pub fn interrupt_flag(&self) -> Arc<AtomicBool> {
         self.interrupt.clone()
@@ -186,9 +251,48 @@ impl Session {
         self.pos
     }
 
+    /// Runs one input `text` read as `typed`; an edit that succeeds is
+    /// recorded for `:undo`.
+    pub fn run_input(&mut self, text: &str, typed: Typed<'_>) -> Reply {
+        self.interrupt.store(false, Ordering::SeqCst);
+        let before = self.edit_state();
+        let mut command = None;
+        // A blank line keeps the production an indented line continues.
+        if !matches!(typed, Typed::Statement | Typed::Empty) {
+            self.last_production = None;
+        }
+        let out = match typed {
+            Typed::Empty => Ok(String::new()),
+            Typed::Unknown(why) => Err(why),
+            Typed::Command { name, run, args } => {
+                command = Some(name);
+                run(self, args)
+            }
+            Typed::Statement => self.statement(text),
+            Typed::Modules => self.rewrite_once(text),
+        };
+        if out.is_ok() {
+            self.record_edit(text, before, command);
+        }
+        match out {
+            Ok(text) => Reply { text, ok: true },
+            Err(text) => Reply { text, ok: false },
+        }
+    }
+
+    /// The last production typed, which an indented line continues.
+    pub fn last_production(&self) -> Option<&str> {
+        self.last_production.as_deref()
+    }
+
     /// Whether `:quit` was given.
     pub fn quit_requested(&self) -> bool {
         self.quit
+    }
+
+    /// `:quit`: the front end leaves after this input.
+    pub fn request_quit(&mut self) {
+        self.quit = true;
     }
 
     /// The prompt of an interactive session: `lsys[3]> `.
@@ -215,41 +319,6 @@ impl Session {
                     defines: p.defines.iter().map(|d| d.name.clone()).collect(),
                 }
             }
-        }
-    }
-
-    /// Runs one input: a `:command`, a production, `Axiom: ...`, or a
-    /// module string. A line that starts with blanks right after a
-    /// production continues it (as a successor continues in a file).
-    pub fn execute(&mut self, line: &str) -> Reply {
-        self.interrupt.store(false, Ordering::SeqCst);
-        let continues =
-            line.starts_with([' ', '\t']) && !input::is_statement(line) && !line.trim().is_empty();
-        let text = match (&self.last_production, continues) {
-            (Some(prev), true) => format!("{prev}\n{}", line.trim_end()),
-            _ => indent_continuations(line.trim()),
-        };
-        let before = self.edit_state();
-        let mut command = None;
-        let out = match input::classify(&text) {
-            Kind::Empty => Ok(String::new()),
-            Kind::Command { name, args } => {
-                self.last_production = None;
-                command = commands::find(name).ok().map(|c| c.name);
-                commands::dispatch(self, name, args)
-            }
-            Kind::Statement => self.statement(&text),
-            Kind::Modules => {
-                self.last_production = None;
-                self.rewrite_once(&text)
-            }
-        };
-        if out.is_ok() {
-            self.record_edit(&text, before, command);
-        }
-        match out {
-            Ok(text) => Reply { text, ok: true },
-            Err(text) => Reply { text, ok: false },
         }
     }
 
@@ -451,7 +520,7 @@ impl Session {
             pos,
             opts,
             interrupt,
-            progress,
+            meters,
             ..
         } = self;
         let g = grammar.as_ref().ok_or_else(|| {
@@ -479,7 +548,7 @@ impl Session {
         let mut d =
             Simulation::resume(program, compiled, opts.clone(), end, cp).map_err(|e| render(&e))?;
         *pos = start as u32;
-        let bar = Progress::new(*progress);
+        let bar = meter(meters);
         let total = target - start as u32;
         for s in start + 1..=t {
             if interrupt.swap(false, Ordering::SeqCst) {
@@ -487,7 +556,10 @@ impl Session {
                     "interrupted: stopped at step {pos} (`:step` goes on from there)"
                 ));
             }
-            bar.step((s - start - 1) as u32, total);
+            bar.stage(Stage::Derive {
+                done: (s - start - 1) as u32,
+                of: total,
+            });
             if let Err(e) = d.step() {
                 return Err(format!("{}derivation stopped at step {pos}", render(&e)));
             }
@@ -540,22 +612,6 @@ impl Session {
         let n = kept.clone().count();
         (n, kept.map(|c| bytes(&c.string)).sum())
     }
-}
-
-/// Lines after the first indented, so that input continued inside
-/// brackets reads as a successor continued onto the next lines.
-fn indent_continuations(text: &str) -> String {
-    let mut out = String::with_capacity(text.len() + 8);
-    for (i, l) in text.split('\n').enumerate() {
-        if i > 0 {
-            out.push('\n');
-            if !l.starts_with([' ', '\t']) {
-                out.push(' ');
-            }
-        }
-        out.push_str(l);
-    }
-    out
 }
 
 fn bytes(s: &ModuleStore) -> usize {
