@@ -58,7 +58,9 @@
 
 mod api;
 
-pub use api::{Derivation, Derived, Drawn, Grammar, GrammarOptions, Numbers, Scene, Steps};
+pub use api::{
+    Arrays, Derivation, Derived, Drawn, Grammar, GrammarOptions, Numbers, Placement, Scene, Steps,
+};
 pub use diag::{Diagnostics, Level, Message};
 pub use lang::Dialect;
 

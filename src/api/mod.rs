@@ -9,6 +9,7 @@
 //! # Ok::<(), lsys::Diagnostics>(())
 //! ```
 
+mod arrays;
 mod derivation;
 mod derived;
 mod grammar;
@@ -16,6 +17,7 @@ mod options;
 mod scene;
 mod steps;
 
+pub use arrays::{Arrays, Placement};
 pub use derivation::{Derivation, Drawn, Numbers};
 pub use derived::Derived;
 pub use grammar::Grammar;

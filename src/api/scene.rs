@@ -45,6 +45,17 @@ pub struct WriteFailed {
     pub cause: String,
 }
 
+/// An output path whose extension names no format.
+#[derive(Debug, Error, Diagnostic)]
+#[error("cannot tell the format of `{path}` from its extension")]
+#[diagnostic(
+    code(lsys::export::format),
+    help("name the output .glb, .gltf, .obj or .png")
+)]
+pub struct UnknownFormat {
+    pub path: String,
+}
+
 impl Scene {
     /// Triangles in the model, instances counted in full.
     pub fn triangle_count(&self) -> usize {
@@ -122,6 +133,19 @@ impl Scene {
         height: u32,
     ) -> Result<u64, Diagnostics> {
         self.write(path.as_ref(), Format::Png, &iso(width, height)?)
+    }
+
+    /// Writes the model in the format its extension names (`.glb`,
+    /// `.gltf`, `.obj` with its MTL, `.png` at the default size), as
+    /// `lsys build -o PATH` does; returns the bytes written.
+    pub fn write_file(&self, path: impl AsRef<Path>) -> Result<u64, Diagnostics> {
+        let path = path.as_ref();
+        let format = Format::of(path).ok_or_else(|| {
+            Diagnostics::one(UnknownFormat {
+                path: path.display().to_string(),
+            })
+        })?;
+        self.write(path, format, &RenderOptions::default())
     }
 
     fn write(&self, path: &Path, format: Format, pic: &RenderOptions) -> Result<u64, Diagnostics> {

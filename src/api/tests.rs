@@ -230,3 +230,33 @@ fn write_errors_carry_their_codes() {
         .unwrap_err();
     assert_eq!(first(&err).0.as_deref(), Some("lsys::render::zero_size"));
 }
+
+#[test]
+fn arrays_are_the_scene_expanded_in_world_space() {
+    // A stroke (F) and two instances of a built-in component, one turned.
+    let g = Grammar::from_str("t.lsys", "Axiom: F(2) ~MCa +(90) f(3) ~MCa\n").unwrap();
+    let scene = g.build(0).unwrap();
+    let a = scene.arrays();
+    let vertices = a.positions.len() / 3;
+    assert_eq!(a.normals.len(), a.positions.len());
+    assert_eq!(a.colors.len(), a.positions.len());
+    assert_eq!(a.indices.len() / 3, scene.triangle_count());
+    assert_eq!(vertices, scene.mesh().vertex_count());
+    assert!(a.indices.iter().all(|&i| (i as usize) < vertices));
+    let (lo, hi) = scene.bounds().unwrap();
+    for (k, c) in a.positions.chunks_exact(3).enumerate() {
+        for d in 0..3 {
+            assert!(c[d] >= lo[d] - 1e-5 && c[d] <= hi[d] + 1e-5, "vertex {k}");
+        }
+    }
+    for n in a.normals.chunks_exact(3) {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-4, "normal {n:?}");
+    }
+    let placed = scene.placements();
+    assert_eq!(placed.len(), 2);
+    assert!(placed.iter().all(|p| p.component == "MCa"));
+    // The second box sits 3 units along the turned heading: a different
+    // translation column from the first.
+    assert_ne!(placed[0].matrix[12..15], placed[1].matrix[12..15]);
+}
