@@ -3,12 +3,18 @@
 //! buffers (positions and normals N×3 float32, indices M×3 uint32, colours
 //! N×3 float32), component placements as 4×4 matrices with their names,
 //! the GLB bytes, files in any format, and the `--stats` dictionary.
+//!
+//! The arrays are made when first asked for: expanding every component
+//! instance into world space costs more than the build itself for an
+//! instanced model (a Pailou: 1.2 M triangles from 78 placements), and a
+//! caller who only writes a GLB never needs them.
 
 use lsys::driver::{self, Event, Job};
 use lsys::Diagnostics;
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, PyArrayMethods};
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBytes, PyList, PyTuple};
 
 use crate::errors::lsys_error;
@@ -20,11 +26,16 @@ pub struct Scene {
     name: String,
     stats: String,
     warnings: Vec<String>,
+    arrays: PyOnceLock<Arrays>,
+    instances: PyOnceLock<Py<PyList>>,
+}
+
+/// The scene's arrays, made together on first use.
+struct Arrays {
     positions: Py<PyArray2<f32>>,
     normals: Py<PyArray2<f32>>,
     indices: Py<PyArray2<u32>>,
     colors: Py<PyArray2<f32>>,
-    instances: Py<PyList>,
 }
 
 /// `v` (a flat list of `k`-tuples) as an `n × k` array that owns `v`.
@@ -54,44 +65,33 @@ impl Scene {
                 Event::Notice(n) => warnings.push(n.to_string()),
                 Event::Stage(_) | Event::Writing(_) => {}
             });
-            done.map(|done| {
-                let arrays = done.scene.arrays();
-                let placements = done.scene.placements();
-                (
-                    done.stats().to_string(),
-                    done.scene,
-                    arrays,
-                    placements,
-                    warnings,
-                )
-            })
-            .map_err(|f| f.diagnostics())
+            done.map(|done| (done.stats().to_string(), done.scene, warnings))
+                .map_err(|f| f.diagnostics())
         });
-        let (stats, scene, a, placements, warnings) = match ran {
+        let (stats, scene, warnings) = match ran {
             Ok(x) => x,
             Err(d) => return Err(lsys_error(py, name, &d)),
         };
-        let instances = PyList::empty(py);
-        for p in placements {
-            // glam's columns -> a NumPy matrix indexed [row, column].
-            let m = p.matrix;
-            let rows: Vec<f32> = (0..16).map(|i| m[(i % 4) * 4 + i / 4]).collect();
-            let matrix = owned(py, rows, 4)?;
-            instances.append(PyTuple::new(
-                py,
-                [p.component.into_pyobject(py)?.into_any(), matrix.into_any()],
-            )?)?;
-        }
         Ok(Scene {
             scene,
             name: name.to_string(),
             stats,
             warnings,
-            positions: owned(py, a.positions, 3)?.unbind(),
-            normals: owned(py, a.normals, 3)?.unbind(),
-            indices: owned(py, a.indices, 3)?.unbind(),
-            colors: owned(py, a.colors, 3)?.unbind(),
-            instances: instances.unbind(),
+            arrays: PyOnceLock::new(),
+            instances: PyOnceLock::new(),
+        })
+    }
+
+    fn arrays(&self, py: Python<'_>) -> PyResult<&Arrays> {
+        self.arrays.get_or_try_init(py, || {
+            let scene = &self.scene;
+            let a = py.detach(|| scene.arrays());
+            Ok(Arrays {
+                positions: owned(py, a.positions, 3)?.unbind(),
+                normals: owned(py, a.normals, 3)?.unbind(),
+                indices: owned(py, a.indices, 3)?.unbind(),
+                colors: owned(py, a.colors, 3)?.unbind(),
+            })
         })
     }
 
@@ -108,33 +108,46 @@ fn shared<'py, T: numpy::Element>(py: Python<'py>, a: &Py<PyArray2<T>>) -> Bound
 impl Scene {
     /// Vertex positions, N×3 float32, world space (instances expanded).
     #[getter]
-    fn positions<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
-        shared(py, &self.positions)
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        Ok(shared(py, &self.arrays(py)?.positions))
     }
 
     /// Unit vertex normals, N×3 float32.
     #[getter]
-    fn normals<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
-        shared(py, &self.normals)
+    fn normals<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        Ok(shared(py, &self.arrays(py)?.normals))
     }
 
     /// Triangles, M×3 uint32 indices into `positions`.
     #[getter]
-    fn indices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<u32>> {
-        shared(py, &self.indices)
+    fn indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
+        Ok(shared(py, &self.arrays(py)?.indices))
     }
 
     /// Linear RGB per vertex in 0..1, N×3 float32.
     #[getter]
-    fn colors<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
-        shared(py, &self.colors)
+    fn colors<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        Ok(shared(py, &self.arrays(py)?.colors))
     }
 
     /// Component placements: `(name, matrix)` with a 4×4 float32 matrix
     /// (`matrix @ [x, y, z, 1]` places a point of the component's model).
     #[getter]
-    fn instances<'py>(&self, py: Python<'py>) -> Bound<'py, PyList> {
-        self.instances.bind(py).clone()
+    fn instances<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = self
+            .instances
+            .get_or_try_init(py, || -> PyResult<Py<PyList>> {
+                let list = PyList::empty(py);
+                for p in self.scene.placements() {
+                    // glam's columns -> a NumPy matrix indexed [row, column].
+                    let m = p.matrix;
+                    let rows: Vec<f32> = (0..16).map(|i| m[(i % 4) * 4 + i / 4]).collect();
+                    let name = p.component.into_pyobject(py)?.into_any();
+                    list.append(PyTuple::new(py, [name, owned(py, rows, 4)?.into_any()])?)?;
+                }
+                Ok(list.unbind())
+            })?;
+        Ok(list.bind(py).clone())
     }
 
     /// The `lsys build --stats` figures.
@@ -185,14 +198,14 @@ impl Scene {
     fn to_trimesh<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let trimesh = py.import("trimesh")?;
         let np = py.import("numpy")?;
-        let colors = self.colors(py).call_method1("__mul__", (255.0,))?;
+        let colors = self.colors(py)?.call_method1("__mul__", (255.0,))?;
         let colors = np
             .call_method1("round", (colors,))?
             .call_method1("astype", ("uint8",))?;
         let kwargs = pyo3::types::PyDict::new(py);
-        kwargs.set_item("vertices", self.positions(py))?;
-        kwargs.set_item("faces", self.indices(py))?;
-        kwargs.set_item("vertex_normals", self.normals(py))?;
+        kwargs.set_item("vertices", self.positions(py)?)?;
+        kwargs.set_item("faces", self.indices(py)?)?;
+        kwargs.set_item("vertex_normals", self.normals(py)?)?;
         kwargs.set_item("vertex_colors", colors)?;
         kwargs.set_item("process", false)?;
         trimesh.getattr("Trimesh")?.call((), Some(&kwargs))
@@ -203,7 +216,7 @@ impl Scene {
     fn to_pyvista<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let pv = py.import("pyvista")?;
         let np = py.import("numpy")?;
-        let tris = self.indices(py);
+        let tris = self.indices(py)?;
         let n = tris.len()?;
         let threes = np.call_method1("full", ((n, 1), 3, "int64"))?;
         let faces = np
@@ -212,11 +225,13 @@ impl Scene {
                 ((threes, tris.call_method1("astype", ("int64",))?),),
             )?
             .call_method0("ravel")?;
-        let mesh = pv.getattr("PolyData")?.call1((self.positions(py), faces))?;
+        let mesh = pv
+            .getattr("PolyData")?
+            .call1((self.positions(py)?, faces))?;
         mesh.getattr("point_data")?
-            .set_item("colors", self.colors(py))?;
+            .set_item("colors", self.colors(py)?)?;
         mesh.getattr("point_data")?
-            .set_item("Normals", self.normals(py))?;
+            .set_item("Normals", self.normals(py)?)?;
         Ok(mesh)
     }
 
@@ -224,10 +239,10 @@ impl Scene {
     fn _repr_html_(&self, py: Python<'_>) -> PyResult<String> {
         crate::viewer::html(
             py,
-            &self.positions(py),
-            &self.normals(py),
-            &self.indices(py),
-            &self.colors(py),
+            &self.positions(py)?,
+            &self.normals(py)?,
+            &self.indices(py)?,
+            &self.colors(py)?,
         )
     }
 

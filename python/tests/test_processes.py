@@ -40,8 +40,11 @@ def test_a_pickled_grammar_is_rebuilt_in_another_process():
     assert glbs == [g.build().to_glb() for g in grammars[:2]]
 
 
+BUSHY = "derivation length: 9\nangle: 22.5\nAxiom: A\nA --> F [+A] [-A] [&A] F A\nF --> F F\n"
+
+
 def test_builds_release_the_gil():
-    g = pailou.Grammar.from_path("std:pailou")
+    g = pailou.Grammar.from_str("bushy.lsys", BUSHY)
     t0 = time.perf_counter()
     g.build()
     alone = time.perf_counter() - t0
