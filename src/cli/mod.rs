@@ -1,8 +1,9 @@
 //! The command line: arguments -> a command run against the library ->
 //! an exit code from sysexits (64 usage, 65 bad input, 66 missing input,
-//! 70 internal error, 74 I/O error).
+//! 70 internal error, 71 no thread, 74 I/O error).
 
 mod args;
+mod batch;
 mod commands;
 mod guided;
 mod model;
