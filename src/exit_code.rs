@@ -10,5 +10,7 @@ pub const EX_DATAERR: i32 = 65;
 pub const EX_NOINPUT: i32 = 66;
 /// A bug in lsys (a panic).
 pub const EX_SOFTWARE: i32 = 70;
+/// The system refused a resource (a thread).
+pub const EX_OSERR: i32 = 71;
 /// An output could not be written.
 pub const EX_IOERR: i32 = 74;

@@ -65,6 +65,23 @@ impl Progress {
         }
     }
 
+    /// Items of a batch: `done` of `of`, with `what` (how many failed).
+    pub fn items(&self, done: usize, of: usize, what: String) {
+        if let Some((bar, _)) = &self.bar {
+            bar.set_length(of as u64);
+            bar.set_position(done as u64);
+            bar.set_message(what);
+        }
+    }
+
+    /// Prints `line` on standard error, above the bar if it shows.
+    pub fn println(&self, line: &str) {
+        match &self.bar {
+            Some((bar, _)) => bar.suspend(|| eprintln!("{line}")),
+            None => eprintln!("{line}"),
+        }
+    }
+
     /// Work after the derivation (`meshing`, `writing`): the bar stays full.
     pub fn message(&self, what: &'static str) {
         if let Some((bar, _)) = &self.bar {

@@ -47,6 +47,8 @@ pub enum Command {
     Pailou(PailouArgs),
     /// Explore a grammar step by step: step, go back, show, edit rules, set defines, export.
     Repl(ReplArgs),
+    /// Build many models from a manifest (one JSON item a line) into a folder with an index; resumable, in shards (see docs/batch.md).
+    Batch(BatchArgs),
     /// Rebuild the output whenever the grammar or a file it includes changes (Ctrl-C stops).
     Watch(BuildArgs),
     /// Run the language server on standard input and output (for editors; see docs/editors.md).
@@ -54,6 +56,34 @@ pub enum Command {
     /// The Pailou editor and live grammar preview in the browser, on 127.0.0.1 (see docs/studio.md).
     #[cfg(feature = "studio")]
     Studio(super::studio::StudioArgs),
+}
+
+/// `lsys batch`: a manifest of items, each built as `lsys build` would.
+#[derive(Args, Debug)]
+pub struct BatchArgs {
+    /// The manifest: one JSON object a line, {"id", "grammar", "defines", "seed", "steps", "format"}; relative grammar paths start from its folder.
+    pub manifest: PathBuf,
+    /// The folder the models (ID.FORMAT) and index.jsonl go into; created if missing. Items its index records are not built again.
+    #[arg(long = "out", value_name = "DIR")]
+    pub out: PathBuf,
+    /// Build only the items whose position in the manifest (from 0) modulo N is I, e.g. --shard $SLURM_ARRAY_TASK_ID/8. Shards may share one DIR.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// Items built at once, each on its own thread.
+    #[arg(short = 'j', long, value_name = "K", default_value_t = 1,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..))]
+    pub jobs: usize,
+}
+
+/// `--shard I/N`: the batch's own parser, its message as clap's.
+fn parse_shard(s: &str) -> Result<(usize, usize), String> {
+    crate::driver::batch::parse_shard(s).map_err(|e| {
+        use miette::Diagnostic;
+        match e.help() {
+            Some(h) => format!("{e}; {h}"),
+            None => e.to_string(),
+        }
+    })
 }
 
 #[derive(Args, Debug)]

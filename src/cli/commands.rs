@@ -24,6 +24,7 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         Command::Pailou(p) => super::model::pailou_cmd(p, color),
         Command::Commands => emit_stdout(|out| out.write_all(driver::turtle_commands().as_bytes())),
         Command::Watch(b) => super::watch::watch_cmd(b, color),
+        Command::Batch(b) => super::batch::batch_cmd(b, color),
         // The language server keeps its own access to the parser and the
         // resolver: it must work on broken text (src/lsp/mod.rs).
         Command::Lsp(l) => crate::lsp::run_stdio(

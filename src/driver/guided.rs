@@ -29,6 +29,9 @@ pub struct GuidedDone {
     pub seeds: usize,
     pub messages: usize,
     pub triangles: usize,
+    /// The box around everything drawn, `(min, max)`; `None` when nothing
+    /// is.
+    pub bounds: Option<([f32; 3], [f32; 3])>,
     pub output: Option<PathBuf>,
     pub written: u64,
     pub bytes: Option<Vec<u8>>,
@@ -74,6 +77,9 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
         seeds: outcome.seeds.len(),
         messages: outcome.messages.len(),
         triangles: scene.triangle_count(),
+        bounds: scene
+            .bounds()
+            .map(|(lo, hi)| (lo.to_array(), hi.to_array())),
         output: job.output.path().map(PathBuf::from),
         written,
         bytes,

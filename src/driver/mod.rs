@@ -14,10 +14,14 @@
 //! grammar components with the same options), check the structure, warn
 //! when nothing was drawn, write.
 //!
+//! [`batch`] runs many jobs from a manifest (`lsys batch`): each item is
+//! the job `lsys build` would run, written into one folder with an index.
+//!
 //! [`session`] is the other kind of job: an interactive one (the REPL's),
 //! a grammar kept as text that is edited, stepped and inspected one input
 //! at a time.
 
+pub mod batch;
 mod empty;
 mod guided;
 mod job;
