@@ -16,13 +16,9 @@ from ._native import (
     LsysError,
     Scene,
     __version__,
+    generate,
     pailou,
 )
-
-try:  # present when the package was built with the batch runner
-    from ._native import generate
-except ImportError:  # pragma: no cover
-    pass
 
 __all__ = [
     "Derived",

@@ -14,6 +14,7 @@
 
 use pyo3::prelude::*;
 
+mod batch;
 mod derived;
 mod errors;
 mod grammar;
@@ -31,6 +32,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<scene::Scene>()?;
     m.add_function(wrap_pyfunction!(grammar::_grammar_from_state, m)?)?;
     m.add_function(wrap_pyfunction!(pailou::pailou, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::generate, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }
