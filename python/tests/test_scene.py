@@ -132,6 +132,16 @@ def test_to_trimesh_and_to_pyvista_import_only_when_called(toukung):
     else:
         m = toukung.to_trimesh()
         assert len(m.faces) == toukung.triangle_count
+        assert (m.vertices == toukung.positions).all()
+    try:
+        import pyvista  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError):
+            toukung.to_pyvista()
+    else:
+        p = toukung.to_pyvista()
+        assert (p.n_points, p.n_cells) == (len(toukung.positions), toukung.triangle_count)
+        assert p.is_all_triangles
 
 
 def test_repr_html_is_a_self_contained_viewer(toukung):
