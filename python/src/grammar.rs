@@ -14,6 +14,7 @@ use pyo3::types::{PyDict, PyTuple};
 
 use crate::derived::{Derived, StepIter};
 use crate::errors::lsys_error;
+use crate::on_worker;
 use crate::scene::Scene;
 
 /// Where a grammar's text comes from.
@@ -90,10 +91,12 @@ impl Grammar {
         seed: Option<u64>,
     ) -> PyResult<Grammar> {
         let opts = options(&defines, seed);
-        let compiled = py.detach(|| match &source {
-            Source::Text { name, text } => opts.from_str(name, text),
-            Source::Path(p) => opts.from_path(p),
-        });
+        let compiled = py.detach(|| {
+            on_worker(|| match &source {
+                Source::Text { name, text } => opts.from_str(name, text),
+                Source::Path(p) => opts.from_path(p),
+            })
+        })?;
         match compiled {
             Ok(g) => Ok(Grammar {
                 source,
@@ -161,17 +164,19 @@ impl Grammar {
     fn derive(&self, py: Python<'_>, n: Option<u32>) -> PyResult<Derived> {
         let steps = self.steps_or_default(n);
         let g = &self.inner;
-        let got = py.detach(|| -> Result<(String, u32, usize), Diagnostics> {
-            let mut d = g.derivation(steps)?;
-            d.run(&mut |_, _| {})?;
-            d.finish()?;
-            let mut out = Vec::new();
-            // Writing to memory cannot fail.
-            let _ = d.write_current(Numbers::Shortest, &mut out);
-            let text = String::from_utf8_lossy(&out).into_owned();
-            let modules = count_modules(&text);
-            Ok((text, d.step_number(), modules))
-        });
+        let got = py.detach(|| {
+            on_worker(|| -> Result<(String, u32, usize), Diagnostics> {
+                let mut d = g.derivation(steps)?;
+                d.run(&mut |_, _| {})?;
+                d.finish()?;
+                let mut out = Vec::new();
+                // Writing to memory cannot fail.
+                let _ = d.write_current(Numbers::Shortest, &mut out);
+                let text = String::from_utf8_lossy(&out).into_owned();
+                let modules = count_modules(&text);
+                Ok((text, d.step_number(), modules))
+            })
+        })?;
         match got {
             Ok((text, step, modules)) => Ok(Derived {
                 text,

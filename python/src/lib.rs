@@ -22,6 +22,26 @@ mod pailou;
 mod scene;
 mod viewer;
 
+/// Runs `f` on a thread with the compiler's deep stack, as the `lsys`
+/// binary does: the parser, resolver and folding recurse as deep as the
+/// parser's limits allow, which a Python thread's stack may not hold.
+pub fn on_worker<T: Send>(f: impl FnOnce() -> T + Send) -> PyResult<T> {
+    std::thread::scope(|s| {
+        let worker = std::thread::Builder::new()
+            .name("lsys".into())
+            .stack_size(lsys::driver::WORKER_STACK)
+            .spawn_scoped(s, f)
+            .map_err(|e| {
+                pyo3::exceptions::PyOSError::new_err(format!("cannot start lsys's thread: {e}"))
+            })?;
+        worker.join().map_err(|_| {
+            pyo3::exceptions::PyRuntimeError::new_err(
+                "lsys stopped on a bug; please report it with the grammar",
+            )
+        })
+    })
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();

@@ -18,6 +18,7 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyBytes, PyList, PyTuple};
 
 use crate::errors::lsys_error;
+use crate::on_worker;
 
 /// A built model.
 #[pyclass(module = "pailou", frozen)]
@@ -57,17 +58,19 @@ impl Scene {
     /// Runs `job` (named `name` in errors) and wraps what it built.
     pub fn from_job(py: Python<'_>, job: &Job, name: &str) -> PyResult<Scene> {
         let ran = py.detach(|| {
-            let mut warnings = Vec::new();
-            let done = driver::run(job, &mut |e| match e {
-                Event::Warning(w) => {
-                    warnings.push(lsys::Message::from_diagnostic(w).rendered().to_string())
-                }
-                Event::Notice(n) => warnings.push(n.to_string()),
-                Event::Stage(_) | Event::Writing(_) => {}
-            });
-            done.map(|done| (done.stats().to_string(), done.scene, warnings))
-                .map_err(|f| f.diagnostics())
-        });
+            on_worker(|| {
+                let mut warnings = Vec::new();
+                let done = driver::run(job, &mut |e| match e {
+                    Event::Warning(w) => {
+                        warnings.push(lsys::Message::from_diagnostic(w).rendered().to_string())
+                    }
+                    Event::Notice(n) => warnings.push(n.to_string()),
+                    Event::Stage(_) | Event::Writing(_) => {}
+                });
+                done.map(|done| (done.stats().to_string(), done.scene, warnings))
+                    .map_err(|f| f.diagnostics())
+            })
+        })?;
         let (stats, scene, warnings) = match ran {
             Ok(x) => x,
             Err(d) => return Err(lsys_error(py, name, &d)),

@@ -58,3 +58,30 @@ def test_builds_release_the_gil():
     # build's start and end: a few switch intervals (5 ms each).
     assert alone > 0.05, "the build is too short to tell"
     assert ticks > 10_000, f"{ticks} loop turns during a {alone:.2f} s build"
+
+
+def test_deep_grammars_compile_on_a_small_python_thread():
+    # 250 nested parentheses and a 1,999-operator chain are within the
+    # parser's limits; the compiler recurses that deep on its own thread
+    # (the binary's deep stack), not on the caller's 256 KiB one.
+    deep = "Axiom: F(" + "(" * 250 + "1" + ")" * 250 + ") G(" + "+".join(["1"] * 2000) + ")\n"
+    got = {}
+
+    def work():
+        try:
+            g = pailou.Grammar.from_str("deep.lsys", deep)
+            got["derived"] = str(g.derive(0))
+            got["triangles"] = g.build(0).triangle_count
+        except Exception as e:  # noqa: BLE001 - reported below
+            got["error"] = e
+
+    old = threading.stack_size(256 * 1024)
+    try:
+        t = threading.Thread(target=work)
+        t.start()
+        t.join()
+    finally:
+        threading.stack_size(old)
+    assert "error" not in got, got.get("error")
+    assert got["derived"] == "F(1) G(2000)"
+    assert got["triangles"] > 0
