@@ -72,14 +72,15 @@ pub fn remove_temporaries() -> usize {
 
 /// An output that is also an input of the same run.
 #[derive(Debug, thiserror::Error, miette::Diagnostic)]
-#[error("the output {output} is an input of this run ({input})")]
+#[error("the output {output} is an input of this run{same}")]
 #[diagnostic(
     code(lsys::export::output_is_input),
     help("writing it would replace the input with the output; name another output file (nothing was written)")
 )]
 pub struct OutputIsInput {
     pub output: String,
-    pub input: String,
+    /// `" (the same file as INPUT)"` when the input was named otherwise.
+    pub same: String,
 }
 
 /// Refuses to write `output` when it is one of `inputs` (the files this
@@ -97,7 +98,11 @@ pub fn refuse_inputs(output: &Path, inputs: &[PathBuf]) -> Result<(), OutputIsIn
     {
         Some(input) => Err(OutputIsInput {
             output: output.display().to_string(),
-            input: input.display().to_string(),
+            same: if input == output {
+                String::new()
+            } else {
+                format!(" (the same file as {})", input.display())
+            },
         }),
         None => Ok(()),
     }
