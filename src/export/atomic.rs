@@ -301,11 +301,22 @@ mod tests {
             eprintln!("skipped: no mkfifo");
             return;
         }
+        // Without a reader, an error at once rather than a wait forever.
+        #[cfg(all(target_os = "linux", target_env = "gnu"))]
+        let e = write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")).unwrap_err();
+        #[cfg(all(target_os = "linux", target_env = "gnu"))]
+        assert!(e.to_string().contains("nothing is reading"), "{e}");
         let reader = {
             let fifo = fifo.clone();
             std::thread::spawn(move || std::fs::read(fifo).unwrap())
         };
-        write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")).unwrap();
+        // Until the reader has the pipe open.
+        let mut tries = 0;
+        while let Err(e) = write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")) {
+            tries += 1;
+            assert!(tries < 1000, "{e}");
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
         // Checked before joining: a replaced pipe would never get a writer.
         let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
         assert!(kind.is_fifo(), "the pipe was replaced by {kind:?}");
