@@ -425,3 +425,30 @@ fn a_component_scaled_past_the_models_numbers_is_a_diagnostic_in_every_format() 
     }
     assert_eq!(names(d), ["big.lsys"]);
 }
+
+/// The REPL's `:export` into the grammar it has loaded.
+#[test]
+fn the_repl_does_not_export_over_its_grammar() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    write(&d.join("g.glb"), "axiom: F\n");
+    let mut child = lsys_cmd(d, &["repl", "g.glb"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b":export g.glb\n")
+        .unwrap();
+    let o = wait_within(child, 60, "the REPL");
+    let all = format!("{}{}", String::from_utf8_lossy(&o.stdout), stderr(&o));
+    assert!(all.contains("lsys::export::output_is_input"), "{all}");
+    assert_eq!(
+        std::fs::read_to_string(d.join("g.glb")).unwrap(),
+        "axiom: F\n"
+    );
+}
