@@ -452,3 +452,27 @@ fn the_repl_does_not_export_over_its_grammar() {
         "axiom: F\n"
     );
 }
+
+/// A temporary file left by an earlier crash (`kill -9`) is neither
+/// reused nor taken for the output, and is left alone.
+#[test]
+fn a_stale_temporary_file_is_never_taken_for_output() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    write(
+        &d.join("g.lsys"),
+        "derivation length: 2\naxiom: F A\nA --> F A\n",
+    );
+    write(&d.join(".lsys-AAAAAA"), "half of an old output");
+    let o = lsys_in(d, &["derive", "g.lsys", "-o", "out.txt"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(d.join("out.txt")).unwrap(),
+        "F F F A\n"
+    );
+    assert_eq!(
+        std::fs::read_to_string(d.join(".lsys-AAAAAA")).unwrap(),
+        "half of an old output"
+    );
+    assert_eq!(names(d), [".lsys-AAAAAA", "g.lsys", "out.txt"]);
+}
