@@ -10,7 +10,7 @@ fn load(name: &str) -> Loaded {
     let p = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/guided")
         .join(name);
-    match guided::load_file(&p, &Default::default()) {
+    match guided::load_file(&p, &Default::default(), &[]) {
         Ok(l) => l,
         Err(e) => panic!("{}", lsys::internals::diag::render_plain(e.as_ref())),
     }
@@ -528,7 +528,7 @@ fn an_element_tagged_by_x_answers_with_its_id() {
          [[seeds]]\nguide = \"g\"\nposition = [1, 5]\nheading = 0\nparameters = [1]\n\
          [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\nparameters = [2]\n",
     );
-    let l = match guided::load_file(&dir.path().join("scene.toml"), &Default::default()) {
+    let l = match guided::load_file(&dir.path().join("scene.toml"), &Default::default(), &[]) {
         Ok(l) => l,
         Err(e) => panic!("{}", lsys::internals::diag::render_plain(e.as_ref())),
     };
@@ -579,7 +579,7 @@ fn each_seed_places_the_components_of_its_own_grammar() {
          [[seeds]]\nguide = \"a\"\nposition = [2, 1]\nheading = 90\n\
          [[seeds]]\nguide = \"b\"\nposition = [6, 1]\nheading = 90\n",
     );
-    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default(), &[]).unwrap();
     let o = run(&l);
     let search = lsys::internals::mesh::ComponentSearch {
         grammar_dir: Some(dir.path().to_path_buf()),
@@ -631,7 +631,7 @@ fn queries_stand_where_the_homomorphism_draws_them() {
          points = [[0, 0], [10, 0], [10, 10], [0, 10]]\n\
          [[seeds]]\nguide = \"g\"\nposition = [5, 1]\nheading = 90\n",
     );
-    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default()).unwrap();
+    let l = guided::load_file(&dir.path().join("scene.toml"), &Default::default(), &[]).unwrap();
     let o = run(&l);
     // β 180: the closest point is straight behind the heading.
     assert_eq!(o.seeds[0].string, "A ?DG(1,4,180,1,0)");

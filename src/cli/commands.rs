@@ -121,6 +121,12 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         Ok(g) => g,
         Err(code) => return code,
     };
+    if let Some(path) = &d.output {
+        if let Err(e) = driver::refuse_inputs(path, &g) {
+            eprint!("{}", driver::render_diagnostic(&e, color));
+            return EX_DATAERR;
+        }
+    }
     let steps = d.run.steps.unwrap_or(g.derivation_length());
     if d.count {
         return count_cmd(d, &g, steps, color);

@@ -62,6 +62,15 @@ pub fn main() -> i32 {
             libc::mallopt(libc::M_ARENA_MAX, 1);
         }
     }
+    // SIGINT, SIGTERM and SIGHUP while an output is being written would
+    // leave its temporary file behind: they are taken by a thread that
+    // removes the temporaries, then exits as the signal would have (128 +
+    // its number). Not for the REPL, whose Ctrl-C stops a derivation and
+    // goes on, nor the language server, which an editor stops.
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    if !matches!(&cli.command, Command::Repl(_) | Command::Lsp(_)) {
+        clean_up_on_signals();
+    }
     // The compiler's recursive parts (the PEG, the Pratt parser, resolve,
     // folding) get a deep stack; the parser refuses input deeper than they
     // can take with it (parse::MAX_NESTING, parse::MAX_OPERATORS).
@@ -75,6 +84,46 @@ pub fn main() -> i32 {
         Err(e) => {
             eprintln!("lsys: cannot start: {e}");
             EX_SOFTWARE
+        }
+    }
+}
+
+/// Blocks SIGINT, SIGTERM and SIGHUP in this thread and every thread it
+/// starts later, and starts a thread that waits for them: on one, it
+/// deletes the temporary files of the outputs being written and exits
+/// with 128 + the signal's number (130 for Ctrl-C, 143 for SIGTERM).
+/// Waiting in a thread (not a signal handler) may lock and delete files
+/// safely. Child processes get the default mask back (std resets it).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+fn clean_up_on_signals() {
+    // SAFETY: plain libc calls on a local signal set; called before any
+    // other thread starts, so every later thread inherits the mask.
+    let set = unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        for sig in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            libc::sigaddset(&mut set, sig);
+        }
+        if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
+            return;
+        }
+        set
+    };
+    let started = std::thread::Builder::new()
+        .name("lsys-signals".into())
+        .spawn(move || {
+            let mut sig = 0;
+            // SAFETY: `set` is a valid signal set, `sig` a valid out pointer.
+            if unsafe { libc::sigwait(&set, &mut sig) } == 0 {
+                crate::driver::remove_temporaries();
+                std::process::exit(128 + sig);
+            }
+        });
+    if started.is_err() {
+        // No thread to take them: let the signals act as before.
+        // SAFETY: as above.
+        unsafe {
+            libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
         }
     }
 }

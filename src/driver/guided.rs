@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use super::job::Output;
-use super::run::{write_output, Failure, Reason};
+use super::run::{refuse_inputs, write_output, Failure, Reason};
 use super::stats::{ms, shown};
 use crate::api::GrammarOptions;
 use crate::guided;
@@ -50,7 +50,14 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
     };
     let opts = &job.options.build;
     let t0 = Instant::now();
-    let mut loaded = guided::load_file(&job.path, &opts.source).map_err(|e| fail(e))?;
+    let mut loaded =
+        guided::load_file(&job.path, &opts.source, &opts.components.dirs).map_err(|e| fail(e))?;
+    // The scene and every grammar it read are inputs: never the output.
+    let mut sources = vec![job.path.clone()];
+    for g in &loaded.grammars {
+        sources.extend(g.program.sources.disk_paths());
+    }
+    refuse_inputs(&job.output, &sources)?;
     if let Some(n) = opts.steps {
         loaded.spec.steps = n;
     }
@@ -72,7 +79,7 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
         &mut grammars,
     )
     .map_err(|e| fail(Box::new(e)))?;
-    let (written, bytes) = write_output(&scene, &job.output, &[])?;
+    let (written, bytes) = write_output(&scene, &job.output, &sources)?;
     Ok(GuidedDone {
         seeds: outcome.seeds.len(),
         messages: outcome.messages.len(),

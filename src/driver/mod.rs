@@ -58,7 +58,16 @@ pub use crate::pailou::GraphDocument;
 // defaults its flags show.
 pub use crate::build::WORKER_STACK;
 pub use crate::diag::render as render_diagnostic;
-pub use crate::export::atomic::write_file;
+pub use crate::export::atomic::{remove_temporaries, write_file, OutputIsInput};
+
+/// Refuses `output` when it is a file `grammar` was read from (the
+/// grammar or a file it includes): `lsys derive g.lsys -o g.lsys`.
+pub fn refuse_inputs(
+    output: &std::path::Path,
+    grammar: &crate::Grammar,
+) -> Result<(), OutputIsInput> {
+    crate::export::atomic::refuse_inputs(output, &grammar.comp.program.sources.disk_paths())
+}
 pub use crate::export::render::parse_size;
 pub use crate::lang::commands::help_text as turtle_commands;
 

@@ -135,6 +135,9 @@ pub fn run(job: &Job, observe: &mut dyn FnMut(Event)) -> Result<Done, Failure> {
         observe(Event::Warning(w.as_ref()));
     }
     let sources = comp.program.sources.disk_paths();
+    // Before the build: an output that would overwrite an input is refused
+    // before anything is written, and before the work.
+    refuse_inputs(&job.output, &sources)?;
     let parse = t0.elapsed();
     let built = build::build_observed(&comp, opts, &mut |s| observe(Event::Stage(s)))
         .map_err(|e| Failure::new(Reason::Build(Box::new(e)), &sources))?;
@@ -191,9 +194,32 @@ pub fn run(job: &Job, observe: &mut dyn FnMut(Event)) -> Result<Done, Failure> {
 fn root_text(input: &Input) -> Option<std::borrow::Cow<'static, str>> {
     match input {
         Input::Std(name) => crate::stdlib::get(name).map(Into::into),
-        Input::Path(path) => std::fs::read_to_string(path).ok().map(Into::into),
+        // Only a regular file within the size limit: a pipe read here would
+        // be empty when compiling reads it, and is read with its limit there.
+        Input::Path(path) => std::fs::metadata(path)
+            .is_ok_and(|m| m.is_file() && m.len() <= crate::load::MAX_SOURCE_BYTES)
+            .then(|| std::fs::read_to_string(path).ok())
+            .flatten()
+            .map(Into::into),
         Input::Text { text, .. } | Input::Edited { text, .. } => Some(text.clone().into()),
     }
+}
+
+/// Refuses `output` (and an OBJ's `.mtl` beside it) when it is one of the
+/// run's input files `sources`.
+pub(super) fn refuse_inputs(output: &Output, sources: &[PathBuf]) -> Result<(), Failure> {
+    let Output::File { path, format, .. } = output else {
+        return Ok(());
+    };
+    let mut paths = vec![path.clone()];
+    if *format == Format::Obj {
+        paths.push(path.with_extension("mtl"));
+    }
+    for p in &paths {
+        crate::export::atomic::refuse_inputs(p, sources)
+            .map_err(|e| Failure::new(Reason::Export(Box::new(e)), sources))?;
+    }
+    Ok(())
 }
 
 /// Writes `scene` as `output` says: the bytes written and, for

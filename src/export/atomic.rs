@@ -5,10 +5,18 @@
 //! clobbers the model a previous run wrote). A path that is not a
 //! regular file (`/dev/null`, `/dev/stdout`, a named pipe) is written
 //! straight through instead: renaming a file over it would replace the
-//! device or pipe with that file.
+//! device or pipe with that file. A symbolic link is followed: its target
+//! is written (atomically when it is a regular file) and the link kept.
+//!
+//! Every temporary file being written is listed in a registry, so that
+//! the command line's signal handler removes them ([`remove_temporaries`])
+//! before it exits: an interrupted run leaves no hidden `.lsys-XXXXXX`
+//! beside the output. Temporary names are random and created exclusively,
+//! so a stale one from a crash is never reused nor taken for output.
 
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use tempfile::NamedTempFile;
 
@@ -19,7 +27,170 @@ use super::write_behind::WriteBehind;
 /// [`commit`]: AtomicFiles::commit
 #[derive(Default)]
 pub struct AtomicFiles {
-    pending: Vec<(PathBuf, NamedTempFile)>,
+    /// Target, temporary file, and its entry in the registry (dropped
+    /// after the file: the file is deleted first).
+    pending: Vec<(PathBuf, NamedTempFile, InFlight)>,
+}
+
+/// The temporary files being written now, for [`remove_temporaries`].
+static IN_FLIGHT: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// A temporary file's entry in [`IN_FLIGHT`], removed when dropped.
+struct InFlight(PathBuf);
+
+impl InFlight {
+    fn new(path: &Path) -> InFlight {
+        in_flight().push(path.to_path_buf());
+        InFlight(path.to_path_buf())
+    }
+}
+
+impl Drop for InFlight {
+    fn drop(&mut self) {
+        let mut list = in_flight();
+        if let Some(i) = list.iter().position(|p| *p == self.0) {
+            list.swap_remove(i);
+        }
+    }
+}
+
+/// The registry, even if a thread panicked holding it (a list of paths
+/// cannot be left half-changed).
+fn in_flight() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    IN_FLIGHT.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Deletes every temporary file being written: for a signal handler that
+/// is about to end the process (SIGINT, SIGTERM, SIGHUP), which would
+/// otherwise leave them behind. Returns how many were removed.
+pub fn remove_temporaries() -> usize {
+    let list = in_flight();
+    list.iter()
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count()
+}
+
+/// An output that is also an input of the same run.
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+#[error("the output {output} is an input of this run{same}")]
+#[diagnostic(
+    code(lsys::export::output_is_input),
+    help("writing it would replace the input with the output; name another output file (nothing was written)")
+)]
+pub struct OutputIsInput {
+    pub output: String,
+    /// `" (the same file as INPUT)"` when the input was named otherwise.
+    pub same: String,
+}
+
+/// Refuses to write `output` when it is one of `inputs` (the files this
+/// run read): `lsys derive plant.lsys -o plant.lsys` would replace the
+/// grammar with its own output. Paths are compared canonicalised (links
+/// followed); an output that does not exist yet is compared by its
+/// folder's canonical path.
+pub fn refuse_inputs(output: &Path, inputs: &[PathBuf]) -> Result<(), OutputIsInput> {
+    let Some(out) = canonical_output(output) else {
+        return Ok(());
+    };
+    match inputs
+        .iter()
+        .find(|i| std::fs::canonicalize(i).is_ok_and(|i| i == out))
+    {
+        Some(input) => Err(OutputIsInput {
+            output: output.display().to_string(),
+            same: if input == output {
+                String::new()
+            } else {
+                format!(" (the same file as {})", input.display())
+            },
+        }),
+        None => Ok(()),
+    }
+}
+
+/// `output`'s canonical path, or that of its folder joined with its name
+/// when it does not exist yet (a dangling link: its target's).
+fn canonical_output(output: &Path) -> Option<PathBuf> {
+    let (dest, _) = destination(output);
+    if let Ok(p) = std::fs::canonicalize(&dest) {
+        return Some(p);
+    }
+    let dir = dest
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    Some(std::fs::canonicalize(dir).ok()?.join(dest.file_name()?))
+}
+
+/// Where writing `path` goes, and whether it is written through (not a
+/// regular file: a device, a pipe, a socket). A symbolic link is followed
+/// to its target, so that the target is written and the link kept.
+fn destination(path: &Path) -> (PathBuf, bool) {
+    match std::fs::metadata(path) {
+        // Opening follows the links itself (`/dev/stdout` names
+        // `/proc/self/fd/1`, which may be a pipe that has no path).
+        Ok(m) if !m.is_file() && !m.is_dir() => (path.to_path_buf(), true),
+        Ok(_) => (
+            std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf()),
+            false,
+        ),
+        // Missing, or a link to a file not there yet: its target.
+        Err(_) => {
+            let mut at = path.to_path_buf();
+            for _ in 0..40 {
+                match std::fs::read_link(&at) {
+                    Ok(t) => {
+                        at = match at.parent() {
+                            Some(d) if t.is_relative() => d.join(t),
+                            _ => t,
+                        }
+                    }
+                    Err(_) => break,
+                }
+            }
+            (at, false)
+        }
+    }
+}
+
+/// Opens a device or named pipe for writing without waiting forever: a
+/// pipe with no reader is an error (ENXIO) at once, not a hang; once
+/// open, writes block as usual.
+fn open_through(path: &Path) -> io::Result<std::fs::File> {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        use std::os::fd::AsRawFd;
+        use std::os::unix::fs::OpenOptionsExt;
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(path)
+            .map_err(|e| {
+                if e.raw_os_error() == Some(libc::ENXIO) {
+                    io::Error::new(
+                        e.kind(),
+                        format!(
+                            "nothing is reading the named pipe {}: start its reader first, or write to a regular file",
+                            path.display()
+                        ),
+                    )
+                } else {
+                    e
+                }
+            })?;
+        let fd = file.as_raw_fd();
+        // SAFETY: F_GETFL/F_SETFL on a descriptor this function owns; only
+        // the O_NONBLOCK flag changes.
+        unsafe {
+            let flags = libc::fcntl(fd, libc::F_GETFL);
+            if flags >= 0 {
+                libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+            }
+        }
+        Ok(file)
+    }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    std::fs::OpenOptions::new().write(true).open(path)
 }
 
 impl AtomicFiles {
@@ -34,8 +205,10 @@ impl AtomicFiles {
         path: &Path,
         body: impl FnOnce(&mut dyn Write) -> Result<(), E>,
     ) -> Result<(), E> {
-        if is_special(path) {
-            let file = std::fs::OpenOptions::new().write(true).open(path)?;
+        let (dest, through) = destination(path);
+        let path = dest.as_path();
+        if through {
+            let file = open_through(path)?;
             let mut out = BufWriter::with_capacity(1 << 16, file);
             body(&mut out)?;
             out.flush()?;
@@ -46,6 +219,7 @@ impl AtomicFiles {
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let tmp = temporary_in(dir)?;
+        let entry = InFlight::new(tmp.path());
         #[cfg(unix)]
         let fd = Some(std::os::fd::AsRawFd::as_raw_fd(&tmp));
         #[cfg(not(unix))]
@@ -54,7 +228,7 @@ impl AtomicFiles {
         body(&mut out)?;
         let tmp = out.into_inner().map_err(|e| e.into_error())?.finish();
         let tmp = tmp.ok_or_else(|| io::Error::other("the temporary file was already finished"))?;
-        self.pending.push((path.to_path_buf(), tmp));
+        self.pending.push((path.to_path_buf(), tmp, entry));
         Ok(())
     }
 
@@ -62,17 +236,11 @@ impl AtomicFiles {
     /// file that others refer to, like an `.mtl`, first). Dropping the set
     /// instead deletes the temporary files.
     pub fn commit(self) -> io::Result<()> {
-        for (path, tmp) in self.pending {
+        for (path, tmp, _entry) in self.pending {
             tmp.persist(&path).map_err(|e| e.error)?;
         }
         Ok(())
     }
-}
-
-/// Whether `path` exists and is neither a regular file nor a folder: a
-/// device, a named pipe or a socket (symbolic links followed).
-fn is_special(path: &Path) -> bool {
-    std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
 }
 
 /// A temporary file in `dir` with the permissions a new file would get
@@ -133,11 +301,22 @@ mod tests {
             eprintln!("skipped: no mkfifo");
             return;
         }
+        // Without a reader, an error at once rather than a wait forever.
+        #[cfg(all(target_os = "linux", target_env = "gnu"))]
+        let e = write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")).unwrap_err();
+        #[cfg(all(target_os = "linux", target_env = "gnu"))]
+        assert!(e.to_string().contains("nothing is reading"), "{e}");
         let reader = {
             let fifo = fifo.clone();
             std::thread::spawn(move || std::fs::read(fifo).unwrap())
         };
-        write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")).unwrap();
+        // Until the reader has the pipe open.
+        let mut tries = 0;
+        while let Err(e) = write_file::<io::Error>(&fifo, |w| w.write_all(b"glTF")) {
+            tries += 1;
+            assert!(tries < 1000, "{e}");
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
         // Checked before joining: a replaced pipe would never get a writer.
         let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
         assert!(kind.is_fifo(), "the pipe was replaced by {kind:?}");

@@ -22,8 +22,14 @@ pub struct Loaded {
     pub seed_grammar: Vec<usize>,
 }
 
-/// Reads and compiles a scene file.
-pub fn load_file(path: &Path, opts: &crate::load::Options) -> Result<Loaded, Box<SceneError>> {
+/// Reads and compiles a scene file. Its grammars must be inside the
+/// scene's folder, an `--include-dir` or one of `component_dirs` (links
+/// followed), as includes must (docs/limits.md).
+pub fn load_file(
+    path: &Path,
+    opts: &crate::load::Options,
+    component_dirs: &[PathBuf],
+) -> Result<Loaded, Box<SceneError>> {
     let text = std::fs::read_to_string(path).map_err(|e| {
         Box::new(SceneError::Syntax {
             file: path.display().to_string(),
@@ -33,7 +39,20 @@ pub fn load_file(path: &Path, opts: &crate::load::Options) -> Result<Loaded, Box
         })
     })?;
     let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    load_text(&path.display().to_string(), &text, &base, opts)
+    let mut allowed = vec![if base.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        base.clone()
+    }];
+    allowed.extend(opts.include_dirs.iter().cloned());
+    allowed.extend(component_dirs.iter().cloned());
+    load_confined(
+        &path.display().to_string(),
+        &text,
+        &base,
+        opts,
+        Some(&allowed),
+    )
 }
 
 /// Reads and compiles a scene's text, grammars relative to `base`.
@@ -43,6 +62,25 @@ pub fn load_text(
     base: &Path,
     opts: &crate::load::Options,
 ) -> Result<Loaded, Box<SceneError>> {
+    load_confined(name, text, base, opts, None)
+}
+
+/// [`load_text`], with every grammar file required to resolve (links
+/// followed) inside one of `allowed`, when given: a scene from someone
+/// else cannot have `../../etc/passwd` compiled and its lines shown.
+fn load_confined(
+    name: &str,
+    text: &str,
+    base: &Path,
+    opts: &crate::load::Options,
+    allowed: Option<&[PathBuf]>,
+) -> Result<Loaded, Box<SceneError>> {
+    // Missing folders allow nothing: they cannot be canonicalised.
+    let roots: Vec<PathBuf> = allowed
+        .unwrap_or_default()
+        .iter()
+        .filter_map(|d| std::fs::canonicalize(d).ok())
+        .collect();
     let spec = scene::read(name, text)?;
     let src = NamedSource::new(name, Arc::new(text.to_string()));
     let mut l = Loaded {
@@ -60,6 +98,29 @@ pub fn load_text(
             Some(n) => Input::Std(n.to_string()),
             None => Input::Path(resolve_path(base, g)),
         };
+        if let (Input::Path(p), Some(allowed)) = (&input, allowed) {
+            // A file that does not resolve is left to the compiler, which
+            // says it is missing; one that does is checked before a byte of
+            // it is read.
+            if let Ok(real) = std::fs::canonicalize(p) {
+                if !roots.iter().any(|r| real.starts_with(r)) {
+                    let inside = allowed
+                        .iter()
+                        .map(|d| d.display().to_string())
+                        .collect::<Vec<_>>()
+                        .join(" or ");
+                    return Err(Box::new(SceneError::Outside {
+                        grammar: g.to_string(),
+                        src: src.clone(),
+                        span: span.clone().into(),
+                        help: format!(
+                            "{} is not inside {inside} (links are followed); copy the grammar into the scene's folder, or allow its folder with `--include-dir DIR` or `--components DIR`",
+                            p.display()
+                        ),
+                    }));
+                }
+            }
+        }
         let comp = pipeline::compile(&input, opts).map_err(|d| {
             Box::new(SceneError::Grammar {
                 grammar: g.to_string(),

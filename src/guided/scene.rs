@@ -45,6 +45,19 @@ pub enum SceneError {
         help: String,
     },
 
+    #[error("the grammar `{grammar}` is outside the scene's folder")]
+    #[diagnostic(code(lsys::guided::outside))]
+    Outside {
+        grammar: String,
+        #[source_code]
+        src: NamedSource<Arc<String>>,
+        #[label("not read: outside the allowed folders")]
+        span: SourceSpan,
+        /// The folders allowed, and how to allow another.
+        #[help]
+        help: String,
+    },
+
     #[error("the grammar `{grammar}` does not compile")]
     #[diagnostic(code(lsys::guided::grammar))]
     Grammar {

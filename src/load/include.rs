@@ -25,22 +25,64 @@ impl From<std::io::Error> for Unread {
     }
 }
 
-/// Reads a source file's bytes, refusing files too large or binary.
-pub(super) fn read_source(path: &Path) -> Result<Vec<u8>, Unread> {
-    let len = std::fs::metadata(path)?.len();
-    if len > MAX_SOURCE_BYTES {
+/// Reads a source file's bytes, refusing files too large or binary. The
+/// top-level grammar may be a pipe or a device (`lsys check /dev/stdin`):
+/// it is read up to the limit and refused past it, never read whole into
+/// memory. An included file (`only_regular`) must be a regular file: a
+/// named pipe would wait for a writer forever, a device never end.
+pub(super) fn read_source(path: &Path, only_regular: bool) -> Result<Vec<u8>, Unread> {
+    use std::io::Read;
+    // Asked before opening: opening a named pipe waits for its writer.
+    let meta = std::fs::metadata(path)?;
+    let len = meta.len();
+    if meta.is_file() && len > MAX_SOURCE_BYTES {
         return Err(Unread::NotSource(format!(
             "it is {len} bytes long, more than the {} MiB a grammar file may have",
             MAX_SOURCE_BYTES >> 20
         )));
     }
-    let bytes = std::fs::read(path)?;
+    if only_regular && !meta.is_file() && !meta.is_dir() {
+        return Err(Unread::NotSource(format!(
+            "it is {}, not a regular file; copy its text into a file",
+            kind_of(&meta)
+        )));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?
+        .take(MAX_SOURCE_BYTES + 1)
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_SOURCE_BYTES {
+        return Err(Unread::NotSource(format!(
+            "it holds more than the {} MiB a grammar file may have",
+            MAX_SOURCE_BYTES >> 20
+        )));
+    }
     if is_binary(&bytes) {
         return Err(Unread::NotSource(
             "it holds NUL bytes, as binary and UTF-16 files do".to_string(),
         ));
     }
     Ok(bytes)
+}
+
+/// What a file that is not a regular file or a folder is, for messages.
+fn kind_of(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a named pipe";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    let _ = meta;
+    "a special file"
 }
 
 /// Text files never hold NUL bytes; binary and UTF-16 files do. Such a
@@ -131,7 +173,14 @@ impl IncludeFinder {
             full: full.to_path_buf(),
             cause: e.to_string(),
         };
-        let len = std::fs::metadata(full).map_err(cause)?.len();
+        let meta = std::fs::metadata(full).map_err(cause)?;
+        if !meta.is_file() && !meta.is_dir() {
+            return Err(Refused::NotSource {
+                full: full.to_path_buf(),
+                why: format!("it is {}, not a regular file", kind_of(&meta)),
+            });
+        }
+        let len = meta.len();
         if len > MAX_SOURCE_BYTES {
             return Err(Refused::NotSource {
                 full: full.to_path_buf(),
@@ -182,7 +231,7 @@ impl IncludeFinder {
     }
 
     fn read_text(&self, full: &Path) -> Result<String, Refused> {
-        match read_source(full) {
+        match read_source(full, true) {
             Ok(bytes) => Ok(String::from_utf8_lossy(&bytes).into_owned()),
             Err(Unread::NotSource(why)) => Err(Refused::NotSource {
                 full: full.to_path_buf(),

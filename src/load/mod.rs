@@ -201,7 +201,7 @@ fn root_file(input: &Input) -> Result<SourceFile, InputError> {
     Ok(match input {
         Input::Path(p) => {
             let path = p.display().to_string();
-            let text = include::read_source(p).map_err(|e| match e {
+            let text = include::read_source(p, false).map_err(|e| match e {
                 // Asked only once reading failed: a build pays no stat for it.
                 include::Unread::Io(_) if p.is_dir() => InputError::Folder {
                     path,

@@ -100,6 +100,10 @@ impl ComponentSearch {
         names
             .into_iter()
             .filter_map(|name| match self.find(name) {
+                // One outside its folder is left to `load`, which refuses it.
+                Ok(Found::Grammar(crate::load::Input::Path(p))) if confined(name, &p).is_err() => {
+                    None
+                }
                 Ok(Found::Grammar(input)) => Some(super::Wanted {
                     name: name.to_string(),
                     search: super::subgrammar::inner_search(name, &input, self).ok()?,
@@ -178,6 +182,9 @@ impl ComponentSearch {
         missing: impl FnOnce(&[PathBuf]) -> MeshError,
     ) -> Result<Component, MeshError> {
         let found = self.find(name).map_err(|searched| missing(&searched))?;
+        if let Found::File(p) | Found::Grammar(crate::load::Input::Path(p)) = &found {
+            confined(name, p)?;
+        }
         match found {
             Found::File(path) => match std::fs::read(&path) {
                 Ok(bytes) => parse_obj(
@@ -199,6 +206,30 @@ impl ComponentSearch {
                 super::subgrammar::grammar_component(name, &input, self, materials, grammars)
             }
         }
+    }
+}
+
+/// `Err` when the component file `path` resolves (links followed) outside
+/// the folder it was found in: a `components/X.lsys` linked to
+/// `/etc/passwd` is refused before it is read, so no diagnostic shows its
+/// lines (the include rules of docs/limits.md).
+fn confined(name: &str, path: &Path) -> Result<(), MeshError> {
+    let dir = path
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let (Ok(real), Ok(root)) = (std::fs::canonicalize(path), std::fs::canonicalize(dir)) else {
+        // Not there after all: reading it says so.
+        return Ok(());
+    };
+    if real.starts_with(&root) {
+        Ok(())
+    } else {
+        Err(MeshError::ComponentOutside {
+            name: name.to_string(),
+            path: path.display().to_string(),
+            dir: dir.display().to_string(),
+        })
     }
 }
 

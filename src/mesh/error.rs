@@ -21,6 +21,17 @@ pub enum MeshError {
     )]
     CpfgSurface { name: String, why: String },
 
+    #[error("component `~{name}`: {path} leads outside {dir}")]
+    #[diagnostic(
+        code(lsys::mesh::component_outside),
+        help("a component file must resolve (links followed) inside the folder it is found in; copy the file there instead of linking to it")
+    )]
+    ComponentOutside {
+        name: String,
+        path: String,
+        dir: String,
+    },
+
     #[error("cannot read component `~{name}` from {path}: {cause}")]
     #[diagnostic(
         code(lsys::mesh::component_io),

@@ -35,6 +35,17 @@ pub enum TurtleError {
         symbol: String,
     },
 
+    #[error("module {index} of the string, `{text}`, places a component whose size or position is beyond the range of the model's numbers (about ±3.4e38)")]
+    #[diagnostic(
+        code(lsys::turtle::component_overflow),
+        help("the component's scale factors or its scope are too large for the model; check the production that writes `{symbol}`")
+    )]
+    ComponentOverflow {
+        index: usize,
+        text: String,
+        symbol: String,
+    },
+
     #[error("module {index} of the string is a `]` with no `[` before it{written}")]
     #[diagnostic(code(lsys::turtle::unbalanced_bracket))]
     UnbalancedBracket {

@@ -110,6 +110,28 @@ pub(super) struct State {
     elasticity: f32,
 }
 
+impl Turtle<'_> {
+    /// `Err` when a placement from `from` on has a non-finite transform;
+    /// `module` (at index `index`) placed them.
+    fn placements_finite(
+        &self,
+        from: usize,
+        sym: SymId,
+        args: &[f64],
+        index: usize,
+    ) -> Result<(), TurtleError> {
+        let placed = &self.drawing.placements[from.min(self.drawing.placements.len())..];
+        if placed.iter().all(|p| p.transform.is_finite()) {
+            return Ok(());
+        }
+        Err(TurtleError::ComponentOverflow {
+            index: index + 1,
+            text: module_text(&self.program.symbols, sym, args),
+            symbol: self.program.symbols.name(sym).to_string(),
+        })
+    }
+}
+
 impl State {
     /// Whether the frame (as the f32 the model is stored in) and the width
     /// are finite. The frame computes in f64.
@@ -320,16 +342,24 @@ impl Turtle<'_> {
                     offset += skipped;
                     continue;
                 }
+                // Components placed by this module: a scale factor past f32
+                // (`~X(1e308)`) or a huge scope would give a transform of
+                // infinities, which the exporters cannot write and the
+                // renderer would drop silently.
+                let placed = t.drawing.placements.len();
+                let module = i;
                 if let Act::Command(Action::Scope(c)) = act {
                     // Shape commands (turtle/scope_walk.rs); splits consume
                     // the branches that follow them.
                     (i, offset) = t.scope_cmd(w, on_query, c, sym, args, i, offset)?;
+                    t.placements_finite(placed, sym, args, module)?;
                     continue;
                 }
                 match act {
                     Act::Command(a) => t.apply(a, sym, args, i)?,
                     Act::Place => t.place(sym, args, i),
                 }
+                t.placements_finite(placed, sym, args, module)?;
                 // The model is in 32-bit floats: steps that add up past their
                 // range would reach the exporter as infinities. A bracket
                 // changes nothing or brings back a state checked when it

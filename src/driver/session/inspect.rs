@@ -292,6 +292,12 @@ impl Session {
         if let Some(extra) = words.next() {
             return Err(format!("unexpected `{extra}`"));
         }
+        // The grammar and its includes are the session's inputs: never
+        // overwritten by its own model.
+        let sources = self.grammar()?.comp.program.sources.disk_paths();
+        if let Err(e) = crate::export::atomic::refuse_inputs(path, &sources) {
+            return Err(crate::driver::render_diagnostic(&e, self.color));
+        }
         let built = self.model()?;
         let opts = RenderOptions {
             view,
