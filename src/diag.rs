@@ -24,10 +24,81 @@ pub fn render(d: &dyn Diagnostic, color: bool) -> String {
         .with_width(WIDTH)
         .with_links(false);
     let mut out = String::new();
-    if handler.render_report(&mut out, d).is_err() {
+    let rendered = match too_wide(d) {
+        Some((file, line, column)) => {
+            let shown = Unshown {
+                inner: d,
+                text: format!(
+                    "{d}\n  at {}:{line}:{column} (a line too long to show)",
+                    file.as_deref().unwrap_or("<input>")
+                ),
+            };
+            handler.render_report(&mut out, &shown)
+        }
+        None => handler.render_report(&mut out, d),
+    };
+    if rendered.is_err() {
         out = format!("{d}\n");
     }
     out
+}
+
+/// Labels past this column are not drawn under their line: miette's
+/// printer pads to the column with a width argument, which panics past
+/// 65,535 ("Formatting argument out of range"), and a line that long is
+/// unreadable in a terminal anyway.
+const MAX_SNIPPET_COLUMN: usize = 10_000;
+
+/// The place of `d` when one of its labels (or a related diagnostic's)
+/// ends past [`MAX_SNIPPET_COLUMN`].
+fn too_wide(d: &dyn Diagnostic) -> Option<(Option<String>, usize, usize)> {
+    let wide = |d: &dyn Diagnostic| -> bool {
+        let (Some(src), Some(labels)) = (d.source_code(), d.labels()) else {
+            return false;
+        };
+        labels.into_iter().any(|l| {
+            src.read_span(l.inner(), 0, 0)
+                .is_ok_and(|c| c.column() + l.len() > MAX_SNIPPET_COLUMN)
+        })
+    };
+    let related = d.related().into_iter().flatten().any(wide);
+    if !wide(d) && !related {
+        return None;
+    }
+    Some(place(d).unwrap_or((None, 0, 0)))
+}
+
+/// A diagnostic shown without its source lines: its message with the place
+/// in words, and its code, severity and help.
+struct Unshown<'a> {
+    inner: &'a dyn Diagnostic,
+    text: String,
+}
+
+impl std::fmt::Debug for Unshown<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl std::fmt::Display for Unshown<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.text)
+    }
+}
+
+impl std::error::Error for Unshown<'_> {}
+
+impl Diagnostic for Unshown<'_> {
+    fn code<'a>(&'a self) -> Option<Box<dyn std::fmt::Display + 'a>> {
+        self.inner.code()
+    }
+    fn severity(&self) -> Option<Severity> {
+        self.inner.severity()
+    }
+    fn help<'a>(&'a self) -> Option<Box<dyn std::fmt::Display + 'a>> {
+        self.inner.help()
+    }
 }
 
 /// Whether a diagnostic is an error (as opposed to a warning or advice).

@@ -260,3 +260,21 @@ fn arrays_are_the_scene_expanded_in_world_space() {
     // translation column from the first.
     assert_ne!(placed[0].matrix[12..15], placed[1].matrix[12..15]);
 }
+
+#[test]
+fn a_diagnostic_far_along_a_long_line_is_told_without_the_line() {
+    // The error's column (80,008) is past what miette's printer can pad
+    // to (65,535): it used to panic rendering it.
+    let text = format!("Axiom: {}G(x)\n", "F ".repeat(40_000));
+    let err = Grammar::from_str("long.lsys", &text).unwrap_err();
+    let shown = err.render(false);
+    assert!(shown.contains("lsys::resolve::unknown_name"), "{shown}");
+    assert!(
+        shown.contains("at long.lsys:1:80010 (a line too long to show)"),
+        "{shown}"
+    );
+    assert!(shown.len() < 2_000, "the line itself is not printed");
+    // A short line keeps its snippet.
+    let err = Grammar::from_str("short.lsys", "Axiom: G(x)\n").unwrap_err();
+    assert!(err.render(false).contains("╭─[short.lsys:1:10]"));
+}
