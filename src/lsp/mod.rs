@@ -38,22 +38,18 @@ mod lens;
 mod navigate;
 pub mod position;
 mod server;
+pub mod transport;
 
 pub use server::{capabilities, serve};
 
 /// Runs the server over standard input and output until the client asks
 /// it to exit; the process's exit code.
 pub fn run_stdio(options: crate::GrammarOptions) -> i32 {
-    let (connection, io) = lsp_server::Connection::stdio();
-    let result = serve(connection, options.build.source);
-    let joined = io.join();
-    match (result, joined) {
-        (Ok(()), Ok(())) => 0,
-        (Err(e), _) => {
-            eprintln!("lsys lsp: {e}");
-            1
-        }
-        (_, Err(e)) => {
+    // Our own framing (transport.rs): lsp-server's stdio reader exits on
+    // the first malformed message.
+    match transport::stdio(|conn| serve(conn, options.build.source)) {
+        Ok(()) => 0,
+        Err(e) => {
             eprintln!("lsys lsp: {e}");
             1
         }
