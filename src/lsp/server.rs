@@ -1,9 +1,13 @@
 //! The server's main loop. Input: messages from an
 //! [`lsp_server::Connection`]; output: responses and notifications on it.
-//! The loop owns the state (open documents: text, version, analysis),
-//! applies document edits in arrival order, analyses changed documents
-//! once the queue is empty (or before answering a request), and answers
-//! each request against the current analysis of its document.
+//! The loop owns the state (open documents: text, version, last finished
+//! analysis) and applies document edits in arrival order. Once no message
+//! is waiting it starts an analysis of each changed document on a worker
+//! thread (one at a time per document; the result of a text edited since
+//! is kept for requests but its diagnostics are not published), gives up
+//! an analysis that runs past [`ANALYSIS_BUDGET`], and answers each
+//! request at once from the last finished analysis of its document (a
+//! document's very first analysis is waited for, within the budget).
 
 use std::collections::BTreeMap;
 use std::error::Error;
@@ -65,7 +69,8 @@ struct Document {
 /// finished on its worker thread.
 enum Event {
     Message(Message),
-    Analysed(Analysed),
+    /// Boxed: an analysis is large and the channel holds mostly messages.
+    Analysed(Box<Analysed>),
     Closed,
 }
 
@@ -214,7 +219,7 @@ impl Server<'_> {
             };
             match event {
                 Event::Closed => return Ok(()),
-                Event::Analysed(a) => self.finished(a)?,
+                Event::Analysed(a) => self.finished(*a)?,
                 Event::Message(Message::Request(r)) => {
                     if r.method == req::Shutdown::METHOD {
                         // Answered, then the loop waits for `exit` (or the
@@ -368,11 +373,11 @@ impl Server<'_> {
                         let d = diagnostics::diagnostics(&a);
                         (a, d)
                     }));
-                    let _ = events.send(Event::Analysed(Analysed {
+                    let _ = events.send(Event::Analysed(Box::new(Analysed {
                         uri: job_uri,
                         generation,
                         outcome,
-                    }));
+                    })));
                 });
             if let Err(e) = spawned {
                 eprintln!("lsys lsp: cannot start an analysis: {e}");
@@ -393,10 +398,13 @@ impl Server<'_> {
             doc.running = None;
         }
         let current = done.generation == doc.generation && !doc.current();
+        // The replaced analysis is freed after the diagnostics are sent:
+        // freeing a large model takes milliseconds the editor need not wait.
+        let mut old = None;
         let diagnostics = match done.outcome {
             Ok((a, d)) => {
                 if doc.analysis.as_ref().map_or(true, |(g, _)| *g < done.generation) {
-                    doc.analysis = Some((done.generation, a));
+                    old = doc.analysis.replace((done.generation, a));
                 }
                 d
             }
@@ -412,6 +420,7 @@ impl Server<'_> {
             let version = doc.version;
             self.publish(&done.uri, Some(version), diagnostics)?;
         }
+        drop(old);
         self.answer_waiting()
     }
 
@@ -478,7 +487,6 @@ impl Server<'_> {
                         running: old.and_then(|d| d.running),
                     },
                 );
-                self.invalidate_readers(&p.text_document.uri);
             }
             notif::DidChangeTextDocument::METHOD => {
                 let Some(p) = params::<DidChangeTextDocumentParams>(n) else {
