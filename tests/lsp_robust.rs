@@ -350,3 +350,32 @@ fn inlay_hints_on_a_16k_line_grammar_are_not_quadratic() {
     assert!(!r["result"].as_array().unwrap().is_empty(), "{r}");
     s.hover();
 }
+
+#[test]
+fn a_hover_does_not_wait_for_a_running_analysis() {
+    let mut s = Server::start(&[]);
+    s.open(1, GOOD);
+    s.diagnostics(1);
+    // About 4 s of analysis in a debug build (the old server analysed
+    // before answering any request).
+    let mut text = String::from(GOOD);
+    for i in 0..32_000 {
+        text.push_str(&format!("M{i}(x) --> F(x) M{}(x+1)\n", (i + 1) % 32_000));
+    }
+    let uri = s.uri.clone();
+    s.send(
+        json!({"jsonrpc": "2.0", "method": "textDocument/didChange", "params":
+        {"textDocument": {"uri": uri, "version": 2}, "contentChanges": [{"text": text}]}}),
+    );
+    for _ in 0..5 {
+        // Answered from the analysis of version 1.
+        let h = s.hover();
+        assert!(h["result"]["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .contains("value: `3`"));
+    }
+    // Loose: well under the analysis's seconds, not a benchmark.
+    let fast = s.hovers.iter().filter(|d| **d < Duration::from_secs(1));
+    assert_eq!(fast.count(), 5, "{:?}", s.hovers);
+}
