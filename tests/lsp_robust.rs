@@ -379,3 +379,23 @@ fn a_hover_does_not_wait_for_a_running_analysis() {
     let fast = s.hovers.iter().filter(|d| **d < Duration::from_secs(1));
     assert_eq!(fast.count(), 5, "{:?}", s.hovers);
 }
+
+#[test]
+fn semantic_tokens_on_a_long_line_are_not_quadratic() {
+    let mut s = Server::start(&[]);
+    // 300,000 modules on one line, under the analysis limit.
+    let text = format!("axiom: {}\n", "F ".repeat(300_000));
+    s.open(1, &text);
+    s.wait_for(Duration::from_secs(60), "diagnostics", |v| {
+        v["method"] == "textDocument/publishDiagnostics"
+    });
+    let uri = s.uri.clone();
+    let t = Instant::now();
+    let r = s.request(
+        "textDocument/semanticTokens/full",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    eprintln!("semantic tokens of a 600 kB line: {:?}", t.elapsed());
+    assert!(r["result"]["data"].as_array().unwrap().len() >= 5 * 300_000);
+    s.hover();
+}

@@ -10,6 +10,10 @@ use lsp_types::{Position, Range};
 pub struct LineIndex<'t> {
     text: &'t str,
     starts: Vec<usize>,
+    /// An ASCII text's columns are byte counts: no need to count UTF-16
+    /// units from the line's start, which made every position on a long
+    /// line (a generated one-line axiom) cost the line's length.
+    ascii: bool,
 }
 
 impl<'t> LineIndex<'t> {
@@ -21,7 +25,11 @@ impl<'t> LineIndex<'t> {
                 .filter(|&(_, b)| b == b'\n')
                 .map(|(i, _)| i + 1),
         );
-        LineIndex { text, starts }
+        LineIndex {
+            text,
+            starts,
+            ascii: text.is_ascii(),
+        }
     }
 
     /// The position of byte `offset` (clamped to the text and moved back to
@@ -33,7 +41,11 @@ impl<'t> LineIndex<'t> {
         }
         let line = self.starts.partition_point(|&s| s <= offset) - 1;
         let start = self.starts[line];
-        let col = self.text[start..offset].encode_utf16().count();
+        let col = if self.ascii {
+            offset - start
+        } else {
+            self.text[start..offset].encode_utf16().count()
+        };
         Position::new(line as u32, col as u32)
     }
 
@@ -52,6 +64,9 @@ impl<'t> LineIndex<'t> {
             .get(pos.line as usize + 1)
             .map_or(self.text.len(), |&e| e - 1);
         let line = &self.text[start..end.max(start)];
+        if self.ascii {
+            return start + line.len().min(pos.character as usize);
+        }
         let mut units = 0u32;
         for (i, c) in line.char_indices() {
             if units >= pos.character {
