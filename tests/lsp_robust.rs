@@ -399,3 +399,23 @@ fn semantic_tokens_on_a_long_line_are_not_quadratic() {
     assert!(r["result"]["data"].as_array().unwrap().len() >= 5 * 300_000);
     s.hover();
 }
+
+#[test]
+fn twenty_thousand_errors_are_converted_in_linear_time() {
+    let mut s = Server::start(&[]);
+    let mut text = String::from("axiom: A0\n");
+    for i in 0..20_000 {
+        text.push_str(&format!("A{i} --> F(Q{i})\n"));
+    }
+    s.open(1, &text);
+    // Each diagnostic measured the whole text again: past the 10 s budget.
+    let t = Instant::now();
+    let d = s.wait_for(Duration::from_secs(15), "diagnostics", |v| {
+        v["method"] == "textDocument/publishDiagnostics"
+    });
+    eprintln!("20,000 diagnostics in {:?}", t.elapsed());
+    let d = d["params"]["diagnostics"].as_array().unwrap();
+    assert_eq!(d.len(), 20_000, "{}", d[0]);
+    assert_eq!(d[0]["code"], "lsys::resolve::unknown_name");
+    s.hover();
+}

@@ -9,7 +9,7 @@ use lsp_types::{Position, Range};
 /// Line starts of one text, with the text to measure columns in.
 pub struct LineIndex<'t> {
     text: &'t str,
-    starts: Vec<usize>,
+    starts: std::borrow::Cow<'t, [usize]>,
     /// An ASCII text's columns are byte counts: no need to count UTF-16
     /// units from the line's start, which made every position on a long
     /// line (a generated one-line axiom) cost the line's length.
@@ -27,8 +27,20 @@ impl<'t> LineIndex<'t> {
         );
         LineIndex {
             text,
-            starts,
+            starts: starts.into(),
             ascii: text.is_ascii(),
+        }
+    }
+
+    /// An index that owns its text, measured once and borrowed as often
+    /// as needed ([`Lines::index`]).
+    pub fn owned(text: String) -> Lines {
+        let ix = LineIndex::new(&text);
+        let (starts, ascii) = (ix.starts.into_owned(), ix.ascii);
+        Lines {
+            text,
+            starts,
+            ascii,
         }
     }
 
@@ -80,6 +92,23 @@ impl<'t> LineIndex<'t> {
     /// The number of lines (a final line without newline counts).
     pub fn line_count(&self) -> usize {
         self.starts.len()
+    }
+}
+
+/// A text with its line starts (see [`LineIndex::owned`]).
+pub struct Lines {
+    text: String,
+    starts: Vec<usize>,
+    ascii: bool,
+}
+
+impl Lines {
+    pub fn index(&self) -> LineIndex<'_> {
+        LineIndex {
+            text: &self.text,
+            starts: self.starts.as_slice().into(),
+            ascii: self.ascii,
+        }
     }
 }
 
