@@ -176,6 +176,34 @@ fn change_to_diagnostics_rich(bencher: Bencher) {
     change_to_diagnostics(bencher, rich());
 }
 
+/// A grammar of about `bytes` bytes, in lines like [`generated`]'s.
+fn sized(bytes: usize) -> String {
+    let mut s = String::from("#define LEN 2\nderivation length: 2\naxiom: M0(1) F(LEN)\n");
+    let mut i = 0;
+    while s.len() < bytes {
+        s.push_str(&format!(
+            "M{i}(x) : x < 3 --> F(x) [+(30) M{}(x+1)]\n",
+            i + 1
+        ));
+        i += 1;
+    }
+    s.push_str(&format!("M{i}(x) --> F(x)\n"));
+    s
+}
+
+/// The largest document the server analyses (src/lsp/server.rs,
+/// `MAX_ANALYSED`, 1 MiB): an edit to its diagnostics.
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn change_to_diagnostics_1mb(bencher: Bencher) {
+    change_to_diagnostics(bencher, sized((1 << 20) - 100));
+}
+
+/// A 5 MB document: over the limit, an edit gets the "too large" notice.
+#[divan::bench(sample_count = 10, sample_size = 1)]
+fn change_to_diagnostics_5mb(bencher: Bencher) {
+    change_to_diagnostics(bencher, sized(5_000_000));
+}
+
 /// The document as the server compiles it: text at a path in a folder
 /// with the include beside it.
 fn edited_input(dir: &tempfile::TempDir, text: String) -> lsys::internals::load::Input {

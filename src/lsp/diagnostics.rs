@@ -20,7 +20,9 @@ use miette::Severity;
 use serde::{Deserialize, Serialize};
 
 use super::analysis::{Analysis, ROOT};
-use super::position::LineIndex;
+use std::collections::HashMap;
+
+use super::position::{LineIndex, Lines};
 use crate::source::FileId;
 
 /// A fix carried in a diagnostic's `data`.
@@ -38,7 +40,50 @@ pub fn diagnostics(a: &Analysis) -> Vec<Diagnostic> {
         Ok(c) => c.warnings.iter().map(|r| r.as_ref() as _).collect(),
         Err(d) => d.iter().map(|d| d as _).collect(),
     };
-    reports.into_iter().map(|d| convert(a, d)).collect()
+    // Each source text is measured once, not once per diagnostic: that
+    // made 20,000 errors in a 340 kB file take longer than the server's
+    // analysis budget.
+    let mut texts: Texts = HashMap::new();
+    for d in &reports {
+        let Some(src) = d.source_code() else { continue };
+        let Some(name) = source_name(src) else {
+            continue;
+        };
+        if texts.contains_key(&name) {
+            continue;
+        }
+        if let Ok(whole) = src.read_span(&(0, 0).into(), 0, usize::MAX) {
+            let text = String::from_utf8_lossy(whole.data()).into_owned();
+            texts.insert(name, LineIndex::owned(text));
+        }
+    }
+    let root = if a.sources.files().is_empty() {
+        ""
+    } else {
+        a.text(ROOT)
+    };
+    let ixs = Indexes {
+        texts,
+        root: LineIndex::new(root),
+        doc: LineIndex::new(&a.doc),
+    };
+    reports.into_iter().map(|d| convert(a, &ixs, d)).collect()
+}
+
+/// Source texts by name (`None`: a source without a name), measured.
+type Texts = HashMap<Option<String>, Lines>;
+
+struct Indexes<'a> {
+    texts: Texts,
+    root: LineIndex<'a>,
+    doc: LineIndex<'a>,
+}
+
+/// The name of a diagnostic's source (`Some(None)` when it has none),
+/// read without going through the whole text.
+fn source_name(src: &dyn miette::SourceCode) -> Option<Option<String>> {
+    let first = src.read_span(&(0, 0).into(), 0, 0).ok()?;
+    Some(first.name().map(str::to_string))
 }
 
 /// Where a label points: the file (by the name of the diagnostic's
@@ -47,17 +92,16 @@ pub fn diagnostics(a: &Analysis) -> Vec<Diagnostic> {
 /// preprocessor).
 fn label_place(
     a: &Analysis,
+    ixs: &Indexes,
     d: &dyn miette::Diagnostic,
     l: &miette::LabeledSpan,
 ) -> Option<(FileId, Range)> {
-    let src = d.source_code()?;
-    let whole = src.read_span(&(0, 0).into(), 0, usize::MAX).ok()?;
-    let file = match whole.name() {
+    let name = source_name(d.source_code()?)?;
+    let file = match &name {
         Some(name) => a.file_named(name)?,
         None => ROOT,
     };
-    let text = String::from_utf8_lossy(whole.data());
-    let ix = LineIndex::new(&text);
+    let ix = ixs.texts.get(&name)?.index();
     Some((file, ix.range(l.offset(), l.offset() + l.len())))
 }
 
@@ -65,14 +109,10 @@ fn location(a: &Analysis, file: FileId, range: Range) -> Option<Location> {
     Some(Location::new(a.uri_of(file)?.clone(), range))
 }
 
-fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
+fn convert(a: &Analysis, ixs: &Indexes, d: &dyn miette::Diagnostic) -> Diagnostic {
     let labels: Vec<miette::LabeledSpan> = d.labels().map(|l| l.collect()).unwrap_or_default();
-    let places: Vec<_> = labels.iter().map(|l| label_place(a, d, l)).collect();
-    let root_ix = LineIndex::new(if a.sources.files().is_empty() {
-        ""
-    } else {
-        a.text(ROOT)
-    });
+    let places: Vec<_> = labels.iter().map(|l| label_place(a, ixs, d, l)).collect();
+    let root_ix = &ixs.root;
     let mut message = d.to_string();
     let mut related = Vec::new();
     let mut range = Range::default();
@@ -109,11 +149,10 @@ fn convert(a: &Analysis, d: &dyn miette::Diagnostic) -> Diagnostic {
     let tags = (code.as_deref() == Some("lsys::resolve::unreachable"))
         .then(|| vec![DiagnosticTag::UNNECESSARY]);
     let on_root = matches!(places.first(), Some(Some((ROOT, ..))));
-    let doc_ix = LineIndex::new(&a.doc);
     let fix = help
         .as_deref()
         .filter(|_| on_root)
-        .and_then(|h| fix(&a.doc, &doc_ix, range, h));
+        .and_then(|h| fix(&a.doc, &ixs.doc, range, h));
     Diagnostic {
         range,
         severity: Some(match d.severity() {

@@ -12,11 +12,13 @@
 //! grammars gives.
 //!
 //! The structure is ruff's and ty's: one synchronous loop (`server.rs`)
-//! owns the open documents (text and version), applies edits in the order
-//! they arrive, analyses a document again only once no message is waiting
-//! (a burst of keystrokes is compiled once), answers requests against the
-//! current analysis and publishes diagnostics with the version they were
-//! computed for.
+//! owns the open documents (text and version) and applies edits in the
+//! order they arrive; analyses run on worker threads once no message is
+//! waiting (a burst of keystrokes is compiled once), within a wall-clock
+//! budget; requests are answered from the last finished analysis, never
+//! waiting for a running one; diagnostics are published with the version
+//! they were computed for. `transport.rs` reads and writes the stdio
+//! stream itself, so that no malformed message ends the server.
 //!
 //! ```text
 //! position     byte offsets <-> LSP (UTF-16) positions
@@ -26,6 +28,7 @@
 //! diagnostics  compiler diagnostics -> LSP diagnostics, quick fixes
 //! hover, navigate, complete, inlay, lens   the requests
 //! server       the loop
+//! transport    stdio framing, lenient: malformed input answered or skipped
 //! ```
 
 mod analysis;
@@ -38,22 +41,18 @@ mod lens;
 mod navigate;
 pub mod position;
 mod server;
+pub mod transport;
 
 pub use server::{capabilities, serve};
 
 /// Runs the server over standard input and output until the client asks
 /// it to exit; the process's exit code.
 pub fn run_stdio(options: crate::GrammarOptions) -> i32 {
-    let (connection, io) = lsp_server::Connection::stdio();
-    let result = serve(connection, options.build.source);
-    let joined = io.join();
-    match (result, joined) {
-        (Ok(()), Ok(())) => 0,
-        (Err(e), _) => {
-            eprintln!("lsys lsp: {e}");
-            1
-        }
-        (_, Err(e)) => {
+    // Our own framing (transport.rs): lsp-server's stdio reader exits on
+    // the first malformed message.
+    match transport::stdio(|conn| serve(conn, options.build.source)) {
+        Ok(()) => 0,
+        Err(e) => {
             eprintln!("lsys lsp: {e}");
             1
         }

@@ -9,7 +9,11 @@ use lsp_types::{Position, Range};
 /// Line starts of one text, with the text to measure columns in.
 pub struct LineIndex<'t> {
     text: &'t str,
-    starts: Vec<usize>,
+    starts: std::borrow::Cow<'t, [usize]>,
+    /// An ASCII text's columns are byte counts: no need to count UTF-16
+    /// units from the line's start, which made every position on a long
+    /// line (a generated one-line axiom) cost the line's length.
+    ascii: bool,
 }
 
 impl<'t> LineIndex<'t> {
@@ -21,7 +25,23 @@ impl<'t> LineIndex<'t> {
                 .filter(|&(_, b)| b == b'\n')
                 .map(|(i, _)| i + 1),
         );
-        LineIndex { text, starts }
+        LineIndex {
+            text,
+            starts: starts.into(),
+            ascii: text.is_ascii(),
+        }
+    }
+
+    /// An index that owns its text, measured once and borrowed as often
+    /// as needed ([`Lines::index`]).
+    pub fn owned(text: String) -> Lines {
+        let ix = LineIndex::new(&text);
+        let (starts, ascii) = (ix.starts.into_owned(), ix.ascii);
+        Lines {
+            text,
+            starts,
+            ascii,
+        }
     }
 
     /// The position of byte `offset` (clamped to the text and moved back to
@@ -33,7 +53,11 @@ impl<'t> LineIndex<'t> {
         }
         let line = self.starts.partition_point(|&s| s <= offset) - 1;
         let start = self.starts[line];
-        let col = self.text[start..offset].encode_utf16().count();
+        let col = if self.ascii {
+            offset - start
+        } else {
+            self.text[start..offset].encode_utf16().count()
+        };
         Position::new(line as u32, col as u32)
     }
 
@@ -52,6 +76,9 @@ impl<'t> LineIndex<'t> {
             .get(pos.line as usize + 1)
             .map_or(self.text.len(), |&e| e - 1);
         let line = &self.text[start..end.max(start)];
+        if self.ascii {
+            return start + line.len().min(pos.character as usize);
+        }
         let mut units = 0u32;
         for (i, c) in line.char_indices() {
             if units >= pos.character {
@@ -65,6 +92,23 @@ impl<'t> LineIndex<'t> {
     /// The number of lines (a final line without newline counts).
     pub fn line_count(&self) -> usize {
         self.starts.len()
+    }
+}
+
+/// A text with its line starts (see [`LineIndex::owned`]).
+pub struct Lines {
+    text: String,
+    starts: Vec<usize>,
+    ascii: bool,
+}
+
+impl Lines {
+    pub fn index(&self) -> LineIndex<'_> {
+        LineIndex {
+            text: &self.text,
+            starts: self.starts.as_slice().into(),
+            ascii: self.ascii,
+        }
     }
 }
 
