@@ -60,6 +60,11 @@ pub struct Misfit {
 }
 
 pub(crate) fn num(x: f64) -> String {
+    // Sizes far from 1 (a 1e308 scope, a denormal piece) in exponent form:
+    // three decimals would print 309 digits, or 0.
+    if x != 0.0 && x.is_finite() && !(1e-3..1e15).contains(&x.abs()) {
+        return format!("{x:e}");
+    }
     let s = format!("{x:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" {
@@ -132,6 +137,30 @@ pub fn subdivide(total: f64, raw: &[f64], axis: Axis) -> Result<Vec<f64>, Misfit
         .collect())
 }
 
+/// The most pieces one repeat (`@RX`, or each side of `@RSX`) lays out.
+/// Checked before the pieces are allocated: a tiny or denormal piece in a
+/// large scope asked for 10^8 to 10^300 of them and aborted the run.
+pub const MAX_COPIES: usize = 100_000;
+
+/// The refusal of a repeat of `n` (a float: it may be infinite) copies.
+fn too_many(asked: String, total: f64, n: f64) -> Misfit {
+    let count = if !n.is_finite() {
+        "infinitely many".to_string()
+    } else if n < 1e15 {
+        format!("{n:.0}")
+    } else {
+        format!("{n:e}")
+    };
+    Misfit {
+        asked,
+        scope: total,
+        problem: format!(
+            "it would lay out {count} copies, more than the {MAX_COPIES} one repeat may"
+        ),
+        help: "make the piece larger or the scope smaller (docs/limits.md)".into(),
+    }
+}
+
 /// `@RX(s)`: as many copies as fit (at least one), stretched to fill.
 pub fn repeat(total: f64, size: f64, axis: Axis) -> Result<Vec<f64>, Misfit> {
     if size <= 0.0 {
@@ -143,6 +172,10 @@ pub fn repeat(total: f64, size: f64, axis: Axis) -> Result<Vec<f64>, Misfit> {
         });
     }
     let n = (total / size + EPS).floor();
+    if !(n <= MAX_COPIES as f64) {
+        let asked = format!("copies of size {} along {}", num(size), axis.name());
+        return Err(too_many(asked, total, n));
+    }
     if n < 1.0 {
         return Err(Misfit {
             asked: format!("copies of size {} along {}", num(size), axis.name()),
@@ -207,7 +240,11 @@ pub fn symmetric(
         });
     }
     let inner = inner.max(0.0);
-    let n = (inner / (2.0 * bay) + EPS).floor() as usize;
+    let n = (inner / (2.0 * bay) + EPS).floor();
+    if !(n <= MAX_COPIES as f64) {
+        return Err(too_many(asked, total, n));
+    }
+    let n = n as usize;
     let (b, c) = if n == 0 {
         (0.0, centre + inner)
     } else {
@@ -317,6 +354,26 @@ mod tests {
             (centre - DVec3::new(2.0, 1.0, 0.5)).length() < 1e-12,
             "{centre}"
         );
+    }
+
+    #[test]
+    fn repeats_past_the_limit_are_refused_before_allocating() {
+        for (total, size) in [
+            (2.0, 1e-320),
+            (1e308, 3.0),
+            (f64::INFINITY, 1.0),
+            (1.0, 1e-6),
+        ] {
+            let e = repeat(total, size, Axis::X).unwrap_err();
+            assert!(
+                e.problem.contains("copies, more than the 100000"),
+                "{}",
+                e.problem
+            );
+        }
+        assert_eq!(repeat(1.0, 1e-5, Axis::X).unwrap().len(), 100_000);
+        let e = symmetric(1e308, 1.0, 1.0, 1.0, Axis::X).unwrap_err();
+        assert!(e.problem.contains("more than the 100000"), "{}", e.problem);
     }
 
     #[test]
