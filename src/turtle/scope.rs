@@ -172,7 +172,7 @@ pub fn repeat(total: f64, size: f64, axis: Axis) -> Result<Vec<f64>, Misfit> {
         });
     }
     let n = (total / size + EPS).floor();
-    if !(n <= MAX_COPIES as f64) {
+    if n.is_nan() || n > MAX_COPIES as f64 {
         let asked = format!("copies of size {} along {}", num(size), axis.name());
         return Err(too_many(asked, total, n));
     }
@@ -241,7 +241,7 @@ pub fn symmetric(
     }
     let inner = inner.max(0.0);
     let n = (inner / (2.0 * bay) + EPS).floor();
-    if !(n <= MAX_COPIES as f64) {
+    if n.is_nan() || n > MAX_COPIES as f64 {
         return Err(too_many(asked, total, n));
     }
     let n = n as usize;
