@@ -10,7 +10,7 @@ use lsys::driver::batch;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::grammar::PathOrStr;
+use crate::args::PathOrStr;
 
 /// Builds the item `spec` into `out_dir` (created if missing); relative
 /// grammar paths are read from `base_dir` (default: the current folder).

@@ -8,10 +8,11 @@
 use std::sync::Arc;
 
 use lsys::driver::{Input, Job};
-use lsys::{Diagnostics, GrammarOptions, Numbers};
+use lsys::{Diagnostics, Numbers};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
+use crate::args::{define_pairs, options, PathOrStr};
 use crate::derived::{Derived, StepIter};
 use crate::errors::lsys_error;
 use crate::on_worker;
@@ -57,30 +58,6 @@ pub struct Grammar {
     pub defines: Vec<(String, String)>,
     pub seed: Option<u64>,
     pub inner: Arc<lsys::Grammar>,
-}
-
-/// `{"TM.NTL": 3}` as `-D` pairs; values as Python prints them.
-pub fn define_pairs(defines: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
-    let Some(d) = defines else {
-        return Ok(Vec::new());
-    };
-    d.iter()
-        .map(|(k, v)| {
-            let value = if v.is_instance_of::<pyo3::types::PyBool>() {
-                // `True`/`False` mean 1/0, as in C.
-                if v.is_truthy()? { "1" } else { "0" }.to_string()
-            } else {
-                v.str()?.to_string()
-            };
-            Ok((k.extract::<String>()?, value))
-        })
-        .collect()
-}
-
-pub fn options(defines: &[(String, String)], seed: Option<u64>) -> GrammarOptions {
-    GrammarOptions::default()
-        .defines_from(defines)
-        .seed_option(seed)
 }
 
 impl Grammar {
@@ -247,21 +224,6 @@ pub fn _grammar_from_state(
         _ => Source::Path(name),
     };
     Grammar::compile(py, source, defines, seed)
-}
-
-/// A path given as `str` or as a `pathlib.Path`.
-pub struct PathOrStr(pub String);
-
-impl<'a, 'py> FromPyObject<'a, 'py> for PathOrStr {
-    type Error = PyErr;
-
-    fn extract(ob: pyo3::Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        if let Ok(s) = ob.extract::<String>() {
-            return Ok(PathOrStr(s));
-        }
-        let p: std::path::PathBuf = ob.extract()?;
-        Ok(PathOrStr(p.to_string_lossy().into_owned()))
-    }
 }
 
 /// Modules in a printed string: lsys prints one space between modules

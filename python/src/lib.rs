@@ -4,6 +4,7 @@
 //! bytes, dicts) or an `LsysError`. The Python half (`pailou/__init__.py`)
 //! re-exports these and adds nothing that builds.
 //!
+//! * `args.rs`: defines dicts, paths and options from Python values;
 //! * `errors.rs`: `LsysError` and its `.diagnostics`;
 //! * `grammar.rs`: `Grammar` (compile, derive, steps, build, pickling);
 //! * `derived.rs`: `Derived` and the `steps()` iterator;
@@ -14,6 +15,7 @@
 
 use pyo3::prelude::*;
 
+mod args;
 mod batch;
 mod derived;
 mod errors;

@@ -7,8 +7,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::args::{define_pairs, options, PathOrStr};
 use crate::errors::LsysError;
-use crate::grammar::{define_pairs, options, PathOrStr};
 use crate::scene::Scene;
 
 /// A Pailou's scene: `style="4-3-7"` with `type="ridge"` or `"pillar"`,

@@ -189,7 +189,7 @@ impl Scene {
     /// Writes the model in the format of `path`'s extension (`.glb`,
     /// `.gltf`, `.obj` with its `.mtl`, `.png`), atomically; the bytes
     /// written.
-    fn write(&self, py: Python<'_>, path: crate::grammar::PathOrStr) -> PyResult<u64> {
+    fn write(&self, py: Python<'_>, path: crate::args::PathOrStr) -> PyResult<u64> {
         let scene = &self.scene;
         match py.detach(|| scene.write_file(&path.0)) {
             Ok(n) => Ok(n),

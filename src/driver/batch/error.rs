@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use miette::Diagnostic;
 use thiserror::Error;
 
-use super::manifest::ManifestError;
+use super::mistake::ManifestError;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum BatchError {

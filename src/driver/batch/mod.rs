@@ -19,6 +19,7 @@ mod generate;
 mod index;
 mod item;
 mod manifest;
+mod mistake;
 mod run;
 
 pub use entry::{Bounds, Entry, ItemDiagnostic, Status};
@@ -26,5 +27,6 @@ pub use error::{check_shard, parse_shard, BatchError};
 pub use generate::generate;
 pub use index::INDEX;
 pub use item::{check_id, extension, item_from_json, Item, ItemError, KEYS};
-pub use manifest::{ManifestError, Mistake, MISTAKES_TOLD};
+pub use manifest::MISTAKES_TOLD;
+pub use mistake::{ManifestError, Mistake};
 pub use run::{run, Progress, Summary};
