@@ -278,3 +278,17 @@ fn a_diagnostic_far_along_a_long_line_is_told_without_the_line() {
     let err = Grammar::from_str("short.lsys", "Axiom: G(x)\n").unwrap_err();
     assert!(err.render(false).contains("╭─[short.lsys:1:10]"));
 }
+
+#[test]
+fn a_warning_marks_at_most_twenty_of_many_brackets() {
+    // 30,000 unclosed `[` on short lines: one label each was rendered in
+    // quadratic time and size.
+    let text = format!("Axiom: A\nA -->\n{}", "  [F\n".repeat(30_000));
+    let g = Grammar::from_str("open.lsys", &text).unwrap();
+    let shown = g.warnings().render(false);
+    assert!(
+        shown.contains("30000 `[` are never closed; the first 20 are marked."),
+        "{shown}"
+    );
+    assert_eq!(shown.matches("never closed").count(), 21, "{shown}");
+}
