@@ -234,15 +234,38 @@ impl std::fmt::Display for Message {
     /// `file:line:column: severity[code]: message`, each part present
     /// only when the diagnostic has it.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if let (Some(file), Some(line), Some(column)) = (&self.file, self.line, self.column) {
-            write!(f, "{file}:{line}:{column}: ")?;
-        }
-        write!(f, "{}", self.severity)?;
-        if let Some(code) = &self.code {
-            write!(f, "[{code}]")?;
-        }
-        write!(f, ": {}", self.message)
+        let place = match (&self.file, self.line, self.column) {
+            (Some(file), Some(line), Some(column)) => Some((file.as_str(), line, column)),
+            _ => None,
+        };
+        write_short(
+            f,
+            place,
+            self.severity.as_str(),
+            self.code.as_deref(),
+            &self.message,
+        )
     }
+}
+
+/// The short form of a diagnostic, `file:line:column: severity[code]:
+/// message`, each part written when known: [`Message`]'s `Display`, and
+/// the batch index's diagnostics (`driver::batch::ItemDiagnostic`).
+pub fn write_short(
+    f: &mut std::fmt::Formatter<'_>,
+    place: Option<(&str, usize, usize)>,
+    severity: &str,
+    code: Option<&str>,
+    message: &str,
+) -> std::fmt::Result {
+    if let Some((file, line, column)) = place {
+        write!(f, "{file}:{line}:{column}: ")?;
+    }
+    write!(f, "{severity}")?;
+    if let Some(code) = code {
+        write!(f, "[{code}]")?;
+    }
+    write!(f, ": {message}")
 }
 
 /// Where a diagnostic points: the file name (when its source has one),

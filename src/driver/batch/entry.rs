@@ -75,14 +75,17 @@ impl std::fmt::Display for ItemDiagnostic {
     /// The short form of [`Message`]: `file:line:column:
     /// severity[code]: message`, each part present when known.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if let (Some(file), Some(line), Some(column)) = (&self.file, self.line, self.column) {
-            write!(f, "{file}:{line}:{column}: ")?;
-        }
-        write!(f, "{}", self.severity)?;
-        if let Some(code) = &self.code {
-            write!(f, "[{code}]")?;
-        }
-        write!(f, ": {}", self.message)
+        let place = match (&self.file, self.line, self.column) {
+            (Some(file), Some(line), Some(column)) => Some((file.as_str(), line, column)),
+            _ => None,
+        };
+        crate::diag::write_short(
+            f,
+            place,
+            &self.severity,
+            self.code.as_deref(),
+            &self.message,
+        )
     }
 }
 
