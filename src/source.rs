@@ -120,24 +120,17 @@ pub struct SourceFile {
     pub name: String,
     pub origin: Origin,
     pub text: Arc<String>,
-    line_starts: Vec<u32>,
+    line_starts: Arc<Vec<u32>>,
 }
 
 impl SourceFile {
     pub fn new(name: impl Into<String>, origin: Origin, text: impl Into<String>) -> SourceFile {
         let text: String = text.into();
-        let mut line_starts = vec![0u32];
-        line_starts.extend(
-            text.bytes()
-                .enumerate()
-                .filter(|&(_, b)| b == b'\n')
-                .map(|(i, _)| i as u32 + 1),
-        );
         SourceFile {
             name: name.into(),
             origin,
+            line_starts: Arc::new(line_starts(&text)),
             text: Arc::new(text),
-            line_starts,
         }
     }
 
@@ -165,8 +158,14 @@ impl SourceFile {
     }
 
     /// The text as miette wants it for a labelled snippet.
-    pub fn named_source(&self) -> NamedSource<Arc<String>> {
-        NamedSource::new(&self.name, self.text.clone())
+    pub fn named_source(&self) -> NamedSource<SourceText> {
+        NamedSource::new(
+            &self.name,
+            SourceText(Arc::new(Lines {
+                text: self.text.clone(),
+                starts: self.line_starts.clone(),
+            })),
+        )
     }
 }
 
@@ -221,7 +220,81 @@ impl SourceMap {
         format!("{}:{}:{}", f.name, l, c)
     }
 
-    pub fn named_source(&self, span: Span) -> NamedSource<Arc<String>> {
+    pub fn named_source(&self, span: Span) -> NamedSource<SourceText> {
         self.get(span.file).named_source()
     }
+}
+
+/// A file's text for miette, with the starts of its lines. miette's own
+/// `SourceCode` for text walks it from the first byte to every label, so
+/// a file with thousands of diagnostics was printed in quadratic time
+/// (20,000 errors: 12 s, issue 36). This one starts the walk at the first
+/// line of the snippet, found by binary search.
+///
+/// One pointer, as the `Arc<String>` it replaces: diagnostics carry one
+/// per label and stay small.
+#[derive(Clone, Debug)]
+pub struct SourceText(Arc<Lines>);
+
+#[derive(Debug)]
+struct Lines {
+    text: Arc<String>,
+    starts: Arc<Vec<u32>>,
+}
+
+impl From<Arc<String>> for SourceText {
+    fn from(text: Arc<String>) -> SourceText {
+        SourceText(Arc::new(Lines {
+            starts: Arc::new(line_starts(&text)),
+            text,
+        }))
+    }
+}
+
+impl From<String> for SourceText {
+    fn from(text: String) -> SourceText {
+        SourceText::from(Arc::new(text))
+    }
+}
+
+impl miette::SourceCode for SourceText {
+    fn read_span<'a>(
+        &'a self,
+        span: &miette::SourceSpan,
+        before: usize,
+        after: usize,
+    ) -> Result<Box<dyn miette::SpanContents<'a> + 'a>, miette::MietteError> {
+        let Lines { text, starts } = &*self.0;
+        let offset = u32::try_from(span.offset()).unwrap_or(u32::MAX);
+        let line = match starts.binary_search(&offset) {
+            Ok(i) => i,
+            Err(i) => i.saturating_sub(1),
+        };
+        let first = line.saturating_sub(before);
+        let base = starts.get(first).map_or(0, |&b| b as usize);
+        let base = base.min(text.len()).min(span.offset());
+        let shifted = miette::SourceSpan::new((span.offset() - base).into(), span.len());
+        let rest: &'a [u8] = &text.as_bytes()[base..];
+        let c = rest.read_span(&shifted, before, after)?;
+        let first = if base == 0 { 0 } else { first };
+        Ok(Box::new(miette::MietteSpanContents::new(
+            c.data(),
+            miette::SourceSpan::new((c.span().offset() + base).into(), c.span().len()),
+            c.line() + first,
+            c.column(),
+            c.line_count(),
+        )))
+    }
+}
+
+/// The byte offsets at which the lines of `text` start.
+fn line_starts(text: &str) -> Vec<u32> {
+    let mut starts = vec![0u32];
+    starts.extend(
+        text.bytes()
+            .enumerate()
+            .filter(|&(_, b)| b == b'\n')
+            .map(|(i, _)| i as u32 + 1),
+    );
+    starts
 }

@@ -3,8 +3,6 @@
 //! of the VM are [`crate::bytecode::Fault`]s, turned into diagnostics by
 //! `derive`, which knows the production and the step.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
@@ -19,7 +17,7 @@ pub enum BytecodeError {
         name: String,
         count: usize,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this module has {count} parameters")]
         span: SourceSpan,
     },
@@ -39,7 +37,7 @@ pub enum BytecodeError {
     ChunkTooLong {
         limit: u64,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("too long")]
         span: SourceSpan,
     },

@@ -109,6 +109,7 @@ impl<'p> Derivation<'p> {
     /// string.
     pub fn rewrite_step(&mut self) -> Result<(), DeriveError> {
         self.st.step = self.steps + 1;
+        self.st.loop_rounds = 0;
         let hooks = &self.tab.compiled.hooks;
         run_hook(
             &self.tab,
@@ -399,6 +400,7 @@ impl<'p> Derivation<'p> {
             });
         }
         self.st.step = self.steps;
+        self.st.loop_rounds = 0;
         let before = self.st.warnings.len();
         let mut out = ModuleStore::new();
         rewrite_recursive(

@@ -9,7 +9,7 @@ use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
 /// Shared, so that errors stay small (`Result`s are returned per module).
-pub type Src = Arc<NamedSource<Arc<String>>>;
+pub type Src = Arc<NamedSource<crate::source::SourceText>>;
 
 /// Internal error: boxed so that the `Result`s passed per module stay small.
 pub(crate) type Fail = Box<DeriveError>;
@@ -72,10 +72,10 @@ pub enum DeriveError {
         production: Option<SourceSpan>,
     },
 
-    #[error("{context} at step {step}: a loop went round more than {limit} times")]
+    #[error("{context} at step {step}: loops went round more than {limit} times in the step")]
     #[diagnostic(
         code(lsys::derive::endless_loop),
-        help("make the `while` condition become false (is the variable it tests changed in the loop?)")
+        help("make the `while` condition become false (is the variable it tests changed in the loop?); the limit counts the rounds of every loop run in one step, for all modules together")
     )]
     EndlessLoop {
         limit: u64,

@@ -36,6 +36,9 @@ pub(crate) struct State {
     /// When counting (see `Derivation::counting_firings`): how many times
     /// each main production applied; empty otherwise.
     pub(crate) fired: Vec<u64>,
+    /// Loop rounds of the statement blocks in this step (see
+    /// [`crate::bytecode::vm::MAX_LOOP_ITERATIONS`]).
+    pub(crate) loop_rounds: u64,
 }
 
 impl State {
@@ -47,6 +50,7 @@ impl State {
             vars: &mut self.vars,
             stack: &mut self.stack,
             rng: &mut self.rng,
+            rounds: Some(&mut self.loop_rounds),
         }
     }
 
@@ -62,6 +66,7 @@ impl State {
             warnings: Vec::new(),
             step: 0,
             fired: Vec::new(),
+            loop_rounds: 0,
         }
     }
 }

@@ -1,12 +1,10 @@
 //! Errors of the environment stage: a communication or specification file
 //! that names a program lsys does not have, or a value it cannot read.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
-type Src = NamedSource<Arc<String>>;
+type Src = NamedSource<crate::source::SourceText>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum EnvironmentError {

@@ -6,8 +6,6 @@
 //! carry over. The turtle's position, heading, left and up are sent
 //! unrounded (a `.lsys` file has no communication file to format them).
 
-use std::sync::Arc;
-
 use miette::{NamedSource, SourceSpan};
 
 use super::communication::{EnvironmentSpec, Field, FieldKind, Settings};
@@ -29,7 +27,7 @@ pub const NAMES: [(&str, &str); 6] = [
 pub fn environment_header(
     text: &str,
     images: &[(String, crate::load::HeaderImage)],
-    src: NamedSource<Arc<String>>,
+    src: NamedSource<crate::source::SourceText>,
     span: SourceSpan,
 ) -> Result<EnvironmentSpec, Box<EnvironmentError>> {
     let trimmed = text.trim();

@@ -3,7 +3,6 @@
 //! to the scene file, or `std:NAME`).
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
 
 use miette::NamedSource;
 
@@ -34,7 +33,10 @@ pub fn load_file(
         Box::new(SceneError::Syntax {
             file: path.display().to_string(),
             message: format!("cannot read it: {e}"),
-            src: NamedSource::new(path.display().to_string(), Arc::new(String::new())),
+            src: NamedSource::new(
+                path.display().to_string(),
+                crate::source::SourceText::from(String::new()),
+            ),
             span: None,
         })
     })?;
@@ -82,7 +84,7 @@ fn load_confined(
         .filter_map(|d| std::fs::canonicalize(d).ok())
         .collect();
     let spec = scene::read(name, text)?;
-    let src = NamedSource::new(name, Arc::new(text.to_string()));
+    let src = NamedSource::new(name, crate::source::SourceText::from(text.to_string()));
     let mut l = Loaded {
         spec: spec.clone(),
         grammars: Vec::new(),

@@ -5,7 +5,6 @@
 
 use std::collections::BTreeMap;
 use std::ops::Range;
-use std::sync::Arc;
 
 use glam::DVec2;
 use miette::{Diagnostic, NamedSource, SourceSpan};
@@ -27,7 +26,7 @@ pub enum SceneError {
         file: String,
         message: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("here")]
         span: Option<SourceSpan>,
     },
@@ -37,7 +36,7 @@ pub enum SceneError {
     Scene {
         message: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("{label}")]
         span: SourceSpan,
         label: String,
@@ -50,7 +49,7 @@ pub enum SceneError {
     Outside {
         grammar: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("not read: outside the allowed folders")]
         span: SourceSpan,
         /// The folders allowed, and how to allow another.
@@ -63,7 +62,7 @@ pub enum SceneError {
     Grammar {
         grammar: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this grammar")]
         span: SourceSpan,
         /// The grammar's own diagnostics, rendered.
@@ -202,7 +201,7 @@ pub struct SceneSpec {
 }
 
 struct Reader {
-    src: NamedSource<Arc<String>>,
+    src: NamedSource<crate::source::SourceText>,
 }
 
 impl Reader {
@@ -225,7 +224,7 @@ impl Reader {
 
 /// Reads a scene file (`name` for messages).
 pub fn read(name: &str, text: &str) -> Result<SceneSpec, Box<SceneError>> {
-    let src = NamedSource::new(name, Arc::new(text.to_string()));
+    let src = NamedSource::new(name, crate::source::SourceText::from(text.to_string()));
     let file: File = toml::from_str(text).map_err(|e| {
         Box::new(SceneError::Syntax {
             file: name.to_string(),

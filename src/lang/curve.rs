@@ -69,6 +69,15 @@ impl Curve {
                 }
                 let z = if dim > 2 { v[2] } else { 0.0 };
                 let mult = if dim > 3 { v[3] as usize } else { 1 };
+                // Function and contour files cap theirs at 16 too; more
+                // is no shape a cubic spline can have, and 1e8 copies of
+                // a point aborted for memory (issue 36).
+                if mult > 16 {
+                    return Err(bad(&format!(
+                        "a control point's multiplicity is at most 16, found {}; 3 pins the curve to the point",
+                        v[3]
+                    )));
+                }
                 for _ in 0..mult {
                     points.push([v[0], v[1], z]);
                 }

@@ -4,12 +4,10 @@
 //! errors keep the codes (`lsys::resolve::*`) they had when loading was part
 //! of resolve.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
-type Src = NamedSource<Arc<String>>;
+type Src = NamedSource<crate::source::SourceText>;
 
 /// The root input could not be read at all (no diagnostics to point at).
 #[derive(Debug, Error, Diagnostic)]
@@ -102,6 +100,22 @@ pub enum LoadError {
         #[source_code]
         src: Src,
         #[label("this include closes the cycle")]
+        span: SourceSpan,
+    },
+
+    #[error("this include would read {files} files and {bytes} bytes in all, past the limits of one model ({max_files} files, {max_mib} MiB)")]
+    #[diagnostic(
+        code(lsys::load::include_limit),
+        help("nothing more is included. An include tree that reads files more than once grows exponentially (each file including the next twice): include each file once")
+    )]
+    IncludeLimit {
+        files: usize,
+        bytes: usize,
+        max_files: usize,
+        max_mib: usize,
+        #[source_code]
+        src: Src,
+        #[label("this include is past the limit")]
         span: SourceSpan,
     },
 

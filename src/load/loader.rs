@@ -13,6 +13,7 @@ use super::{Loaded, Options, SideFiles};
 use crate::lang::Profile;
 use crate::parse::ast::{Include, Item};
 use crate::parse::{self};
+use crate::preprocess::{MAX_FILES, MAX_TOTAL_BYTES};
 use crate::source::{FileId, Origin, SourceFile, SourceMap, Span};
 use crate::stdlib;
 
@@ -28,6 +29,13 @@ pub(super) struct Loader {
     limits: parse::Limits,
     /// A cpfg root's preprocessed files, and which file id holds which.
     pub(super) pre: Option<super::cpfg::Preprocessed>,
+    /// Files entered and their bytes, the root's too, against
+    /// [`MAX_FILES`] and [`MAX_TOTAL_BYTES`]: the depth limit alone lets a
+    /// diamond of includes read 2^30 files.
+    files_read: usize,
+    bytes_read: usize,
+    /// Set once a limit is reached: later includes are skipped unread.
+    includes_stopped: bool,
 }
 
 impl Loader {
@@ -52,11 +60,16 @@ impl Loader {
             max_depth: opts.max_include_depth,
             limits: opts.parse,
             pre: None,
+            files_read: 0,
+            bytes_read: 0,
+            includes_stopped: false,
         }
     }
 
     /// Loads the root file and everything it includes.
     pub(super) fn root(&mut self, root: SourceFile) {
+        self.files_read = 1;
+        self.bytes_read = root.text.len();
         let id = self.loaded.sources.add(root);
         if let Some(pre) = &mut self.pre {
             pre.ids.insert(id, 0);
@@ -113,6 +126,10 @@ impl Loader {
     }
 
     fn include_path(&mut self, from: &SourceFile, path: &str, span: Span) {
+        if self.includes_stopped {
+            self.loaded.failed_includes.push(span);
+            return;
+        }
         let base: PathBuf = from.dir().map(Path::to_path_buf).unwrap_or_default();
         let found = self.finder.find(&base, path);
         if found.is_err() {
@@ -198,6 +215,24 @@ impl Loader {
                 }));
             return;
         }
+        if self.includes_stopped {
+            self.loaded.failed_includes.push(span);
+            return;
+        }
+        let (files, bytes) = (self.files_read + 1, self.bytes_read + file.text.len());
+        if files > MAX_FILES || bytes > MAX_TOTAL_BYTES {
+            self.includes_stopped = true;
+            self.loaded.failed_includes.push(span);
+            return self.error(LoadError::IncludeLimit {
+                files,
+                bytes,
+                max_files: MAX_FILES,
+                max_mib: MAX_TOTAL_BYTES >> 20,
+                src: from.named_source(),
+                span: span.into(),
+            });
+        }
+        (self.files_read, self.bytes_read) = (files, bytes);
         if self.stack.len() >= self.max_depth {
             self.loaded
                 .errors

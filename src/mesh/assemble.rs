@@ -308,7 +308,7 @@ pub(super) fn missing(
     let (src, span) = match symbol.span {
         Some(s) => (program.sources.named_source(s), Some(s.into())),
         None => (
-            miette::NamedSource::new("", std::sync::Arc::new(String::new())),
+            miette::NamedSource::new("", crate::source::SourceText::from(String::new())),
             None,
         ),
     };

@@ -2,8 +2,6 @@
 //! large to build. Input: a component symbol or file; output: a diagnostic
 //! naming the symbol, its span, and every place searched.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
@@ -85,7 +83,7 @@ pub struct MissingComponent {
     pub searched: String,
     pub builtin: String,
     #[source_code]
-    pub src: NamedSource<Arc<String>>,
+    pub src: NamedSource<crate::source::SourceText>,
     #[label("placed here")]
     pub span: Option<SourceSpan>,
 }

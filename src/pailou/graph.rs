@@ -21,7 +21,6 @@
 //! ```
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::sync::Arc;
 
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
@@ -44,7 +43,7 @@ pub enum GraphError {
         file: String,
         message: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("here")]
         span: Option<SourceSpan>,
     },
@@ -54,7 +53,7 @@ pub enum GraphError {
     Graph {
         message: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("{label}")]
         span: SourceSpan,
         label: String,
@@ -75,7 +74,7 @@ pub struct Graph {
 }
 
 struct Reader<'a> {
-    src: NamedSource<Arc<String>>,
+    src: NamedSource<crate::source::SourceText>,
     kinds: BTreeMap<&'a str, &'a str>,
     /// id -> what it attaches to.
     on: BTreeMap<&'a str, Vec<&'a str>>,
@@ -134,7 +133,7 @@ impl Reader<'_> {
 
 /// Reads a graph file (`name` for messages) against a relation matrix.
 pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphError>> {
-    let src = NamedSource::new(name, Arc::new(text.to_string()));
+    let src = NamedSource::new(name, crate::source::SourceText::from(text.to_string()));
     let (doc, spans) = GraphDocument::parse_spanned(text).map_err(|e| {
         Box::new(GraphError::Syntax {
             file: name.to_string(),
@@ -147,7 +146,10 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         Box::new(GraphError::Syntax {
             file: "the relation matrix".to_string(),
             message: e.message().to_string(),
-            src: NamedSource::new("relations.toml", Arc::new(relations.to_string())),
+            src: NamedSource::new(
+                "relations.toml",
+                crate::source::SourceText::from(relations.to_string()),
+            ),
             span: e.span().map(Into::into),
         })
     })?;

@@ -1,8 +1,6 @@
 //! Syntax errors (`lsys::parse::*`): pest's failures turned into sentences
 //! that name what was expected in the language's own words.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use pest::error::{Error as PestError, ErrorVariant, InputLocation};
 use thiserror::Error;
@@ -25,7 +23,7 @@ pub enum ParseError {
     Syntax {
         message: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("{label}")]
         span: SourceSpan,
         label: String,
@@ -41,7 +39,7 @@ pub enum ParseError {
     )]
     UnclosedComment {
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this `/*` has no matching `*/`")]
         span: SourceSpan,
         offset: usize,
@@ -56,7 +54,7 @@ pub enum ParseError {
         text: String,
         why: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this number")]
         span: SourceSpan,
         offset: usize,
@@ -72,7 +70,7 @@ pub enum ParseError {
         limit: usize,
         option: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("here")]
         span: SourceSpan,
         offset: usize,
@@ -86,7 +84,7 @@ pub enum ParseError {
     )]
     SlashComment {
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("a comment begins here, right after a module")]
         span: SourceSpan,
         offset: usize,
@@ -101,7 +99,7 @@ pub enum ParseError {
         typed: String,
         header: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("not a header keyword")]
         span: SourceSpan,
         offset: usize,
@@ -114,7 +112,7 @@ pub enum ParseError {
     )]
     BadTableDim {
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this dimension")]
         span: SourceSpan,
         offset: usize,

@@ -302,7 +302,7 @@ impl Lower<'_> {
             .collect()
     }
 
-    fn modules(&self, seq: Pair<Rule>) -> PResult<Vec<ModuleTok>> {
+    pub(super) fn modules(&self, seq: Pair<Rule>) -> PResult<Vec<ModuleTok>> {
         seq.into_inner()
             .filter(|m| m.as_rule() != Rule::cont)
             .map(|m| self.module(m))

@@ -12,6 +12,7 @@ mod error;
 mod expr;
 mod headers;
 mod help;
+mod long_axiom;
 mod lower;
 mod print;
 pub mod stored;
@@ -263,6 +264,15 @@ fn parse_statements(
         if let Some(last) = reuse.as_mut().and_then(|r| r.last_from(pos)) {
             items.extend(last);
             break;
+        }
+        if let Some((item, end)) = long_axiom::parse(file_id, file, pos) {
+            let after = skip_inline(text, end);
+            if after >= text.len() || text.as_bytes()[after] == b'\n' {
+                items.push(item);
+                bounds.push((pos as u32, end as u32));
+                pos = after;
+                continue;
+            }
         }
         let rest = &text[pos..];
         match parse_statement(rest) {

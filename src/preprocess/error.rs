@@ -32,6 +32,9 @@ pub enum ErrorKind {
     IncludeNotFound,
     /// `#include` nested deeper than `Options::max_include_depth` (or a cycle).
     IncludeDepth,
+    /// More inclusions, or more bytes in all files read, than one run may
+    /// have ([`super::MAX_FILES`], [`super::MAX_TOTAL_BYTES`]).
+    IncludeLimit,
     /// An unknown or malformed directive.
     BadDirective,
     /// An `#if`/`#elif` expression that cannot be evaluated.
@@ -60,6 +63,7 @@ impl ErrorKind {
             ErrorKind::UnterminatedComment => "lsys::preprocess::unterminated_comment",
             ErrorKind::IncludeNotFound => "lsys::preprocess::include_not_found",
             ErrorKind::IncludeDepth => "lsys::preprocess::include_depth",
+            ErrorKind::IncludeLimit => "lsys::preprocess::include_limit",
             ErrorKind::BadDirective => "lsys::preprocess::bad_directive",
             ErrorKind::IfExpression => "lsys::preprocess::if_expression",
             ErrorKind::ErrorDirective => "lsys::preprocess::error_directive",
@@ -111,7 +115,7 @@ impl PreprocessError {
     pub fn to_diagnostic(&self, name: &str, text: Arc<String>) -> PreprocessDiagnostic {
         PreprocessDiagnostic {
             error: self.clone(),
-            src: NamedSource::new(name, text),
+            src: NamedSource::new(name, crate::source::SourceText::from(text)),
         }
     }
 }
@@ -121,7 +125,7 @@ impl PreprocessError {
 #[error("{}", error.message)]
 pub struct PreprocessDiagnostic {
     pub error: PreprocessError,
-    src: NamedSource<Arc<String>>,
+    src: NamedSource<crate::source::SourceText>,
 }
 
 impl Diagnostic for PreprocessDiagnostic {

@@ -63,6 +63,15 @@ use std::path::PathBuf;
 
 pub use error::{ErrorKind, PreprocessDiagnostic, PreprocessError};
 
+/// Inclusions one run may make, the root file counted: an include tree
+/// can grow exponentially (each file including the next twice, 31 deep,
+/// is 2^31 inclusions within the depth limit). The `.lsys` loader keeps
+/// the same limits (docs/limits.md).
+pub const MAX_FILES: usize = 10_000;
+/// Bytes of all files one run may read, counted at each inclusion (a file
+/// read twice counts twice): the size limit of one grammar file.
+pub const MAX_TOTAL_BYTES: usize = 64 << 20;
+
 /// Settings of one preprocessor run.
 #[derive(Debug, Clone)]
 pub struct Options {

@@ -32,12 +32,17 @@ pub struct Alphabet {
     /// The grammar uses names longer than one character (the paper's
     /// style); then an unmatched piece is an error, not an inert letter.
     pub multi_char: bool,
+    /// Bytes of the longest name in any of the sets: no longer prefix is
+    /// looked up. Trying every prefix of the rest of a run was cubic in
+    /// the run's length (a cpfg axiom of 20,000 letters took 260 s).
+    longest_name: usize,
 }
 
 impl Alphabet {
     pub fn new() -> Alphabet {
         let mut a = Alphabet::default();
         for c in turtle::all() {
+            a.longest_name = a.longest_name.max(c.symbol.len());
             if let Some(rest) = c.symbol.strip_prefix('@') {
                 a.at.insert(rest.to_string());
             } else if c.symbol.chars().all(is_word_char) {
@@ -52,10 +57,12 @@ impl Alphabet {
         if name.chars().count() > 1 {
             self.multi_char = true;
         }
+        self.longest_name = self.longest_name.max(name.len());
         self.words.insert(name.to_string());
     }
 
     pub fn add_component(&mut self, name: &str) {
+        self.longest_name = self.longest_name.max(name.len());
         self.components.insert(name.to_string());
     }
 
@@ -72,7 +79,7 @@ impl Alphabet {
         if self.components.contains(name) {
             return None;
         }
-        longest(name, |s| self.components.contains(s)).map(|n| &name[..n])
+        longest(name, self.longest_name, |s| self.components.contains(s)).map(|n| &name[..n])
     }
 
     pub fn contains_word(&self, name: &str) -> bool {
@@ -97,7 +104,7 @@ impl Alphabet {
             TokKind::At => {
                 // `@` + the longest command name; the rest is ordinary words.
                 let rest = &text[1..];
-                match longest(rest, |s| self.at.contains(s)) {
+                match longest(rest, self.longest_name, |s| self.at.contains(s)) {
                     Some(n) => {
                         let mut out = vec![Piece {
                             name: format!("@{}", &rest[..n]),
@@ -143,7 +150,8 @@ impl Alphabet {
                 // whole word names the component (cpfg's one-letter
                 // surfaces are whole words too).
                 let rest = &text[1..];
-                let n = longest(rest, |s| self.components.contains(s)).unwrap_or(rest.len());
+                let n = longest(rest, self.longest_name, |s| self.components.contains(s))
+                    .unwrap_or(rest.len());
                 let mut out = vec![Piece {
                     name: format!("~{}", &rest[..n]),
                     start: 0,
@@ -161,7 +169,7 @@ impl Alphabet {
         let mut i = 0;
         while i < text.len() {
             let rest = &text[i..];
-            let (n, fallback) = match longest(rest, |s| self.words.contains(s)) {
+            let (n, fallback) = match longest(rest, self.longest_name, |s| self.words.contains(s)) {
                 Some(n) => (n, false),
                 None => (rest.chars().next().map_or(1, char::len_utf8), true),
             };
@@ -177,10 +185,14 @@ impl Alphabet {
     }
 }
 
-/// Byte length of the longest prefix of `s` (at a char boundary) accepted
-/// by `has`.
-fn longest(s: &str, has: impl Fn(&str) -> bool) -> Option<usize> {
-    let mut ends: Vec<usize> = s.char_indices().map(|(i, c)| i + c.len_utf8()).collect();
+/// Byte length of the longest prefix of `s` (at a char boundary, at most
+/// `max` bytes) accepted by `has`.
+fn longest(s: &str, max: usize, has: impl Fn(&str) -> bool) -> Option<usize> {
+    let mut ends: Vec<usize> = s
+        .char_indices()
+        .map(|(i, c)| i + c.len_utf8())
+        .take_while(|&e| e <= max)
+        .collect();
     ends.reverse();
     ends.into_iter().find(|&e| has(&s[..e]))
 }

@@ -2,12 +2,10 @@
 //! defines and everything else that is wrong with a grammar that
 //! parsed.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
-type Src = NamedSource<Arc<String>>;
+type Src = NamedSource<crate::source::SourceText>;
 
 #[derive(Debug, Error, Diagnostic)]
 pub enum ResolveError {

@@ -2,8 +2,6 @@
 //! offending module (its 1-based position in the string and its text);
 //! output: a diagnostic that says what to change.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, NamedSource, SourceSpan};
 use thiserror::Error;
 
@@ -55,7 +53,7 @@ pub enum TurtleError {
         written: WrittenAt,
         /// The grammar, when a production is found to blame.
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this writes a `]` it does not open")]
         written_by: Option<SourceSpan>,
         #[help]
@@ -97,7 +95,7 @@ pub enum ShapeError {
         text: String,
         problem: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("{asked} in a scope {scope} long")]
         written_by: Option<SourceSpan>,
         asked: String,
@@ -114,7 +112,7 @@ pub enum ShapeError {
         wanted: String,
         found: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("this split")]
         written_by: Option<SourceSpan>,
         #[help]
@@ -127,7 +125,7 @@ pub enum ShapeError {
         index: usize,
         text: String,
         #[source_code]
-        src: NamedSource<Arc<String>>,
+        src: NamedSource<crate::source::SourceText>,
         #[label("used here")]
         written_by: Option<SourceSpan>,
         #[help]
@@ -147,7 +145,7 @@ impl From<ShapeError> for TurtleError {
 pub(crate) fn source_of_symbol(
     program: &Program,
     sym: crate::resolve::ir::SymId,
-) -> (NamedSource<Arc<String>>, Option<SourceSpan>) {
+) -> (NamedSource<crate::source::SourceText>, Option<SourceSpan>) {
     let found = program.axiom.iter().find(|m| m.sym == sym).or_else(|| {
         program
             .productions
@@ -159,7 +157,10 @@ pub(crate) fn source_of_symbol(
     });
     match found {
         Some(m) => (program.sources.named_source(m.span), Some(m.span.into())),
-        None => (NamedSource::new("", Arc::new(String::new())), None),
+        None => (
+            NamedSource::new("", crate::source::SourceText::from(String::new())),
+            None,
+        ),
     }
 }
 
@@ -276,7 +277,7 @@ impl TurtleError {
             None => TurtleError::UnbalancedBracket {
                 index,
                 written,
-                src: NamedSource::new("", Arc::new(String::new())),
+                src: NamedSource::new("", crate::source::SourceText::from(String::new())),
                 written_by: None,
                 help: general.to_string(),
             },

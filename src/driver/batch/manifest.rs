@@ -23,7 +23,10 @@ pub const MISTAKES_TOLD: usize = 20;
 pub fn read(path: &Path, text: String) -> Result<Vec<(usize, Item)>, BatchError> {
     let base = path.parent().unwrap_or(Path::new(""));
     let text = Arc::new(text);
-    let src = NamedSource::new(path.display().to_string(), text.clone());
+    let src = NamedSource::new(
+        path.display().to_string(),
+        crate::source::SourceText::from(text.clone()),
+    );
     let mut items = Vec::new();
     let mut mistakes = Vec::new();
     // Where each id was first used: its line and span.

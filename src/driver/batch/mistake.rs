@@ -3,8 +3,6 @@
 //! text. Input: what `manifest.rs` found; output: a miette diagnostic
 //! with code `lsys::batch::json`, `duplicate_id` or the item's own.
 
-use std::sync::Arc;
-
 use miette::{Diagnostic, LabeledSpan, NamedSource, SourceSpan};
 
 use super::item::ItemError;
@@ -14,7 +12,7 @@ use super::item::ItemError;
 pub struct ManifestError {
     /// The whole manifest, shared by its mistakes (a manifest may have
     /// many thousand lines).
-    pub(super) src: NamedSource<Arc<String>>,
+    pub(super) src: NamedSource<crate::source::SourceText>,
     pub(super) span: SourceSpan,
     /// The line, from 1.
     pub line: usize,

@@ -1,0 +1,272 @@
+//! Bounded time and memory (issue 36): inputs that grew without bound
+//! before now end with an answer, run under a memory limit (`ulimit -v`)
+//! and a CPU-time limit (`ulimit -t`), so that a regression aborts or is
+//! killed instead of taking the machine. The limits are far above what
+//! the inputs need now and far below what they took before.
+
+mod common;
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// Runs `lsys ARGS` in `dir` with at most `mib` MiB of address space and
+/// `cpu_s` seconds of CPU time.
+fn lsys_limited(dir: &Path, mib: u64, cpu_s: u64, args: &[&str]) -> Output {
+    // The command line runs on a 256 MiB stack thread: address space, not
+    // memory used, so the limit leaves room for it.
+    let script = format!(
+        "ulimit -v {} -t {cpu_s}; exec \"$0\" \"$@\"",
+        (mib + 512) * 1024
+    );
+    Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_lsys"))
+        .args(args)
+        .current_dir(dir)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("sh runs")
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// 10,000 defines, each naming the one before: the expansion stack was
+/// copied at each level (50 million names, an abort past 2 GB).
+#[test]
+fn a_long_chain_of_defines_is_linear() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut g = String::from("#define D0 1\n");
+    for i in 1..=10_000 {
+        g.push_str(&format!("#define D{i} (D{} + 1)\n", i - 1));
+    }
+    g.push_str("Axiom: A(D10000)\nderivation length: 1\nA(x) --> B(x)\n");
+    std::fs::write(dir.path().join("chain.lsys"), g).unwrap();
+    // `check` evaluates every define for its report, as well.
+    let o = lsys_limited(dir.path(), 512, 120, &["check", "chain.lsys"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let o = lsys_limited(dir.path(), 512, 120, &["derive", "chain.lsys"]);
+    assert!(o.status.success(), "{}", text(&o));
+    assert_eq!(String::from_utf8_lossy(&o.stdout).trim(), "B(10001)");
+}
+
+/// Each file includes the next twice, 30 deep: 2^30 inclusions within
+/// the depth limit. The run stops at the inclusion limit.
+#[test]
+fn a_diamond_of_includes_stops_at_the_inclusion_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    for i in 0..30 {
+        let next = format!("#include \"f{}.lsys\"\n", i + 1);
+        std::fs::write(dir.path().join(format!("f{i}.lsys")), next.repeat(2)).unwrap();
+    }
+    std::fs::write(dir.path().join("f30.lsys"), "// the last one\n").unwrap();
+    std::fs::write(
+        dir.path().join("main.lsys"),
+        "#include \"f0.lsys\"\nAxiom: A\nA --> A B\n",
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 512, 120, &["check", "main.lsys"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    assert_eq!(t.matches("lsys::load::include_limit").count(), 1, "{t}");
+    assert!(t.contains("10001 files"), "{t}");
+    assert!(t.contains("f29.lsys:2:10"), "{t}");
+}
+
+/// The same through cpfg's preprocessor (a `.l` model).
+#[test]
+fn a_diamond_of_cpfg_includes_stops_at_the_inclusion_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    for i in 0..30 {
+        let next = format!("#include \"f{}.h\"\n", i + 1);
+        std::fs::write(dir.path().join(format!("f{i}.h")), next.repeat(2)).unwrap();
+    }
+    std::fs::write(dir.path().join("f30.h"), "/* the last one */\n").unwrap();
+    std::fs::write(
+        dir.path().join("main.l"),
+        "#include \"f0.h\"\nlsystem: 1\nderivation length: 1\nAxiom: A\nA --> AB\nendlsystem\n",
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 512, 120, &["check", "main.l"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    assert_eq!(
+        t.matches("lsys::preprocess::include_limit").count(),
+        1,
+        "{t}"
+    );
+}
+
+/// A cpfg axiom of 200,000 letters is one word split into modules: the
+/// split tried every prefix of the rest of the word (cubic: 20,000
+/// letters took 260 s).
+#[test]
+fn a_long_cpfg_word_is_split_in_linear_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let axiom = "FG".repeat(100_000);
+    std::fs::write(
+        dir.path().join("long.l"),
+        format!("lsystem: 1\nderivation length: 1\nAxiom: {axiom}\nG --> H\nendlsystem\n"),
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 512, 60, &["derive", "long.l"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let modules: Vec<&str> = out.split_whitespace().collect();
+    assert_eq!(modules.len(), 200_000);
+    assert_eq!(modules[..4], ["F", "H", "F", "H"]);
+}
+
+/// 20,000 syntax errors, each printed with its snippet: miette found each
+/// label's line by walking the file from its start (quadratic: 12 s).
+#[test]
+fn many_errors_print_in_linear_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut g = String::from("Axiom: A\n");
+    for i in 0..20_000 {
+        g.push_str(&format!("A{i} --> )\n"));
+    }
+    std::fs::write(dir.path().join("errors.lsys"), g).unwrap();
+    let o = lsys_limited(dir.path(), 512, 60, &["check", "errors.lsys"]);
+    let t = text(&o);
+    assert_eq!(
+        o.status.code(),
+        Some(65),
+        "{}",
+        &t[t.len().saturating_sub(2000)..]
+    );
+    assert!(
+        t.contains("errors.lsys: 20000 errors\n"),
+        "{}",
+        &t[t.len() - 300..]
+    );
+    // The last error still shows its own line, numbered.
+    assert!(
+        t.contains("─[errors.lsys:20001:12]"),
+        "{}",
+        &t[t.len() - 800..]
+    );
+    assert!(
+        t.contains("20001 │ A19999 --> )"),
+        "{}",
+        &t[t.len() - 800..]
+    );
+}
+
+/// An axiom line of 4 MiB is parsed in pieces (src/parse/long_axiom.rs):
+/// the same modules as parsed whole, in far less memory (pest's queue
+/// for the whole statement took 200 bytes per input byte).
+#[test]
+fn a_long_axiom_is_parsed_in_pieces_with_the_same_modules() {
+    let dir = tempfile::tempdir().unwrap();
+    let unit = "A(1,2) [ +(30) F(0.5) ] B(-1) ~X(2) ";
+    let n = (4 << 20) / unit.len();
+    std::fs::write(
+        dir.path().join("long.lsys"),
+        format!("Axiom: {}\n  C(7)\nA(x,y) --> A(x+1,y)\n", unit.repeat(n)),
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 768, 120, &["derive", "-n", "1", "long.lsys"]);
+    assert!(o.status.success(), "{}", text(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let want = "A(2,2) [ +(30) F(0.5) ] B(-1) ~X(2) ".repeat(n) + "C(7)";
+    assert_eq!(out.trim().len(), want.len());
+    assert!(out.trim() == want, "the modules differ from the axiom's");
+}
+
+/// A mistake at the end of such a line is reported as before, at its
+/// column: a piece that does not parse leaves the line to the parser.
+#[test]
+fn a_mistake_in_a_long_axiom_is_located() {
+    let dir = tempfile::tempdir().unwrap();
+    let unit = "A(1,2) [ +(30) F(0.5) ] B ";
+    let n = (2 << 20) / unit.len();
+    std::fs::write(
+        dir.path().join("long.lsys"),
+        format!("Axiom: {} F (1)\n", unit.repeat(n)),
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 1024, 120, &["check", "long.lsys"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    let col = "Axiom: ".len() + unit.len() * n + 4;
+    assert!(
+        t.contains(&format!("at long.lsys:1:{col} (a line too long to show)")),
+        "{t}"
+    );
+    assert!(t.contains("write `F(1)`, not `F (1)`"), "{t}");
+}
+
+/// Function-like macros of cpfg's preprocessor that multiply their
+/// argument (10 copies, nested): the expansions stop at the run's token
+/// budget with one located error (50 million tokens took 3.7 GB before).
+#[test]
+fn a_function_macro_bomb_stops_at_the_token_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut g = String::from(
+        "#define A0(x) x x x x x x x x x x\n#define A1(x) A0(A0(x))\n#define A2(x) A1(A1(x))\n#define A3(x) A2(A2(x))\n#define A4(x) A3(A3(x))\nlsystem: 1\nderivation length: 1\nAxiom: F\n",
+    );
+    for _ in 0..40 {
+        g.push_str("F --> A4(F)\n");
+    }
+    g.push_str("endlsystem\n");
+    std::fs::write(dir.path().join("bomb.l"), g).unwrap();
+    let o = lsys_limited(dir.path(), 1024, 120, &["check", "bomb.l"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{}", &t[..t.len().min(3000)]);
+    assert!(
+        t.contains("lsys::preprocess::recursion"),
+        "{}",
+        &t[..t.len().min(3000)]
+    );
+}
+
+/// A curve's control point with multiplicity 1e8 was copied 10^8 times
+/// (an abort past 1.6 GB); now it is refused with the file's line.
+#[test]
+fn a_curve_point_multiplicity_is_bounded() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/cpfg/curve");
+    for f in ["arc.l", "arc.v"] {
+        std::fs::copy(fixture.join(f), dir.path().join(f)).unwrap();
+    }
+    let con = std::fs::read_to_string(fixture.join("arc.con")).unwrap();
+    let bomb = con.replace("\n1 0 0 1\n", "\n1 0 0 100000000\n");
+    assert_ne!(con, bomb);
+    std::fs::write(dir.path().join("arc.con"), bomb).unwrap();
+    let o = lsys_limited(dir.path(), 512, 60, &["derive", "arc.l"]);
+    let t = text(&o);
+    assert!(!o.status.success(), "{t}");
+    assert!(
+        t.contains("multiplicity is at most 16, found 100000000"),
+        "{t}"
+    );
+    assert!(t.contains("arc.con"), "{t}");
+}
+
+/// cpfg's loop limit counted the rounds of one run of a block: a `while`
+/// of 9 million rounds in a block applied to each of 200 modules ran
+/// 1.8 billion rounds. The limit now counts a whole step.
+#[test]
+fn the_loop_limit_counts_a_whole_step() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("loops.l"),
+        format!(
+            "lsystem: 1\nderivation length: 1\nAxiom: {}\nB : {{ i = 0; while (i < 9000000) {{ i = i + 1; }} }} --> B\nendlsystem\n",
+            "B".repeat(200)
+        ),
+    )
+    .unwrap();
+    let o = lsys_limited(dir.path(), 512, 60, &["derive", "loops.l"]);
+    let t = text(&o);
+    assert!(!o.status.success(), "{t}");
+    assert!(t.contains("lsys::derive::endless_loop"), "{t}");
+    assert!(t.contains("more than 10000000 times in the step"), "{t}");
+}
