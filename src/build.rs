@@ -469,7 +469,10 @@ fn model(
     let string = interpreted.as_ref().unwrap_or(string);
     let t1 = Instant::now();
     observe(Stage::Interpret);
-    let topts = TurtleOptions::new(program, opts.angle, opts.step, opts.width);
+    let topts = TurtleOptions {
+        max_triangles: opts.mesh.max_triangles,
+        ..TurtleOptions::new(program, opts.angle, opts.step, opts.width)
+    };
     let drawing = turtle::interpret(program, string, &topts)?;
     let t2 = Instant::now();
     observe(Stage::Mesh);

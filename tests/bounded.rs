@@ -14,8 +14,10 @@ use std::process::{Command, Output};
 fn lsys_limited(dir: &Path, mib: u64, cpu_s: u64, args: &[&str]) -> Output {
     // The command line runs on a 256 MiB stack thread: address space, not
     // memory used, so the limit leaves room for it.
+    // One limit per `ulimit`: dash takes no more, and a refused `ulimit`
+    // must not let the command run without one.
     let script = format!(
-        "ulimit -v {} -t {cpu_s}; exec \"$0\" \"$@\"",
+        "ulimit -v {} && ulimit -t {cpu_s} && exec \"$0\" \"$@\"",
         (mib + 512) * 1024
     );
     Command::new("sh")
@@ -269,4 +271,55 @@ fn the_loop_limit_counts_a_whole_step() {
     assert!(!o.status.success(), "{t}");
     assert!(t.contains("lsys::derive::endless_loop"), "{t}");
     assert!(t.contains("more than 10000000 times in the step"), "{t}");
+}
+
+/// Three nested repeats of 1,000 pieces each (each under the limit of one
+/// repeat) asked for 10^9 blocks and aborted past 2.8 GB: the pieces of
+/// all splits of a model are capped together.
+#[test]
+fn nested_repeats_stop_at_the_piece_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("nested.lsys"),
+        "Axiom: @Scope(1000,1000,1000) @RX(1) [ @RY(1) [ @RZ(1) [ @Block ] ] ]\n",
+    )
+    .unwrap();
+    let o = lsys_limited(
+        dir.path(),
+        1024,
+        120,
+        &["build", "nested.lsys", "-o", "n.glb"],
+    );
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    assert!(t.contains("lsys::turtle::piece_limit"), "{t}");
+    assert!(!dir.path().join("n.glb").exists());
+}
+
+/// `--max-triangles 1000` on a million blocks: the shapes are counted as
+/// they are made, not after all of them are collected (0.9 GB before).
+#[test]
+fn the_triangle_limit_stops_the_turtle_early() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("blocks.lsys"),
+        "Axiom: @Scope(100,100,100) @RX(1) [ @RY(1) [ @RZ(1) [ @Block ] ] ]\n",
+    )
+    .unwrap();
+    let args = [
+        "build",
+        "blocks.lsys",
+        "-o",
+        "b.glb",
+        "--max-triangles",
+        "1000",
+    ];
+    let o = lsys_limited(dir.path(), 128, 60, &args);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    assert!(t.contains("lsys::turtle::too_many_triangles"), "{t}");
+    assert!(
+        t.contains("1001, and every shape is at least one triangle"),
+        "{t}"
+    );
 }

@@ -45,7 +45,7 @@ impl Default for MeshOptions {
             adaptive: true,
             detail: 1,
             instanced: false,
-            max_triangles: 100_000_000,
+            max_triangles: crate::turtle::DEFAULT_MAX_TRIANGLES,
         }
     }
 }

@@ -44,6 +44,29 @@ pub enum TurtleError {
         symbol: String,
     },
 
+    #[error("the model would have more than {limit} triangles: module {index} of the string, `{text}`, is shape {count}, and every shape is at least one triangle")]
+    #[diagnostic(
+        code(lsys::turtle::too_many_triangles),
+        help("derive fewer steps or make fewer shapes, or raise the limit with `--max-triangles N`; shapes are counted as they are made, before any is meshed (docs/limits.md)")
+    )]
+    TooManyShapes {
+        limit: usize,
+        count: usize,
+        index: usize,
+        text: String,
+    },
+
+    #[error("the splits and repeats lay out more than {limit} pieces in all; module {index} of the string, `{text}`, is one past it")]
+    #[diagnostic(
+        code(lsys::turtle::piece_limit),
+        help("nested repeats multiply: each lays out its pieces in every piece of the one around it; make the pieces larger or the scopes smaller (docs/limits.md)")
+    )]
+    PieceLimit {
+        limit: usize,
+        index: usize,
+        text: String,
+    },
+
     #[error("module {index} of the string is a `]` with no `[` before it{written}")]
     #[diagnostic(code(lsys::turtle::unbalanced_bracket))]
     UnbalancedBracket {

@@ -30,7 +30,19 @@ pub struct TurtleOptions {
     pub width_increment: f32,
     /// Widths are cpfg screen pixels (see `turtle::cpfg`).
     pub pixel_lines: bool,
+    /// The mesh's triangle limit: shapes (at least a triangle each) past
+    /// it end the interpretation before they are all collected.
+    pub max_triangles: usize,
 }
+
+/// The default of `--max-triangles`, the mesh's limit (docs/limits.md).
+pub const DEFAULT_MAX_TRIANGLES: usize = 100_000_000;
+
+/// Pieces all splits and repeats of one interpretation may lay out:
+/// each repeat is capped at [`super::scope::MAX_COPIES`], but nested ones
+/// multiply (three levels of 1,000 asked for 10^9 and aborted). A piece
+/// that draws a block keeps about 170 bytes until the end: 340 MB at most.
+pub const MAX_PIECES: usize = 2_000_000;
 
 /// The default angle when neither the file nor the command line gives one.
 pub const DEFAULT_ANGLE: f64 = 90.0;
@@ -54,6 +66,7 @@ impl TurtleOptions {
             width: width as f32,
             width_increment: file.width_increment.unwrap_or(width * 0.1) as f32,
             pixel_lines: file.pixel_lines,
+            max_triangles: DEFAULT_MAX_TRIANGLES,
         }
     }
 }
@@ -113,6 +126,11 @@ pub(super) struct State {
 impl Turtle<'_> {
     /// `Err` when a placement from `from` on has a non-finite transform;
     /// `module` (at index `index`) placed them.
+    /// The module at `index` as errors show it.
+    pub(super) fn text_of(&self, sym: SymId, args: &[f64]) -> String {
+        module_text(&self.program.symbols, sym, args)
+    }
+
     fn placements_finite(
         &self,
         from: usize,
@@ -146,7 +164,9 @@ impl State {
 }
 
 pub(super) struct Turtle<'a> {
-    opts: &'a TurtleOptions,
+    pub(super) opts: &'a TurtleOptions,
+    /// Pieces laid out by splits and repeats so far ([`MAX_PIECES`]).
+    pub(super) pieces: usize,
     /// For errors that point at the grammar.
     pub(super) program: &'a Program,
     symbols: &'a Symbols,
@@ -235,6 +255,7 @@ fn interpret_with(
         .collect();
     let mut t = Turtle {
         opts,
+        pieces: 0,
         program,
         symbols: &program.symbols,
         drawing: Drawing::default(),

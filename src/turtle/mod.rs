@@ -19,4 +19,6 @@ mod snap;
 pub mod solid;
 pub use drawing::Drawing;
 pub use error::{BracketOrigin, TurtleError};
-pub use interp::{interpret, query_sites, QuerySite, TurtleOptions};
+pub use interp::{
+    interpret, query_sites, QuerySite, TurtleOptions, DEFAULT_MAX_TRIANGLES, MAX_PIECES,
+};

@@ -88,6 +88,14 @@ impl Turtle<'_> {
                 Ok(next)
             }
             ScopeCmd::Solid(kind) => {
+                if self.solids.len() >= self.opts.max_triangles {
+                    return Err(TurtleError::TooManyShapes {
+                        limit: self.opts.max_triangles,
+                        count: self.solids.len() + 1,
+                        index: index + 1,
+                        text: self.text_of(sym, args),
+                    });
+                }
                 self.solids.push(self.solid(kind, args, index));
                 Ok(next)
             }
@@ -107,7 +115,7 @@ impl Turtle<'_> {
                 let branches =
                     self.branches(w, sym, args, index, next, pieces.len(), pieces.len())?;
                 let laid = branches.iter().copied().map(Some).zip(pieces);
-                self.lay_out(w, q, (&frame, size), axis, laid)?;
+                self.lay_out(w, q, (&frame, size), axis, laid, (sym, args, index))?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Repeat(axis) => {
@@ -116,7 +124,7 @@ impl Turtle<'_> {
                     .map_err(|m| self.misfit(m, sym, args, index))?;
                 let branches = self.branches(w, sym, args, index, next, 1, 1)?;
                 let laid = pieces.into_iter().map(|len| (Some(branches[0]), len));
-                self.lay_out(w, q, (&frame, size), axis, laid)?;
+                self.lay_out(w, q, (&frame, size), axis, laid, (sym, args, index))?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Symmetric(axis) => {
@@ -133,7 +141,7 @@ impl Turtle<'_> {
                     };
                     ((len > 0.0).then_some(b), len)
                 });
-                self.lay_out(w, q, (&frame, size), axis, laid)?;
+                self.lay_out(w, q, (&frame, size), axis, laid, (sym, args, index))?;
                 Ok(after(&branches, next))
             }
             ScopeCmd::Faces => {
@@ -170,9 +178,18 @@ impl Turtle<'_> {
         (frame, size): (&Frame, DVec3),
         axis: crate::lang::scope_commands::Axis,
         pieces: impl IntoIterator<Item = (Option<Branch>, f64)>,
+        (sym, args, index): (SymId, &[f64], usize),
     ) -> Result<(), TurtleError> {
         let mut at = 0.0;
         for (b, len) in pieces {
+            self.pieces += 1;
+            if self.pieces > super::interp::MAX_PIECES {
+                return Err(TurtleError::PieceLimit {
+                    limit: super::interp::MAX_PIECES,
+                    index: index + 1,
+                    text: self.text_of(sym, args),
+                });
+            }
             if let Some(b) = b {
                 self.sub(w, q, b, scope::piece(frame, size, axis, at, len))?;
             }
