@@ -17,6 +17,7 @@ use super::macros::{parse_define, Macros};
 use super::render::Render;
 use super::token::{Kind, Token};
 use super::{IncludeSite, Options, OutFile, Output, RawFile, Resolver};
+use super::{MAX_FILES, MAX_TOTAL_BYTES};
 
 /// Tokens the expansions of one line may produce before expansion stops
 /// (`#define A B B`, `#define B C C`, ... grows exponentially).
@@ -26,7 +27,6 @@ const LINE_BUDGET: usize = if cfg!(test) { 50_000 } else { 1_000_000 };
 /// (docs/limits.md): 50 million took 3.7 GB and 38 s, then aborted.
 /// The largest expansion among the corpus models is far below this.
 const RUN_BUDGET: usize = 2_000_000;
-use super::{MAX_FILES, MAX_TOTAL_BYTES};
 
 struct Pp<'r> {
     macros: Macros,

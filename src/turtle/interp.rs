@@ -144,7 +144,7 @@ impl Turtle<'_> {
         }
         Err(TurtleError::ComponentOverflow {
             index: index + 1,
-            text: module_text(&self.program.symbols, sym, args),
+            text: self.text_of(sym, args),
             symbol: self.program.symbols.name(sym).to_string(),
         })
     }
