@@ -2,7 +2,8 @@
 //! GLB assembly and writing the file, end to end, through the same atomic
 //! streaming writer as `lsys build`; plus the meshing stage alone for W3
 //! (modules of the derived string per second), and (issue 19) a forest of
-//! ten W2 trees (10.5 M modules) to `.glb` and to `.obj`.
+//! ten W2 trees (10.5 M modules) to `.glb` and to `.obj`; and (issue 36)
+//! guided scenes of many seeds.
 
 mod common;
 
@@ -122,4 +123,31 @@ fn p_pailou_6_5_15_glb(bencher: Bencher) {
         let c = common::compile(input, &[]);
         black_box(to_glb_file(&c, dir.path()))
     });
+}
+
+/// A guided scene (issue 36): one 700 × 700 guide, `n` seeds of
+/// `examples/guided/line.lsys` on a 7-unit lattice, 10 passes of `?X`
+/// queries. Before the per-pass grid the time grew with n².
+#[divan::bench(args = [2_500, 10_000], sample_count = 5, sample_size = 1)]
+fn guided_seeds(bencher: Bencher, n: usize) {
+    use lsys::internals::guided;
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/guided");
+    let mut scene = String::from(
+        "steps = 10\n[[guide]]\nname = \"g\"\ngrammar = \"line.lsys\"\n\
+         points = [[0, 0], [700, 0], [700, 700], [0, 700]]\n",
+    );
+    for k in 0..n {
+        let (i, j) = (k % 100, k / 100);
+        scene.push_str(&format!(
+            "[[seeds]]\nguide = \"g\"\nposition = [{}, {}]\nheading = {}\n",
+            3 + 7 * i,
+            3 + 7 * j,
+            (k * 37) % 360
+        ));
+    }
+    let loaded = guided::load_text("scene.toml", &scene, &root, &Default::default())
+        .expect("the scene loads");
+    bencher
+        .counter(ItemsCount::new(n))
+        .bench_local(|| black_box(guided::run(&loaded).expect("runs").seeds.len()));
 }

@@ -323,3 +323,39 @@ fn the_triangle_limit_stops_the_turtle_early() {
         "{t}"
     );
 }
+
+/// 10,000 seeds in one guide: every query scanned every element of the
+/// guide (5,000 seeds took 15 s, 20,000 over two minutes, release build);
+/// the pass's grid keeps each query to the elements near it.
+#[test]
+fn many_guided_seeds_take_linear_time() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/guided/line.lsys"),
+        dir.path().join("line.lsys"),
+    )
+    .unwrap();
+    let mut scene = String::from(
+        "steps = 10\n\n[[guide]]\nname = \"g\"\ngrammar = \"line.lsys\"\n\
+         points = [[0, 0], [700, 0], [700, 700], [0, 700]]\n",
+    );
+    for k in 0..10_000 {
+        let (i, j) = (k % 100, k / 100);
+        scene.push_str(&format!(
+            "\n[[seeds]]\nguide = \"g\"\nposition = [{}, {}]\nheading = {}\n",
+            3 + 7 * i,
+            3 + 7 * j,
+            (k * 37) % 360
+        ));
+    }
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let o = lsys_limited(
+        dir.path(),
+        1024,
+        60,
+        &["build", "scene.toml", "-o", "out.obj", "--stats"],
+    );
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(t.contains("\"seeds\":10000"), "{t}");
+}

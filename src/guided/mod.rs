@@ -7,6 +7,7 @@
 //! scene.rs    TOML text -> SceneSpec (located diagnostics lsys::guided::*)
 //! load.rs     SceneSpec + grammar files -> Loaded (grammars compiled)
 //! geometry.rs distances, hits, inside tests in the drawing plane
+//! grid.rs     one pass's elements of a guide -> the few a query looks at
 //! tokens.rs   free -> reserved -> used
 //! queries.rs  ?DL ?DG ?DA ?NL ?NG ?NA ?X answered (an Environment)
 //! run.rs      all seeds in lockstep, messages -> new seeds; local update
@@ -20,6 +21,7 @@
 pub mod build;
 pub mod draw;
 pub mod geometry;
+pub mod grid;
 pub mod load;
 pub mod queries;
 pub mod run;

@@ -19,6 +19,8 @@ use std::rc::Rc;
 use glam::DVec2;
 
 use super::geometry::{self, EPS};
+pub use super::grid::Element;
+use super::grid::ElementGrid;
 use super::scene::{Continuity, SceneSpec};
 use super::tokens::LinkTokens;
 use crate::derive::{DeriveError, ModuleStore};
@@ -48,14 +50,6 @@ impl Placement {
     }
 }
 
-/// A drawn segment of a guide (after clipping), with the seed that drew it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Element {
-    pub a: DVec2,
-    pub b: DVec2,
-    pub seed: usize,
-}
-
 /// A message: `?X` of a seed touched the edge of a link with a token.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Message {
@@ -74,7 +68,7 @@ pub struct World<'s> {
     pub spec: &'s SceneSpec,
     pub tokens: Vec<LinkTokens>,
     /// Per guide: the elements of every seed's string at this pass.
-    pub elements: Vec<Vec<Element>>,
+    pub elements: Vec<ElementGrid>,
     pub pass: u32,
     /// Messages of the pass, in the order sent.
     pub sent: Vec<Message>,
@@ -134,8 +128,6 @@ struct Candidate {
     id: i64,
     /// The outgoing link whose edge this is.
     link: Option<usize>,
-    /// A generated element (not a guide or link edge).
-    element: bool,
 }
 
 /// Answers one seed's guided queries (the seed's environment).
@@ -151,7 +143,8 @@ pub struct GuidedQueries<'s> {
 }
 
 impl GuidedQueries<'_> {
-    /// The segments a query of `kind` looks at, for this seed.
+    /// The guide and link edges a query of `kind` looks at, for this seed
+    /// (the drawn elements are searched in the pass's grid).
     fn candidates(&self, w: &mut World<'_>, kind: Kind, id_test: i64) -> Vec<Candidate> {
         let spec = w.spec;
         let guide = &spec.guides[self.guide];
@@ -185,7 +178,6 @@ impl GuidedQueries<'_> {
                             b,
                             id,
                             link: Some(li),
-                            element: false,
                         });
                     } else if target != Target::Links && (id_test == 0 || id_test == guide.id) {
                         out.push(Candidate {
@@ -193,7 +185,6 @@ impl GuidedQueries<'_> {
                             b,
                             id: guide.id,
                             link: None,
-                            element: false,
                         });
                     }
                 }
@@ -203,24 +194,9 @@ impl GuidedQueries<'_> {
                         b,
                         id: guide.id,
                         link: None,
-                        element: false,
                     });
                 }
                 None => {}
-            }
-        }
-        if target == Target::Any {
-            for e in &w.elements[self.guide] {
-                let id = w.element_id(self.guide, e);
-                if id_test == 0 || id_test == id {
-                    out.push(Candidate {
-                        a: e.a,
-                        b: e.b,
-                        id,
-                        link: None,
-                        element: true,
-                    });
-                }
             }
         }
         out
@@ -233,16 +209,27 @@ impl GuidedQueries<'_> {
                 *x = v;
             }
         };
+        let g = self.guide;
+        // Drawn elements are found by ?DA, ?NA and ?X only.
+        let elements = matches!(
+            kind,
+            Kind::Distance(Target::Any) | Kind::Ahead(Target::Any) | Kind::Cross
+        );
         // Elements that start or end where the turtle stands are its own
         // last segment (or its sibling's start): never found.
-        let own = |c: &Candidate| c.element && (c.a.distance(p) <= EPS || c.b.distance(p) <= EPS);
+        let own = |e: &Element| e.a.distance(p) <= EPS || e.b.distance(p) <= EPS;
+        // An element's id costs a look through the tags: only when asked.
+        let wanted = |w: &World<'_>, e: &Element, id_test: i64| {
+            id_test == 0 || w.element_id(g, e) == id_test
+        };
+        // Guide and link edges come before elements: an element wins only
+        // when strictly nearer, as in one scan of edges then elements.
         match kind {
             Kind::Distance(_) => {
                 let id_test = get(args, 4) as i64;
-                let best = self
+                let edge = self
                     .candidates(w, kind, id_test)
                     .into_iter()
-                    .filter(|c| !own(c))
                     .map(|c| {
                         let (q, _) = geometry::closest_on_segment(p, c.a, c.b);
                         (p.distance(q), q, c.id)
@@ -251,6 +238,23 @@ impl GuidedQueries<'_> {
                         Some(m) if m.0 <= x.0 => Some(m),
                         _ => Some(x),
                     });
+                let found = if elements {
+                    let w = &*w;
+                    w.elements[g].nearest(p, |_, e| {
+                        (!own(e) && wanted(w, e, id_test))
+                            .then(|| geometry::distance_to_segment(p, e.a, e.b))
+                    })
+                } else {
+                    None
+                };
+                let best = match found {
+                    Some((d, k)) if edge.map_or(true, |x| d < x.0) => {
+                        let e = w.elements[g].elements()[k];
+                        let (q, _) = geometry::closest_on_segment(p, e.a, e.b);
+                        Some((d, q, w.element_id(g, &e)))
+                    }
+                    _ => edge,
+                };
                 match best {
                     Some((d, q, id)) => {
                         let beta = if d <= EPS {
@@ -268,7 +272,7 @@ impl GuidedQueries<'_> {
             }
             Kind::Ahead(_) => {
                 let id_test = get(args, 3) as i64;
-                let best = self
+                let edge = self
                     .candidates(w, kind, id_test)
                     .into_iter()
                     .filter_map(|c| geometry::ray_hit(p, h, c.a, c.b).map(|d| (d, c.id)))
@@ -276,6 +280,22 @@ impl GuidedQueries<'_> {
                         Some(m) if m.0 <= x.0 => Some(m),
                         _ => Some(x),
                     });
+                let found = if elements {
+                    let w = &*w;
+                    w.elements[g].along(p, h, f64::INFINITY, |_, e| {
+                        wanted(w, e, id_test)
+                            .then(|| geometry::ray_hit(p, h, e.a, e.b))
+                            .flatten()
+                    })
+                } else {
+                    None
+                };
+                let best = match found {
+                    Some((d, k)) if edge.map_or(true, |x| d < x.0) => {
+                        Some((d, w.element_id(g, &w.elements[g].elements()[k])))
+                    }
+                    _ => edge,
+                };
                 match best {
                     Some((d, id)) => {
                         set(args, 0, 1.0);
@@ -290,9 +310,10 @@ impl GuidedQueries<'_> {
                 let id_in = get(args, 3) as i64;
                 let id_test = get(args, 4) as i64;
                 let q = p + h * delta;
+                let len = delta.abs();
                 // The element this `?X` asks about carries id_in once drawn.
-                if id_in != 0 && delta.abs() > EPS {
-                    let tags = &mut w.tags[self.guide];
+                if id_in != 0 && len > EPS {
+                    let tags = &mut w.tags[g];
                     if !tags
                         .iter()
                         .any(|t| t.0.distance(p) <= EPS && t.1.distance(q) <= EPS && t.2 == id_in)
@@ -300,18 +321,44 @@ impl GuidedQueries<'_> {
                         tags.push((p, q, id_in));
                     }
                 }
-                let best = self
+                // A hit must lie ahead of the turtle's own start.
+                let hit = |a: DVec2, b: DVec2| {
+                    let (t, u) = geometry::segment_hit(p, q, a, b)?;
+                    (t * len > EPS).then_some((t * len, u))
+                };
+                let edge = self
                     .candidates(w, kind, id_test)
                     .into_iter()
-                    .filter(|c| !own(c))
-                    .filter_map(|c| {
-                        let (t, u) = geometry::segment_hit(p, q, c.a, c.b)?;
-                        (t * delta.abs() > EPS).then_some((t, u, c))
-                    })
+                    .filter_map(|c| hit(c.a, c.b).map(|(d, u)| (d, u, c)))
                     .fold(None, |m: Option<(f64, f64, Candidate)>, x| match m {
                         Some(m) if m.0 <= x.0 => Some(m),
                         _ => Some(x),
                     });
+                let found = if len > EPS {
+                    let w = &*w;
+                    w.elements[g].along(p, h * delta.signum(), len, |_, e| {
+                        (!own(e) && wanted(w, e, id_test))
+                            .then(|| hit(e.a, e.b).map(|(d, _)| d))
+                            .flatten()
+                    })
+                } else {
+                    None
+                };
+                let best = match found {
+                    Some((d, k)) if edge.as_ref().map_or(true, |x| d < x.0) => {
+                        let e = w.elements[g].elements()[k];
+                        hit(e.a, e.b).map(|(d, u)| {
+                            let c = Candidate {
+                                a: e.a,
+                                b: e.b,
+                                id: w.element_id(g, &e),
+                                link: None,
+                            };
+                            (d, u, c)
+                        })
+                    }
+                    _ => edge,
+                };
                 let Some((_, u, c)) = best else {
                     set(args, 0, 0.0);
                     return;

@@ -21,6 +21,7 @@ use std::collections::BTreeSet;
 use std::rc::Rc;
 
 use super::draw;
+use super::grid::ElementGrid;
 use super::load::Loaded;
 use super::queries::{Element, GuidedQueries, Message, Placement, World};
 use super::tokens::LinkTokens;
@@ -155,7 +156,11 @@ fn execute<'p>(
             .iter()
             .map(|k| LinkTokens::new(k.tokens))
             .collect(),
-        elements: vec![Vec::new(); spec.guides.len()],
+        elements: spec
+            .guides
+            .iter()
+            .map(|_| ElementGrid::new(Vec::new()))
+            .collect(),
         tags: vec![Vec::new(); spec.guides.len()],
         pass: 0,
         sent: Vec::new(),
@@ -238,7 +243,7 @@ fn execute<'p>(
         }
         {
             let mut w = world.borrow_mut();
-            w.elements = elements;
+            w.elements = elements.into_iter().map(ElementGrid::new).collect();
             w.pass = pass;
         }
         let mut round_seeds: Vec<usize> = (0..live.len()).collect();
