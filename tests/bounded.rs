@@ -182,6 +182,52 @@ fn a_long_axiom_is_parsed_in_pieces_with_the_same_modules() {
     assert!(out.trim() == want, "the modules differ from the axiom's");
 }
 
+/// A plain axiom of 8 MiB (`F F F ...`, 4 M modules) derives in 32 bytes
+/// of memory per input byte: the limit is its 256 MiB plus the room every
+/// run takes. The pieces' tokens are dropped as each is resolved, and the
+/// resolved axiom keeps 24 bytes a module (it took 80 bytes a byte).
+#[test]
+fn a_plain_axiom_takes_at_most_32_bytes_a_byte() {
+    let dir = tempfile::tempdir().unwrap();
+    let n = 4 << 20;
+    std::fs::write(
+        dir.path().join("plain.lsys"),
+        format!("Axiom: {}\n", "F ".repeat(n)),
+    )
+    .unwrap();
+    let o = lsys_limited(
+        dir.path(),
+        256,
+        300,
+        &["derive", "-n", "0", "plain.lsys", "-o", "out.txt"],
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let out = std::fs::read_to_string(dir.path().join("out.txt")).unwrap();
+    assert_eq!(out.split_whitespace().count(), n);
+    assert!(out.split_whitespace().all(|m| m == "F"));
+}
+
+/// Brackets pair up across the pieces of a long axiom: a branch opened in
+/// the first piece and closed in the last is no warning, and a `]` that
+/// closes nothing is still the axiom's error, at its column.
+#[test]
+fn brackets_pair_across_the_pieces_of_a_long_axiom() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = "F ".repeat(1 << 20);
+    std::fs::write(dir.path().join("ok.lsys"), format!("Axiom: [ {body}]\n")).unwrap();
+    std::fs::write(dir.path().join("bad.lsys"), format!("Axiom: {body}] F\n")).unwrap();
+    let o = lsys_limited(dir.path(), 512, 120, &["check", "ok.lsys"]);
+    let t = text(&o);
+    assert!(o.status.success(), "{t}");
+    assert!(!t.contains("never closed"), "{t}");
+    let o = lsys_limited(dir.path(), 512, 120, &["check", "bad.lsys"]);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(65), "{t}");
+    let col = "Axiom: ".len() + body.len() + 1;
+    assert!(t.contains("a `]` with no `[` before it"), "{t}");
+    assert!(t.contains(&format!("bad.lsys:1:{col}")), "{t}");
+}
+
 /// A mistake at the end of such a line is reported as before, at its
 /// column: a piece that does not parse leaves the line to the parser.
 #[test]

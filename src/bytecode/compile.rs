@@ -269,6 +269,10 @@ impl Compiler<'_> {
 
     fn successor(&mut self, succ: &[SuccModule]) -> Result<Chunk, BytecodeError> {
         let mut b = Builder::new();
+        // At least one op a module: no doubling past that for an axiom of
+        // millions of modules.
+        b.chunk.code.reserve(succ.len() + 1);
+        b.chunk.spans.reserve(succ.len() + 1);
         for m in succ {
             if m.args.len() > u8::MAX as usize {
                 return Err(BytecodeError::TooManyParameters {

@@ -269,6 +269,10 @@ impl Builder {
                 }
             }
             HeaderKind::Block(_, b) => self.stmts(&b.stmts, &[], 0),
+            // An axiom line of over 1 MiB is not indexed: an occurrence a
+            // module would take more memory than the model (issue 36), so
+            // go-to, references and rename do not see its modules.
+            HeaderKind::LongAxiom(_) => {}
             _ => {}
         }
     }

@@ -168,7 +168,7 @@ pub fn symbols(a: &Analysis) -> Vec<DocumentSymbol> {
             Item::Header(h) => {
                 let text = a.sources.slice(h.span).trim();
                 let name = match &h.kind {
-                    HeaderKind::Axiom(_) => "axiom".to_string(),
+                    HeaderKind::Axiom(_) | HeaderKind::LongAxiom(_) => "axiom".to_string(),
                     _ => text.split(':').next().unwrap_or(text).trim().to_string(),
                 };
                 let detail = text.split_once(':').map(|(_, v)| v.trim().to_string());

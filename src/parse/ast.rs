@@ -73,6 +73,11 @@ pub enum HeaderKind {
     Lsystem(String),
     DerivationLength(Expr),
     Axiom(Vec<ModuleTok>),
+    /// An axiom line of over 1 MiB: the spans of its pieces, each parsed
+    /// again by [`crate::parse::axiom_piece`] when it is used, so that the
+    /// whole line's tokens (80 bytes and more a module) never exist at
+    /// once (issue 36).
+    LongAxiom(Vec<Span>),
     Ignore(Vec<PatTok>),
     Consider(Vec<PatTok>),
     Seed(Expr),

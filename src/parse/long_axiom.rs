@@ -1,23 +1,26 @@
 //! A very long axiom line, parsed in pieces. Input: the text at the start
-//! of a statement; output: the axiom as one item and where it ends, or
-//! `None` to parse the statement as usual.
+//! of a statement; output: the axiom as one item, holding only where its
+//! pieces are, and where it ends, or `None` to parse the statement as
+//! usual. [`axiom_piece`] reads a piece's modules when they are used.
 //!
 //! pest records two queue entries of about 40 bytes per matched rule, for
 //! the whole statement at once: a 64 MiB axiom (the size limit of a file)
 //! needed 280 bytes per input byte, 12.5 GB, and aborted (issue 36).
 //! Split between modules into pieces of [`PIECE`] bytes, each piece's
-//! queue is dropped before the next is parsed, so the peak is what the
-//! modules themselves take.
+//! queue is dropped before the next is parsed, and its module tokens are
+//! dropped too: the resolver parses each piece again and keeps only the
+//! resolved modules.
 //!
 //! Only plain lines are split: anything the pieces could read differently
 //! from the whole line (comments, strings, line joins, arrows, colons,
-//! braces, a `(` after a space) leaves the line to the usual parser, and
+//! braces, a `(` after a space, a `$` that the dialect hint looks for)
+//! leaves the line to the usual parser, and
 //! so does any piece that does not parse whole, so that errors are
 //! reported exactly as before.
 
 use pest::Parser;
 
-use super::ast::{HeaderKind, Item};
+use super::ast::{HeaderKind, Item, ModuleTok};
 use super::lower::Lower;
 use super::{LsysParser, Rule};
 use crate::source::{FileId, SourceFile, Span};
@@ -42,48 +45,77 @@ pub(super) fn parse(file_id: FileId, file: &SourceFile, pos: usize) -> Option<(I
             .any(|w| matches!(w, b"/*" | b"//" | b"->" | b"=>" | b"*/" | b" (" | b"\t("))
             && !b
                 .iter()
-                .any(|c| matches!(c, b'"' | b'\\' | b':' | b'{' | b'}' | b'#' | b'\r'))
+                .any(|c| matches!(c, b'"' | b'\\' | b':' | b'{' | b'}' | b'#' | b'\r' | b'$'))
     };
     if !plain(&line.as_bytes()[body..]) || line.contains('→') {
         return None;
     }
     let cuts = cuts(line.as_bytes(), body);
-    let lower = |base: usize| Lower {
-        file_id,
-        base,
-        file,
-    };
-    // The first piece, with the header, as a statement.
+    // The first piece, with the header, as a statement: the header item.
     let first_end = pos + cuts.first().copied().unwrap_or(line.len());
     let mut pairs = super::parse_statement(&text[pos..first_end]).ok()?;
     let pair = pairs.next()?;
     if pos + pair.as_span().end() != trimmed_end(text, pos, first_end) {
         return None;
     }
-    let mut item = lower(pos).statement(pair).ok()?;
+    let lower = Lower {
+        file_id,
+        base: pos,
+        file,
+    };
+    let mut item = lower.statement(pair).ok()?;
     let Item::Header(header) = &mut item else {
         return None;
     };
-    let HeaderKind::Axiom(modules) = &mut header.kind else {
+    if !matches!(header.kind, HeaderKind::Axiom(_)) {
         return None;
-    };
-    // The others as successors; the last one runs on past the line, as a
-    // successor continues onto indented lines.
-    let mut end = first_end;
-    for (k, &cut) in cuts.iter().enumerate() {
-        let start = pos + cut;
-        let stop = cuts.get(k + 1).map_or(text.len(), |&c| pos + c);
+    }
+    // Every piece is checked here exactly as `axiom_piece` will read it;
+    // the last one runs on past the line, as a successor continues onto
+    // indented lines.
+    let starts = std::iter::once(body).chain(cuts.iter().copied());
+    let mut pieces = Vec::with_capacity(cuts.len() + 1);
+    for (k, start) in starts.enumerate() {
+        let start = pos + start;
+        let last = k == cuts.len();
+        let stop = if last {
+            text.len()
+        } else {
+            trimmed_end(text, start, pos + cuts[k])
+        };
         let mut pairs = LsysParser::parse(Rule::successor, &text[start..stop]).ok()?;
         let pair = pairs.next()?;
-        let piece_end = start + pair.as_span().end();
-        if k + 1 < cuts.len() && piece_end != trimmed_end(text, start, stop) {
+        let end = start + pair.as_span().end();
+        if !last && end != stop {
             return None;
         }
-        modules.extend(lower(start).modules(pair).ok()?);
-        end = piece_end;
+        let span = Span::new(file_id, start, end);
+        // Lowering can refuse what parses (a number out of range): the
+        // usual parser reports it.
+        axiom_piece(file, span)?;
+        pieces.push(span);
     }
+    let end = pieces.last().map_or(first_end, |s| s.end as usize);
+    header.kind = HeaderKind::LongAxiom(pieces);
     header.span = Span::new(file_id, pos, end);
     Some((item, end))
+}
+
+/// The modules of one piece of a [`HeaderKind::LongAxiom`], or `None` when
+/// the piece no longer parses whole (never for the file it came from).
+pub fn axiom_piece(file: &SourceFile, span: Span) -> Option<Vec<ModuleTok>> {
+    let text = file.text.get(span.start as usize..span.end as usize)?;
+    let mut pairs = LsysParser::parse(Rule::successor, text).ok()?;
+    let pair = pairs.next()?;
+    if pair.as_span().end() != text.len() {
+        return None;
+    }
+    let lower = Lower {
+        file_id: span.file,
+        base: span.start as usize,
+        file,
+    };
+    lower.modules(pair).ok()
 }
 
 /// Where the modules of an axiom line start: after `Axiom:` (any of the

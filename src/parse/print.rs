@@ -229,6 +229,12 @@ fn dump_item(out: &mut String, item: &Item) {
                     out.push_str("axiom ");
                     mods(out, m);
                 }
+                HeaderKind::LongAxiom(pieces) => {
+                    let _ = write!(out, "axiom in {} pieces", pieces.len());
+                    for p in pieces {
+                        let _ = write!(out, " @{}..{}", p.start, p.end);
+                    }
+                }
                 HeaderKind::Ignore(p) => {
                     out.push_str("ignore ");
                     pats(out, p);

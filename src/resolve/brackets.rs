@@ -16,17 +16,24 @@ pub(super) enum Place {
     Successor,
 }
 
-/// The unclosed `[` and the `]` that close nothing, in order.
-fn unbalanced(toks: &[ModuleTok]) -> (Vec<Span>, Vec<Span>) {
-    let (mut open, mut stray) = (Vec::new(), Vec::new());
-    for t in toks.iter().filter(|t| t.kind == TokKind::Punct) {
-        match t.text.as_str() {
-            "[" => open.push(t.span),
-            "]" if open.pop().is_none() => stray.push(t.span),
-            _ => {}
+/// The unclosed `[` and the `]` that close nothing, in order, over
+/// tokens fed in one or more runs (a long axiom's pieces).
+#[derive(Default)]
+pub(super) struct Balance {
+    open: Vec<Span>,
+    stray: Vec<Span>,
+}
+
+impl Balance {
+    pub(super) fn feed(&mut self, toks: &[ModuleTok]) {
+        for t in toks.iter().filter(|t| t.kind == TokKind::Punct) {
+            match t.text.as_str() {
+                "[" => self.open.push(t.span),
+                "]" if self.open.pop().is_none() => self.stray.push(t.span),
+                _ => {}
+            }
         }
     }
-    (open, stray)
 }
 
 /// Brackets marked in one warning: a generated axiom of 100,000 unclosed
@@ -57,7 +64,14 @@ impl Resolver {
     /// Reports unbalanced brackets in `toks`, at most one diagnostic of
     /// each kind per successor.
     pub(super) fn check_brackets(&mut self, toks: &[ModuleTok], place: Place) {
-        let (open, stray) = unbalanced(toks);
+        let mut balance = Balance::default();
+        balance.feed(toks);
+        self.report_brackets(balance, place);
+    }
+
+    /// Reports what [`Balance`] found.
+    pub(super) fn report_brackets(&mut self, balance: Balance, place: Place) {
+        let Balance { open, stray } = balance;
         let what = match place {
             Place::Axiom => "the axiom",
             Place::Successor => "this successor",

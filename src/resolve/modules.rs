@@ -220,13 +220,15 @@ impl Resolver {
                 let sym = self.intern(&s.name, Some(s.span));
                 let args = s.args.unwrap_or(&[]);
                 self.check_arity(sym, args.len(), s.span);
-                let args = args
+                let mut args: thin_vec::ThinVec<_> = args
                     .iter()
                     .filter_map(|a| match &a.kind {
                         ast::ExprKind::Str(s) => Some(self.string_param(s, a.span)),
                         _ => self.expr(a, scope),
                     })
                     .collect();
+                // Collecting grows by doubling from 4.
+                args.shrink_to_fit();
                 out.push(SuccModule {
                     sym,
                     args,

@@ -246,6 +246,7 @@ impl Resolver {
             }
             HeaderKind::DerivationLength(_)
             | HeaderKind::Axiom(_)
+            | HeaderKind::LongAxiom(_)
             | HeaderKind::Seed(_)
             | HeaderKind::Ignore(_)
             | HeaderKind::Consider(_)
@@ -264,7 +265,7 @@ impl Resolver {
                     s.dlength = Some((n as u32, h.keyword));
                 }
             }
-            HeaderKind::Axiom(toks) => {
+            HeaderKind::Axiom(_) | HeaderKind::LongAxiom(_) => {
                 if let Some((_, first)) = &s.axiom {
                     let first = *first;
                     self.duplicate(
@@ -273,11 +274,30 @@ impl Resolver {
                         first,
                         "a grammar has one axiom; remove one of them",
                     );
-                } else {
-                    self.check_brackets(toks, super::brackets::Place::Axiom);
-                    let m = self.successor(toks, &scope);
-                    s.axiom = Some((m, h.keyword));
+                    return;
                 }
+                let mut balance = super::brackets::Balance::default();
+                let mut m = Vec::new();
+                match &h.kind {
+                    HeaderKind::Axiom(toks) => {
+                        balance.feed(toks);
+                        m = self.successor(toks, &scope);
+                    }
+                    HeaderKind::LongAxiom(pieces) => {
+                        // One piece's tokens at a time: only the resolved
+                        // modules of the whole line are kept.
+                        for &p in pieces {
+                            let toks = crate::parse::axiom_piece(self.sources.get(p.file), p)
+                                .unwrap_or_default();
+                            balance.feed(&toks);
+                            m.extend(self.successor(&toks, &scope));
+                        }
+                        m.shrink_to_fit();
+                    }
+                    _ => {}
+                }
+                self.report_brackets(balance, super::brackets::Place::Axiom);
+                s.axiom = Some((m, h.keyword));
             }
             HeaderKind::Ignore(toks) | HeaderKind::Consider(toks) => {
                 let is_ignore = matches!(h.kind, HeaderKind::Ignore(_));

@@ -31,7 +31,9 @@ impl Session {
         }
         match ast.items.as_slice() {
             [Item::Production(_)] => self.add_production(text),
-            [Item::Header(h)] if matches!(h.kind, HeaderKind::Axiom(_)) => {
+            [Item::Header(h)]
+                if matches!(h.kind, HeaderKind::Axiom(_) | HeaderKind::LongAxiom(_)) =>
+            {
                 self.last_production = None;
                 let succ = text[h.keyword.end as usize..]
                     .split_once(':')

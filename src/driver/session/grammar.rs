@@ -92,7 +92,7 @@ pub fn set_axiom(text: &str, modules: &str) -> (String, usize) {
     let items = items(text);
     for item in &items {
         if let Item::Header(h) = item {
-            if let HeaderKind::Axiom(_) = h.kind {
+            if let HeaderKind::Axiom(_) | HeaderKind::LongAxiom(_) = h.kind {
                 let kw_end = h.keyword.end as usize;
                 let colon = text[kw_end..].find(':').map_or(kw_end, |i| kw_end + i + 1);
                 let keep = &text[h.span.start as usize..colon];
