@@ -405,3 +405,39 @@ fn many_guided_seeds_take_linear_time() {
     assert!(o.status.success(), "{t}");
     assert!(t.contains("\"seeds\":10000"), "{t}");
 }
+
+/// The string limits are checked as a step is written: a grammar that
+/// multiplies its string twelvefold a step stops at the default module
+/// limit (50 million, about 480 MB at its peak), and one of 8-parameter
+/// modules at a parameter limit of 50 million (400 MB of values), both
+/// with their located error inside 1 GiB instead of aborting.
+#[test]
+fn the_string_limits_stop_a_derivation_before_its_memory_runs_out() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/derive/err/module_limit.lsys"),
+        dir.path().join("modules.lsys"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("params.lsys"),
+        "derivation length: 40\nAxiom: A(1,2,3,4,5,6,7,8)\n\
+         A(a,b,c,d,e,f,g,h) --> A(a,b,c,d,e,f,g,h) A(b,c,d,e,f,g,h,a)\n",
+    )
+    .unwrap();
+    for (args, code) in [
+        (
+            &["derive", "modules.lsys"][..],
+            "lsys::derive::module_limit",
+        ),
+        (
+            &["derive", "params.lsys", "--max-params", "50000000"][..],
+            "lsys::derive::param_limit",
+        ),
+    ] {
+        let o = lsys_limited(dir.path(), 1024, 300, args);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(65), "{args:?}: {t}");
+        assert!(t.contains(code), "{args:?}: {t}");
+    }
+}
