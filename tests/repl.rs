@@ -144,6 +144,11 @@ A(1) F(2) L
 :export tree.obj
 :render tree.png front
 :stats
+// parameters as `lsys derive --precision 2` prints them, then as before
+:precision 2
+:precision off
+// the edits typed, written to a file the session then goes on from
+:save copy.lsys
 :reload
 :quit
 :step
@@ -407,4 +412,59 @@ fn cpfg_dialect_strings_show_f32_parameters() {
     );
     let r = execute(&mut s, "I(1.4333333)").text;
     assert_eq!(r, "I(1.91)");
+}
+
+/// `:save` writes the typed edits and the defines set into the file, the
+/// session goes on from it; `:reload` after a failed `:load` reads the
+/// grammar in use; `:precision` prints as `lsys derive --precision`.
+#[test]
+fn save_precision_and_reload_after_a_failed_load() {
+    let dir = workdir();
+    let g = dir.path().join("g.lsys");
+    std::fs::write(
+        &g,
+        "#define K 2\nderivation length: 1\nAxiom: A(0.1) B\nA(x) --> A(x*0.75*K)\n",
+    )
+    .unwrap();
+    let mut s = Session::new(Settings::default());
+    s.start(g.to_str().unwrap(), 1).unwrap();
+    assert!(execute(&mut s, ":show all")
+        .text
+        .contains("A(0.15000000000000002)"));
+    let r = execute(&mut s, ":precision 3");
+    assert!(r.ok && r.text.contains("A(0.15) B"), "{}", r.text);
+    assert!(!execute(&mut s, ":precision x").ok);
+    assert!(execute(&mut s, "B --> C").ok);
+    assert!(execute(&mut s, ":set K=5").ok);
+    let saved = dir.path().join("saved.lsys");
+    let r = execute(&mut s, &format!(":save {}", saved.display()));
+    assert!(r.ok, "{}", r.text);
+    assert_eq!(
+        std::fs::read_to_string(&saved).unwrap(),
+        "#define K 5\nderivation length: 1\nAxiom: A(0.1) B\nA(x) --> A(x*0.75*K)\nB --> C\n"
+    );
+    assert!(r.text.contains("A(0.375) C"), "{}", r.text);
+    // A failed :load keeps the grammar, and :reload reads the saved file.
+    let r = execute(&mut s, ":load nothere.lsys");
+    assert!(
+        !r.ok && r.text.contains("keeping the previous grammar"),
+        "{}",
+        r.text
+    );
+    let r = execute(&mut s, ":reload");
+    assert!(r.ok && r.text.contains("loaded"), "{}", r.text);
+    assert!(r.text.contains("saved.lsys"), "{}", r.text);
+    assert!(execute(&mut s, ":precision off")
+        .text
+        .contains("A(0.37500000000000006) C"));
+    // Not over a file the grammar includes; std: grammars need a name.
+    std::fs::write(dir.path().join("inc.lsys"), "#define J 1\n").unwrap();
+    std::fs::write(&g, "#include \"inc.lsys\"\nAxiom: F(J)\n").unwrap();
+    assert!(execute(&mut s, &format!(":load {}", g.display())).ok);
+    let inc = dir.path().join("inc.lsys");
+    let r = execute(&mut s, &format!(":save {}", inc.display()));
+    assert!(!r.ok, "{}", r.text);
+    assert_eq!(std::fs::read_to_string(&inc).unwrap(), "#define J 1\n");
+    assert!(execute(&mut s, ":load std:toukung").ok || execute(&mut s, ":load std:pailou").ok);
+    assert!(!execute(&mut s, ":save").ok);
 }

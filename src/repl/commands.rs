@@ -49,6 +49,13 @@ pub const COMMANDS: &[Command] = &[
         run: |s, _| s.reload(),
     },
     Command {
+        name: "save",
+        args: "[FILE]",
+        help: "write the grammar with the edits typed here and the defines set into FILE (default: the file loaded), then go on from it",
+        arg: Arg::File,
+        run: |s, a| s.save(a),
+    },
+    Command {
         name: "step",
         args: "[N]",
         help: "derive N more steps (default 1)",
@@ -156,6 +163,13 @@ pub const COMMANDS: &[Command] = &[
         help: "show the seed, or set it and derive again to the same step",
         arg: Arg::None,
         run: |s, a| s.set_seed(a),
+    },
+    Command {
+        name: "precision",
+        args: "[N|off]",
+        help: "print parameters rounded to N decimal places (as `lsys derive --precision N`), or in the shortest form (`off`, the default)",
+        arg: Arg::None,
+        run: |s, a| s.precision(a),
     },
     Command {
         name: "undo",

@@ -9,7 +9,6 @@
 use super::same::{is_catch_all, pred_eq, same_rule};
 use super::{grammar, show, Out, Session};
 use crate::bytecode::one_line;
-use crate::derive::NumberFormat;
 use crate::parse::ast::{HeaderKind, Item};
 use crate::pipeline::Compilation;
 use crate::resolve::{Production, Table};
@@ -187,7 +186,7 @@ warning: rule {n} can never apply: rule {} ({}) comes first and applies wherever
         Ok(show::abbreviate(
             d.current(),
             &comp.program.symbols,
-            NumberFormat::for_program(&comp.program),
+            self.numbers(&comp.program),
             show::BUDGET,
         ))
     }

@@ -79,6 +79,40 @@ pub fn replace(text: &str, span: Range<usize>, statement: &str) -> (String, usiz
     (out, span.start)
 }
 
+/// `overrides` (`NAME`, value) written over the values of the root file's
+/// plain `#define NAME value` lines; returns the text and the overrides
+/// it has no such line for (defined in an included file, by `-D` only,
+/// or function-like or a table).
+pub fn set_defines(text: &str, overrides: &[(String, String)]) -> (String, Vec<(String, String)>) {
+    let mut spans: Vec<(Range<usize>, &str)> = Vec::new();
+    let mut missing = Vec::new();
+    let items = items(text);
+    for (name, value) in overrides {
+        let found = items.iter().find_map(|item| match item {
+            Item::Define(ds) => ds
+                .iter()
+                .find_map(|d| match (&d.value, &d.params, &d.dims) {
+                    (Some(v), None, None) if d.name.name == *name => {
+                        Some(v.span.start as usize..v.span.end as usize)
+                    }
+                    _ => None,
+                }),
+            _ => None,
+        });
+        match found {
+            Some(span) => spans.push((span, value)),
+            None => missing.push((name.clone(), value.clone())),
+        }
+    }
+    // From the end, so that earlier spans stay where they are.
+    spans.sort_by_key(|(s, _)| std::cmp::Reverse(s.start));
+    let mut out = text.to_string();
+    for (span, value) in spans {
+        out.replace_range(span, value);
+    }
+    (out, missing)
+}
+
 /// The lines that `span` covers removed.
 pub fn remove_lines(text: &str, span: Range<usize>) -> String {
     let start = line_start(text, span.start);

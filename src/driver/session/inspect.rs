@@ -12,7 +12,7 @@ use super::edit::rule;
 use super::{show, Out, Session};
 use crate::build::{self, BuildOptions, Built};
 use crate::bytecode::{disasm, disasm_production, one_line};
-use crate::derive::{ModuleStore, NumberFormat};
+use crate::derive::ModuleStore;
 use crate::export::output::{write_scene, Format, WriteError};
 use crate::export::render::{RenderOptions, View};
 use crate::mesh::ComponentSearch;
@@ -29,7 +29,7 @@ impl Session {
     pub fn show(&mut self, arg: &str) -> Out {
         let s = self.string()?;
         let program = &self.grammar()?.comp.program;
-        let (symbols, fmt) = (&program.symbols, NumberFormat::for_program(program));
+        let (symbols, fmt) = (&program.symbols, self.numbers(program));
         let n = s.len();
         let arg = arg.trim();
         if arg.is_empty() {
@@ -92,7 +92,7 @@ impl Session {
             &prev,
             cur,
             &p.symbols,
-            NumberFormat::for_program(p),
+            self.numbers(p),
             &rewritable,
             self.pos,
         ))

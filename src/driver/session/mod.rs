@@ -24,7 +24,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::build::Stage;
-use crate::derive::{Checkpoint, DeriveOptions, ModuleStore, NumberFormat};
+use crate::derive::{Checkpoint, DeriveOptions, ModuleStore, NumberStyle};
 use crate::load::{Input, Options};
 use crate::pipeline::{self, Compilation};
 use crate::simulation::Simulation;
@@ -32,7 +32,9 @@ use crate::simulation::Simulation;
 mod edit;
 mod grammar;
 mod inspect;
+mod precision;
 mod same;
+mod save;
 mod shadow;
 mod show;
 mod undo;
@@ -199,7 +201,8 @@ pub struct Session {
     interrupt: Arc<AtomicBool>,
     pub(super) opts: DeriveOptions,
     pub(super) overrides: Vec<(String, String)>,
-    /// What `:reload` reads (the last `:load`, even when it failed).
+    /// What `:reload` reads: the grammar in use, or, before any loaded,
+    /// the last one `:load` tried (to read again once it is fixed).
     target: Option<Source>,
     pub(super) grammar: Option<Grammar>,
     /// `history[i]`: the derivation after step i, if kept.
@@ -213,6 +216,8 @@ pub struct Session {
     undo: Vec<undo::Edit>,
     /// Time of the last derivation.
     pub(super) derive_time: Duration,
+    /// How parameters print (`:precision`).
+    number_style: NumberStyle,
     pub(super) quit: bool,
 }
 
@@ -232,6 +237,7 @@ impl Session {
             typed: Vec::new(),
             undo: Vec::new(),
             derive_time: Duration::ZERO,
+            number_style: NumberStyle::Shortest,
             quit: false,
         }
     }
@@ -399,13 +405,16 @@ impl Session {
         self.rederive(keep).map(|s| warnings.clone() + &s)
     }
 
-    /// `:load FILE`: on errors the previous grammar stays.
+    /// `:load FILE`: on errors the previous grammar stays, and so does
+    /// what `:reload` reads.
     pub fn load(&mut self, arg: &str) -> Out {
         if arg.is_empty() {
             return Err("`:load` needs a file (or std:NAME)".into());
         }
         let source = Source::from_arg(arg);
-        self.target = Some(source.clone());
+        if self.grammar.is_none() {
+            self.target = Some(source.clone());
+        }
         let text = source.read().map_err(|e| self.kept(e))?;
         let comp = self
             .compile(&source, &text, &[])
@@ -413,6 +422,7 @@ impl Session {
         self.overrides.clear();
         self.typed.clear();
         self.pos = 0;
+        self.target = Some(source.clone());
         let summary = self.summary(&comp, &source);
         let rest = self.install(source, text, comp, false)?;
         Ok(format!("{summary}\n{rest}"))
@@ -598,7 +608,7 @@ impl Session {
                 show::abbreviate(
                     s,
                     &g.comp.program.symbols,
-                    NumberFormat::for_program(&g.comp.program),
+                    self.numbers(&g.comp.program),
                     show::BUDGET,
                 )
             ),
