@@ -354,6 +354,18 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("this production can never fire: {why}")]
+    #[diagnostic(code(lsys::resolve::never_fires), severity(Warning))]
+    NeverFires {
+        why: String,
+        #[source_code]
+        src: Src,
+        #[label("never in the strings")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
     #[error("this production can never apply")]
     #[diagnostic(code(lsys::resolve::unreachable), severity(Warning))]
     Unreachable {

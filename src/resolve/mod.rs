@@ -14,6 +14,7 @@ mod fold;
 mod hints;
 pub mod ir;
 mod modules;
+mod reach;
 mod statements;
 mod tables;
 mod turtle_headers;
@@ -89,6 +90,11 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         evaluating_for_display: false,
     };
     let program = r.run(loaded.items, opts);
+    if let (true, Some(p)) = (r.errors.is_empty(), &program) {
+        for w in reach::never_fires(p) {
+            r.warn(w);
+        }
+    }
     if r.errors.is_empty() {
         Ok(Resolved {
             program: program.expect("no errors means a program"),

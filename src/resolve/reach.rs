@@ -1,0 +1,175 @@
+//! Productions that can never fire: the resolved [`Program`] in, a
+//! warning out for each production whose predecessor or context names a
+//! module that no string of the derivation can hold (issue 35).
+//!
+//! Which modules can occur is a fixpoint over names *and* parameter
+//! counts: the axiom's modules occur; a production of the main or the
+//! decomposition table whose predecessor modules all occur may fire, so
+//! its successor's modules occur. The homomorphism's predecessors are
+//! looked for in those strings and in the homomorphism's own successors.
+//! The analysis is conservative: conditions, contexts, probabilities and
+//! adjacency are taken to allow firing, so a warning is a certainty (for
+//! the axiom of the file; a program that sets another axiom is not seen),
+//! and a grammar with sub-L-systems, whose strings mix tables, is not
+//! analysed.
+
+use std::collections::{HashMap, HashSet};
+
+use super::error::ResolveError;
+use super::ir::{PatItem, PatModule, Production, Program, SuccModule, SymId};
+
+/// A module as patterns match it: its name and its number of parameters.
+type Shape = (SymId, usize);
+
+/// The shapes the strings can hold, starting from `start` and closed
+/// under `prods` (a production fires once all its predecessor's shapes
+/// occur). Linear in the size of the grammar: each production waits on
+/// a count of shapes still missing.
+fn closure(start: impl IntoIterator<Item = Shape>, prods: &[&Production]) -> HashSet<Shape> {
+    let mut waiting: HashMap<Shape, Vec<usize>> = HashMap::new();
+    let mut missing: Vec<usize> = Vec::with_capacity(prods.len());
+    for (k, p) in prods.iter().enumerate() {
+        let need: HashSet<Shape> = p.pred.iter().map(shape).collect();
+        missing.push(need.len());
+        for s in need {
+            waiting.entry(s).or_default().push(k);
+        }
+    }
+    let mut occurs = HashSet::new();
+    let mut work: Vec<Shape> = start.into_iter().collect();
+    // Productions whose predecessor is empty (never, but harmless).
+    for (k, p) in prods.iter().enumerate() {
+        if missing[k] == 0 {
+            work.extend(p.succ.iter().map(written));
+        }
+    }
+    while let Some(s) = work.pop() {
+        if !occurs.insert(s) {
+            continue;
+        }
+        for &k in waiting.get(&s).map_or(&[][..], Vec::as_slice) {
+            missing[k] -= 1;
+            if missing[k] == 0 {
+                work.extend(prods[k].succ.iter().map(written));
+            }
+        }
+    }
+    occurs
+}
+
+fn shape(m: &PatModule) -> Shape {
+    (m.sym, m.arity as usize)
+}
+
+fn written(m: &SuccModule) -> Shape {
+    (m.sym, m.args.len())
+}
+
+/// The warnings for `program`'s productions that can never fire.
+pub(super) fn never_fires(program: &Program) -> Vec<ResolveError> {
+    if !program.sub_lsystems.is_empty() {
+        return Vec::new();
+    }
+    let derived: Vec<&Production> = program
+        .productions
+        .iter()
+        .chain(&program.decomposition)
+        .collect();
+    let axiom = program.axiom.iter().map(written);
+    let occurs = closure(axiom.clone(), &derived);
+    let drawn: Vec<&Production> = program.homomorphism.iter().collect();
+    let occurs_drawn = closure(occurs.iter().copied().chain(axiom), &drawn);
+    let mut out = Vec::new();
+    for (prods, occurs) in [(&derived, &occurs), (&drawn, &occurs_drawn)] {
+        for p in prods.iter() {
+            if let Some(w) = check(program, p, occurs) {
+                out.push(w);
+            }
+        }
+    }
+    out
+}
+
+/// The first module of `p`'s pattern that cannot occur, as a warning.
+fn check(program: &Program, p: &Production, occurs: &HashSet<Shape>) -> Option<ResolveError> {
+    let rctx = p.rctx.iter().filter_map(|i| match i {
+        PatItem::Module(m) => Some(m),
+        _ => None,
+    });
+    let (m, role) = p
+        .pred
+        .iter()
+        .map(|m| (m, "predecessor"))
+        .chain(p.lctx.iter().map(|m| (m, "left context")))
+        .chain(rctx.map(|m| (m, "right context")))
+        .find(|(m, _)| !occurs.contains(&shape(m)))?;
+    let symbols = &program.symbols;
+    let name = symbols.name(m.sym);
+    let counts: Vec<usize> = {
+        let mut c: Vec<usize> = occurs
+            .iter()
+            .filter(|(s, _)| *s == m.sym)
+            .map(|(_, n)| *n)
+            .collect();
+        c.sort_unstable();
+        c
+    };
+    let (why, help) = if counts.is_empty() {
+        let near = nearest(program, name, occurs);
+        let help = match near {
+            Some(n) => format!("did you mean `{n}`? "),
+            None => String::new(),
+        } + "a production fires only on modules the axiom or a successor writes; write the name as they do, or remove the production";
+        (
+            format!("`{name}` in its {role} never occurs in the strings"),
+            help,
+        )
+    } else {
+        let list: Vec<String> = counts.iter().map(|n| params(*n)).collect();
+        (
+            format!(
+                "`{name}` in its {role} has {}, but every `{name}` the strings hold has {}",
+                params(m.arity as usize),
+                list.join(" or ")
+            ),
+            "a pattern matches only modules with exactly as many parameters: give it as many as the axiom and the successors write".to_string(),
+        )
+    };
+    Some(ResolveError::NeverFires {
+        why,
+        src: program.sources.named_source(m.span),
+        span: m.span.into(),
+        help,
+    })
+}
+
+fn params(n: usize) -> String {
+    match n {
+        0 => "no parameters".to_string(),
+        1 => "1 parameter".to_string(),
+        n => format!("{n} parameters"),
+    }
+}
+
+/// The name written in the strings that `name` most likely meant: the
+/// same letters in another case, else one or two edits away.
+fn nearest<'p>(program: &'p Program, name: &str, occurs: &HashSet<Shape>) -> Option<&'p str> {
+    let mut names: Vec<&str> = occurs
+        .iter()
+        .map(|(s, _)| program.symbols.name(*s))
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names
+        .iter()
+        .find(|n| n.eq_ignore_ascii_case(name))
+        .or_else(|| {
+            names
+                .iter()
+                .map(|n| (strsim::levenshtein(n, name), n))
+                .filter(|(d, _)| *d <= 2 && *d < name.len())
+                .min()
+                .map(|(_, n)| n)
+        })
+        .copied()
+}
