@@ -15,6 +15,7 @@ mod hints;
 pub mod ir;
 mod modules;
 mod reach;
+mod shadowing;
 mod statements;
 mod tables;
 mod turtle_headers;

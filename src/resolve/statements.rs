@@ -37,6 +37,8 @@ struct Sections {
     /// Per table and predecessor: was there a production, and which
     /// production always applies first (no context, condition, probability).
     seen: HashMap<(Table, PredKey), Option<Span>>,
+    /// The other ways an earlier production takes a later one's place.
+    shadows: super::shadowing::Shadows,
     turtle: super::turtle_headers::TurtleHeaders,
     /// `environment:` and where it was given.
     environment: Option<(String, Span)>,
@@ -238,6 +240,7 @@ impl Resolver {
                     s.ended = None;
                     s.table = None;
                     s.seen.clear();
+                    s.shadows = Default::default();
                 } else {
                     s.main_label = label;
                     s.lsystem = Some(h.keyword);
@@ -519,14 +522,28 @@ impl Resolver {
             && prob.is_none()
             && !cond_failed
             && matches!(cond, Cond::Always | Cond::Else(_));
+        let candidate = super::shadowing::Candidate {
+            table,
+            pred: &pred,
+            lctx: &lctx,
+            rctx: &rctx,
+            unconditional: !cond_failed && matches!(cond, Cond::Always | Cond::Else(_)),
+            stochastic: prob.is_some(),
+        };
+        let paper_choice = !self.profile.cpfg_stochastic;
+        let shadowed = s.shadows.check(&candidate, p.head_span, paper_choice);
         let entry = s.seen.entry((table, key)).or_insert(None);
-        if let Some(earlier) = *entry {
+        let shadowed = match (*entry, shadowed) {
+            (Some(earlier), _) => Some((earlier, "an earlier production for the same predecessor has no condition, context or probability, so it always wins; add a condition to it or remove this one")),
+            (None, other) => other.map(|o| (o.earlier, o.help)),
+        };
+        if let Some((earlier, help)) = shadowed {
             self.warn(ResolveError::Unreachable {
                 src: self.sources.named_source(p.span),
                 span: p.head_span.into(),
                 earlier: (earlier.file == p.span.file).then(|| earlier.into()),
                 pred: pred_text,
-                help: "an earlier production for the same predecessor has no condition, context or probability, so it always wins; add a condition to it or remove this one".to_string(),
+                help: help.to_string(),
             });
         } else if always {
             *entry = Some(p.head_span);
