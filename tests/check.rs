@@ -58,3 +58,32 @@ fn check_searches_components_dirs() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Issue 35: with no `derivation length:` and no `-n`, `lsys derive`
+/// notes that 0 steps were derived; with `-n` it says nothing.
+#[test]
+fn zero_steps_are_noted() {
+    let name = "tests/fixtures/check/ok/header_misspelt.lsys";
+    let run = |extra: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+            .args(["--color", "never", "derive", name])
+            .args(extra)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(o.status.success());
+        (
+            String::from_utf8_lossy(&o.stdout).trim().to_string(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let (out, err) = run(&[]);
+    assert_eq!(out, "A");
+    assert!(
+        err.contains("has no `derivation length:`, so 0 steps are derived"),
+        "{err}"
+    );
+    let (out, err) = run(&["-n", "2"]);
+    assert_eq!(out, "A B B");
+    assert!(!err.contains("so 0 steps are derived"), "{err}");
+}

@@ -405,6 +405,7 @@ fn program(src: &str) -> Program {
         symbols: Symbols::default(),
         axiom: Vec::new(),
         derivation_length: 0,
+        derivation_length_given: false,
         seed: None,
         ring: false,
         main_lsystem: 0,

@@ -88,6 +88,18 @@ impl Grammar {
         self.comp.program.derivation_length
     }
 
+    /// A note when the grammar would derive 0 steps only because the file
+    /// gives no `derivation length:` (and it has productions to apply).
+    pub fn zero_steps_note(&self) -> Option<String> {
+        let p = &self.comp.program;
+        (!p.derivation_length_given && !p.productions.is_empty()).then(|| {
+            format!(
+                "note: {} has no `derivation length:`, so 0 steps are derived and the axiom is the result; add `derivation length: N` to the file or pass `-n N`",
+                self.name()
+            )
+        })
+    }
+
     /// The string after `steps` steps (`End:` runs after the last).
     pub fn derive(&self, steps: u32) -> Result<Derived, Diagnostics> {
         let mut sim = self.simulation(steps)?;

@@ -128,6 +128,11 @@ fn derive_cmd(d: &DeriveArgs, color: bool) -> i32 {
         }
     }
     let steps = d.run.steps.unwrap_or(g.derivation_length());
+    if d.run.steps.is_none() {
+        if let Some(note) = g.zero_steps_note() {
+            eprintln!("{note}");
+        }
+    }
     if d.count {
         return count_cmd(d, &g, steps, color);
     }

@@ -354,6 +354,55 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("the parameter `{name}` hides `#define {name}` inside this production")]
+    #[diagnostic(
+        code(lsys::resolve::param_hides_define),
+        severity(Warning),
+        help("inside the production `{name}` is the parameter; to use the define there, name the parameter otherwise (e.g. `{name}1`)")
+    )]
+    ParamHidesDefine {
+        name: String,
+        #[source_code]
+        src: Src,
+        #[label("this parameter")]
+        span: SourceSpan,
+        #[label("hides this define")]
+        define: Option<SourceSpan>,
+    },
+
+    #[error("`{name}` is a #define, but here it is read as the modules {modules}")]
+    #[diagnostic(
+        code(lsys::resolve::define_as_module),
+        severity(Warning),
+        help("a define gives a value, not modules: use it as a parameter (`F({name})`) or in an expression; to mean a module, rename the define")
+    )]
+    DefineAsModule {
+        name: String,
+        modules: String,
+        #[source_code]
+        src: Src,
+        #[label("read as {modules}")]
+        span: SourceSpan,
+        #[label("the define")]
+        define: Option<SourceSpan>,
+    },
+
+    #[error(
+        "every production is in the homomorphism, so the {steps} derivation steps rewrite nothing"
+    )]
+    #[diagnostic(
+        code(lsys::resolve::only_homomorphism),
+        severity(Warning),
+        help("the homomorphism only changes what the turtle draws; productions that grow the string go before the `homomorphism` line")
+    )]
+    OnlyHomomorphism {
+        steps: u32,
+        #[source_code]
+        src: Src,
+        #[label("the first production, after `homomorphism`")]
+        span: SourceSpan,
+    },
+
     #[error("this production can never fire: {why}")]
     #[diagnostic(code(lsys::resolve::never_fires), severity(Warning))]
     NeverFires {

@@ -295,6 +295,8 @@ pub struct Program {
     pub axiom: Vec<SuccModule>,
     /// Steps to derive when the user does not say (`derivation length:`).
     pub derivation_length: u32,
+    /// Whether the file says `derivation length:` (0 steps without it).
+    pub derivation_length_given: bool,
     /// `seed:`; the user's `--seed` wins.
     pub seed: Option<u64>,
     /// cpfg's `ring lsystem`: context matching wraps around the string's

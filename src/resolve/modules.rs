@@ -170,6 +170,51 @@ impl Resolver {
         true
     }
 
+    /// A production parameter named like a `#define` hides it inside the
+    /// production (the divergence angle `d` becomes the parameter `d`).
+    fn param_hides_define(&mut self, name: &str, span: Span) {
+        let Some(d) = self.defines.get(name) else {
+            return;
+        };
+        if d.params.is_some() || d.dims.is_some() || !self.warned_at.insert(format!("param {name}"))
+        {
+            return;
+        }
+        let define = d.span;
+        self.warn(ResolveError::ParamHidesDefine {
+            name: name.to_string(),
+            src: self.sources.named_source(span),
+            span: span.into(),
+            define: (define.file == span.file).then(|| define.into()),
+        });
+    }
+
+    /// A word that is the name of a `#define` written as a module: it is
+    /// read as modules (`LEAF` as `L E A F`), not as the define's value.
+    fn define_as_module(&mut self, tok: &ModuleTok, pieces: &[Split<'_>]) {
+        if tok.kind != TokKind::Word || tok.args.is_some() {
+            return;
+        }
+        let Some(d) = self.defines.get(&tok.text) else {
+            return;
+        };
+        if d.params.is_some()
+            || d.dims.is_some()
+            || !self.warned_at.insert(format!("define {}", tok.text))
+        {
+            return;
+        }
+        let define = d.span;
+        let modules: Vec<&str> = pieces.iter().map(|s| s.name.as_str()).collect();
+        self.warn(ResolveError::DefineAsModule {
+            name: tok.text.clone(),
+            modules: modules.join(" "),
+            src: self.sources.named_source(tok.name_span),
+            span: tok.name_span.into(),
+            define: (define.file == tok.span.file).then(|| define.into()),
+        });
+    }
+
     fn unknown_turtle_warning(&mut self, tok: &ModuleTok) {
         if !self.warned_at.insert(tok.text.clone()) {
             return;
@@ -216,7 +261,9 @@ impl Resolver {
                 });
                 continue;
             }
-            for s in self.split(tok) {
+            let pieces = self.split(tok);
+            self.define_as_module(tok, &pieces);
+            for s in pieces {
                 let sym = self.intern(&s.name, Some(s.span));
                 let args = s.args.unwrap_or(&[]);
                 self.check_arity(sym, args.len(), s.span);
@@ -398,6 +445,7 @@ impl Resolver {
                                 });
                                 continue;
                             }
+                            self.param_hides_define(n, a.span);
                             params.push((n.clone(), params.len() as u16));
                             param_spans.push(a.span);
                         }

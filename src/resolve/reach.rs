@@ -80,6 +80,18 @@ pub(super) fn never_fires(program: &Program) -> Vec<ResolveError> {
     let drawn: Vec<&Production> = program.homomorphism.iter().collect();
     let occurs_drawn = closure(occurs.iter().copied().chain(axiom), &drawn);
     let mut out = Vec::new();
+    // Every production after `homomorphism`: the steps rewrite nothing.
+    // One step is cpfg's idiom for a scene drawn from its axiom (the
+    // corpus has seven), so from two steps on.
+    if let (true, Some(first)) = (derived.is_empty(), drawn.first()) {
+        if program.derivation_length > 1 {
+            out.push(ResolveError::OnlyHomomorphism {
+                steps: program.derivation_length,
+                src: program.sources.named_source(first.span),
+                span: first.head_span.into(),
+            });
+        }
+    }
     for (prods, occurs) in [(&derived, &occurs), (&drawn, &occurs_drawn)] {
         for p in prods.iter() {
             if let Some(w) = check(program, p, occurs) {
@@ -114,7 +126,13 @@ fn check(program: &Program, p: &Production, occurs: &HashSet<Shape>) -> Option<R
         c.sort_unstable();
         c
     };
-    let (why, help) = if counts.is_empty() {
+    let head = program.sources.slice(p.head_span);
+    let (why, help) = if let Some(header) = header_like(head).filter(|_| role == "predecessor") {
+        (
+            format!("`{}` reads as a production, not a header", head.trim()),
+            format!("did you mean the header `{header}:`? a line that is not one of the headers is read as a production, here of a predecessor no string holds"),
+        )
+    } else if counts.is_empty() {
         let near = nearest(program, name, occurs);
         let help = match near {
             Some(n) => format!("did you mean `{n}`? "),
@@ -140,6 +158,37 @@ fn check(program: &Program, p: &Production, occurs: &HashSet<Shape>) -> Option<R
         src: program.sources.named_source(m.span),
         span: m.span.into(),
         help,
+    })
+}
+
+/// The header a production's head most likely misspells: its first word
+/// is a multi-word header's first word (`derivation steps`), or the whole
+/// is a few letters from a header (`homomorphsm`).
+fn header_like(head: &str) -> Option<&'static str> {
+    const HEADERS: [&str; 13] = [
+        "derivation length",
+        "maximum depth",
+        "ring lsystem",
+        "axiom",
+        "ignore",
+        "consider",
+        "homomorphism",
+        "decomposition",
+        "endlsystem",
+        "lsystem",
+        "seed",
+        "angle",
+        "width",
+    ];
+    let words: Vec<String> = head.split_whitespace().map(str::to_lowercase).collect();
+    let text = words.join(" ");
+    if text.len() < 4 {
+        return None;
+    }
+    HEADERS.into_iter().find(|h| {
+        let first = h.split(' ').next().unwrap_or(h);
+        (h.contains(' ') && words.len() > 1 && words[0] == first)
+            || (text.len() >= 6 && strsim::levenshtein(&text, h) <= h.len() / 5)
     })
 }
 

@@ -166,6 +166,7 @@ impl Resolver {
             symbols: std::mem::take(&mut self.symbols),
             axiom,
             derivation_length: s.dlength.map_or(0, |d| d.0),
+            derivation_length_given: s.dlength.is_some(),
             seed: s.seed.map(|d| d.0),
             ring: s.ring,
             main_lsystem: s.main_label,
