@@ -403,6 +403,19 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("this condition reads no parameter and is always false: the production never fires")]
+    #[diagnostic(
+        code(lsys::resolve::constant_condition),
+        severity(Warning),
+        help("it depends only on #defines and numbers; compare a parameter of the predecessor (e.g. `x < N`), or change the define (`-D NAME=VALUE`)")
+    )]
+    ConstantCondition {
+        #[source_code]
+        src: Src,
+        #[label("always false")]
+        span: SourceSpan,
+    },
+
     #[error("this production can never fire: {why}")]
     #[diagnostic(code(lsys::resolve::never_fires), severity(Warning))]
     NeverFires {
