@@ -416,6 +416,19 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("colour index {index} is {what}")]
+    #[diagnostic(code(lsys::resolve::colour_index), severity(Warning))]
+    ColourIndex {
+        index: f64,
+        what: String,
+        #[source_code]
+        src: Src,
+        #[label("this colour")]
+        span: SourceSpan,
+        #[help]
+        help: String,
+    },
+
     #[error("this production can never fire: {why}")]
     #[diagnostic(code(lsys::resolve::never_fires), severity(Warning))]
     NeverFires {

@@ -6,6 +6,7 @@
 
 pub mod alphabet;
 mod brackets;
+mod colours;
 mod cpfg_commands;
 mod cstmt;
 pub mod error;
@@ -92,7 +93,10 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
     };
     let program = r.run(loaded.items, opts);
     if let (true, Some(p)) = (r.errors.is_empty(), &program) {
-        for w in reach::never_fires(p) {
+        for w in reach::never_fires(p)
+            .into_iter()
+            .chain(colours::out_of_palette(p))
+        {
             r.warn(w);
         }
     }

@@ -508,10 +508,16 @@ impl Resolver {
                 // Written with the names of defines, not as `0` or `!1`
                 // (cpfg's idioms for a production switched off): a
                 // production that cannot fire by accident.
-                Some(c @ Expr {
-                    kind: ExprKind::Num(_),
-                    ..
-                }) if self.sources.slice(e.span).contains(|ch: char| ch.is_ascii_alphabetic()) => {
+                Some(
+                    c @ Expr {
+                        kind: ExprKind::Num(_),
+                        ..
+                    },
+                ) if self
+                    .sources
+                    .slice(e.span)
+                    .contains(|ch: char| ch.is_ascii_alphabetic()) =>
+                {
                     self.warn(ResolveError::ConstantCondition {
                         src: self.sources.named_source(e.span),
                         span: e.span.into(),
