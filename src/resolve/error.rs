@@ -123,6 +123,19 @@ pub enum ResolveError {
         span: SourceSpan,
     },
 
+    #[error("`%` rolls the turtle 180° here (the paper's dialect); in ABOP and cpfg it cuts the rest of the branch")]
+    #[diagnostic(
+        code(lsys::resolve::dialect_hint),
+        severity(Advice),
+        help("this file reads like an ABOP/cpfg model but is read in the paper's dialect, the default for `.lsys` files; if `%` should cut the branch (shedding, pruning), add the header `dialect: cpfg`; add `dialect: paper` to keep the paper's meaning and silence this hint")
+    )]
+    PercentDialect {
+        #[source_code]
+        src: Src,
+        #[label("`%` is roll 180° in the paper's dialect")]
+        span: SourceSpan,
+    },
+
     #[error("unknown component `~{name}`")]
     #[diagnostic(code(lsys::resolve::unknown_component))]
     UnknownComponent {
