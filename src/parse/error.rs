@@ -6,7 +6,7 @@ use pest::error::{Error as PestError, ErrorVariant, InputLocation};
 use thiserror::Error;
 
 use super::help::{
-    closes, empty_entry, found_at, line_of, structural_help, typographic_help,
+    arrow_typo, closes, empty_entry, found_at, line_of, structural_help, typographic_help,
     without_empty_entries, ARROW_HELP, MISSING_ARROW_HELP,
 };
 use super::Rule;
@@ -316,6 +316,19 @@ impl ParseError {
         };
         let line = line_of(&file.text, at);
         let col = at - file.text[..at].rfind('\n').map_or(0, |i| i + 1);
+        // A mistyped arrow is what the caret should point at, not the end
+        // of the line where the parser gave up.
+        if let (Some((c, l, h)), true) = (arrow_typo(line), expected.contains(&"`-->`")) {
+            let from = at - col + c;
+            return ParseError::Syntax {
+                message: format!("expected `-->`, found `{}`", &line[c..c + l]),
+                src: file.named_source(),
+                span: Span::new(file_id, from, from + l).into(),
+                label: "not an arrow".to_string(),
+                help: Some(h.to_string()),
+                offset: from,
+            };
+        }
         let (len, help) = match typographic_help(&file.text, at) {
             Some((l, h)) => (l, Some(h)),
             None => (len, structural_help(line, col, &expected)),

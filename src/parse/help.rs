@@ -94,6 +94,37 @@ pub(super) fn typographic_help(text: &str, at: usize) -> Option<(usize, String)>
     ))
 }
 
+/// A mistyped arrow on a line that did not parse: where it is in the
+/// line, how long, and the help. `=>`, and an arrow broken by spaces
+/// (`- >`, `-- >`, `- ->`).
+pub(super) fn arrow_typo(line: &str) -> Option<(usize, usize, &'static str)> {
+    if let Some(at) = line.find("=>") {
+        return Some((at, 2, ARROW_HELP));
+    }
+    let b = line.as_bytes();
+    // Each run of dashes and spaces once: linear in the line.
+    let mut start = 0;
+    while start < b.len() {
+        if b[start] != b'-' {
+            start += 1;
+            continue;
+        }
+        let mut i = start;
+        while i < b.len() && (b[i] == b'-' || b[i] == b' ') {
+            i += 1;
+        }
+        if i < b.len() && b[i] == b'>' && line[start..i].contains("- ") {
+            return Some((
+                start,
+                i + 1 - start,
+                "the arrow of a production is written without spaces: `-->` (or `->`)",
+            ));
+        }
+        start = i.max(start + 1);
+    }
+    None
+}
+
 pub(super) fn structural_help(line: &str, col: usize, expected: &[&str]) -> Option<String> {
     let before = line.get(..col.min(line.len())).unwrap_or(line);
     let code = line.trim_start();

@@ -246,7 +246,11 @@ impl Lower<'_> {
                         _ => Condition::Expr(self.paper_cond(part)?),
                     });
                 }
-                Rule::arrow => arrow = Some(self.span(&part)),
+                Rule::arrow => {
+                    let at = self.span(&part);
+                    self.dashes_before_arrow(at)?;
+                    arrow = Some(at);
+                }
                 // A block before the condition (or the only block, with no
                 // condition) runs first; one after the condition runs once
                 // it holds.
@@ -287,6 +291,28 @@ impl Lower<'_> {
             head_span,
             span,
         })
+    }
+
+    /// `A ---> B` parses as the predecessor `A -` and the arrow `-->`:
+    /// dashes right before an arrow are a mistyped arrow.
+    fn dashes_before_arrow(&self, arrow: Span) -> PResult<()> {
+        let text = &self.file.text;
+        let start = arrow.start as usize;
+        let dashes = text[..start].len() - text[..start].trim_end_matches('-').len();
+        if dashes == 0 || !text[start..].starts_with('-') {
+            return Ok(());
+        }
+        let from = start - dashes;
+        Err(Box::new(ParseError::Syntax {
+            message: format!("`{}` is not an arrow", &text[from..arrow.end as usize]),
+            src: self.file.named_source(),
+            span: Span::new(self.file_id, from, arrow.end as usize).into(),
+            label: "not an arrow".to_string(),
+            help: Some(
+                "the arrow of a production is `-->` (or `->`): remove the extra dashes".to_string(),
+            ),
+            offset: from,
+        }))
     }
 
     fn pattern<'i>(&self, items: impl Iterator<Item = Pair<'i, Rule>>) -> PResult<Vec<PatTok>> {
