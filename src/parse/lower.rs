@@ -277,6 +277,9 @@ impl Lower<'_> {
             span.end as usize,
             span.end as usize,
         ));
+        if !arrow_form {
+            self.paper_form_slip(succ_span, cond.is_some())?;
+        }
         Ok(Production {
             lctx,
             pred,
@@ -291,6 +294,60 @@ impl Lower<'_> {
             head_span,
             span,
         })
+    }
+
+    /// In the arrowless form the successor starts where the condition
+    /// stops, so a slip in the condition's words becomes modules: `Else C`
+    /// (E l s e C), `x > 0 adn x < 3 B` (a d n x < 3 B), `x = 2 B`.
+    fn paper_form_slip(&self, succ: Span, has_cond: bool) -> PResult<()> {
+        let text = &self.file.text[succ.start as usize..succ.end as usize];
+        let lead = text.len() - text.trim_start().len();
+        let body = text.trim_start();
+        let word_len = body
+            .find(|c: char| !c.is_ascii_alphabetic())
+            .unwrap_or(body.len());
+        let word = &body[..word_len];
+        let rest = body[word_len..].trim_start();
+        let lower = word.to_ascii_lowercase();
+        let compares = ["<", ">", "==", "!="].iter().any(|op| rest.contains(op));
+        let (message, help) = if lower == "else" && word != "else" {
+            (
+                format!("`{word}` reads as modules of the successor"),
+                "the arrowless form's `else` is written in lower case: `A(x) : else C`".to_string(),
+            )
+        } else if has_cond
+            && compares
+            && ["and", "or"].iter().any(|k| {
+                lower != *k && strsim::damerau_levenshtein(&lower, k) <= 1
+                    || lower == *k && word != *k
+            })
+        {
+            let meant = if strsim::damerau_levenshtein(&lower, "and") <= 1 {
+                "and"
+            } else {
+                "or"
+            };
+            (
+                format!("`{word}` reads as modules of the successor, not as `{meant}`"),
+                format!("did you mean `{meant}`? in the arrowless form the condition ends at the first word that does not continue it, and the rest is the successor"),
+            )
+        } else if word_len > 0 && rest.starts_with('=') && !rest.starts_with("==") {
+            (
+                format!("`{word} =` reads as modules of the successor"),
+                format!("`=` is not a comparison: write `{word} == ...` (e.g. `A(x) : x == 2 B`)"),
+            )
+        } else {
+            return Ok(());
+        };
+        let from = succ.start as usize + lead;
+        Err(Box::new(ParseError::Syntax {
+            message,
+            src: self.file.named_source(),
+            span: Span::new(self.file_id, from, from + word_len.max(1)).into(),
+            label: "here".to_string(),
+            help: Some(help),
+            offset: from,
+        }))
     }
 
     /// `A ---> B` parses as the predecessor `A -` and the arrow `-->`:
