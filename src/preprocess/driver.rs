@@ -30,6 +30,10 @@ const RUN_BUDGET: usize = 2_000_000;
 
 struct Pp<'r> {
     macros: Macros,
+    /// The `-D` names: they win over the files' own `#define`s.
+    overrides: super::overrides::Overrides,
+    /// Every name a file `#define`s, for suggestions.
+    file_macros: Vec<String>,
     errors: Vec<PreprocessError>,
     files: Vec<OutFile>,
     resolver: &'r mut dyn Resolver,
@@ -57,6 +61,8 @@ pub(crate) fn run(
     let bytes_read = root.text.len();
     let mut pp = Pp {
         macros: HashMap::new(),
+        overrides: super::overrides::Overrides::new(&opts.defines),
+        file_macros: Vec::new(),
         errors: Vec::new(),
         files: vec![OutFile {
             raw: root,
@@ -75,6 +81,7 @@ pub(crate) fn run(
     };
     pp.predefine(&opts.defines);
     pp.process(0);
+    pp.report_unmatched_overrides();
     (Output { files: pp.files }, pp.errors)
 }
 
@@ -120,6 +127,25 @@ impl Pp<'_> {
             .push(PreprocessError::new(kind, file, span, message));
         let n = self.errors.len() - 1;
         &mut self.errors[n]
+    }
+
+    /// An error, on the root file, for each `-D` the model never defines
+    /// or mentions (a misspelt name did nothing before).
+    fn report_unmatched_overrides(&mut self) {
+        let texts = self.files.iter().map(|f| f.raw.text.as_str());
+        let unmatched = self.overrides.unmatched(texts, &self.file_macros);
+        let root = self.files[0].raw.name.clone();
+        for (name, near) in unmatched {
+            let near = near.map_or(String::new(), |n| format!("did you mean `{n}`? "));
+            let e = PreprocessError::new(
+                ErrorKind::UnknownDefine,
+                0,
+                0..0,
+                format!("the define `{name}` given as an option matches no #define in {root}"),
+            )
+            .help(format!("{near}a define given with -D replaces the model's own `#define NAME ...`; check the name"));
+            self.errors.push(e);
+        }
     }
 
     fn predefine(&mut self, defines: &[(String, String)]) {
@@ -384,7 +410,10 @@ impl Pp<'_> {
 
     fn define(&mut self, idx: usize, rest: &[Token], whole: &Range<usize>) {
         match parse_define(rest) {
+            // The option's value stands, as `-D` does in `.lsys` files.
+            Ok(m) if self.overrides.claims(&m.name) => {}
             Ok(m) => {
+                self.file_macros.push(m.name.to_string());
                 let name_span = rest.first().map_or(whole.clone(), |t| t.span.clone());
                 if let Some(old) = self.macros.get(&m.name) {
                     if !old.same_as(&m) {

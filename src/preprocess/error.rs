@@ -46,6 +46,8 @@ pub enum ErrorKind {
     Recursion,
     /// Warning: a macro redefined with a different body (the last one wins).
     Redefined,
+    /// A define given as an option that the model never defines or uses.
+    UnknownDefine,
     /// Warning: `#warning` text.
     WarningDirective,
 }
@@ -69,6 +71,7 @@ impl ErrorKind {
             ErrorKind::ErrorDirective => "lsys::preprocess::error_directive",
             ErrorKind::Recursion => "lsys::preprocess::recursion",
             ErrorKind::Redefined => "lsys::preprocess::redefined",
+            ErrorKind::UnknownDefine => "lsys::preprocess::unknown_define",
             ErrorKind::WarningDirective => "lsys::preprocess::warning_directive",
         }
     }

@@ -53,6 +53,7 @@ mod expand;
 mod if_expr;
 mod lexer;
 mod macros;
+mod overrides;
 mod render;
 mod token;
 

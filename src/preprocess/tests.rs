@@ -300,6 +300,36 @@ fn command_line_defines_come_first() {
     assert_eq!(out.files[0].text, "F(3) F(2*2)\n\nyes\n");
 }
 
+/// Issue 35: `-D` wins over the file's own `#define` (as in `.lsys`
+/// files), with no redefinition warning; a `-D` the model neither defines
+/// nor mentions is an error naming the nearest macro.
+#[test]
+fn command_line_defines_win_and_unknown_ones_are_errors() {
+    let opts = |d: &[(&str, &str)]| Options {
+        defines: d
+            .iter()
+            .map(|(n, v)| (n.to_string(), v.to_string()))
+            .collect(),
+        ..Options::default()
+    };
+    let text = "#define LEN 2\nF(LEN)\n#ifdef DEBUG\nD\n#endif";
+    let (out, errs, _) = run_with(text, &[], &opts(&[("LEN", "3")]));
+    assert!(errs.is_empty(), "{errs:#?}");
+    assert_eq!(out.files[0].text, "\nF(3)\n\n\n");
+    // Mentioned only by `#ifdef`: known, and it switches the text on.
+    let (out, errs, _) = run_with(text, &[], &opts(&[("DEBUG", "1")]));
+    assert!(errs.is_empty(), "{errs:#?}");
+    assert!(out.files[0].text.contains('D'));
+    let (_, errs, _) = run_with(text, &[], &opts(&[("LNE", "3")]));
+    assert_eq!(errs.len(), 1, "{errs:#?}");
+    assert_eq!(errs[0].kind.code(), "lsys::preprocess::unknown_define");
+    assert!(errs[0]
+        .help
+        .as_deref()
+        .unwrap_or("")
+        .contains("did you mean `LEN`?"));
+}
+
 #[test]
 fn include_defines_macros_for_the_includer() {
     let files = [("leaf.l", "#define SIZE 42\nL(SIZE)\n"), ("<std.l>", "")];
