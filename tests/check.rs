@@ -87,3 +87,33 @@ fn zero_steps_are_noted() {
     assert_eq!(out, "A B B");
     assert!(!err.contains("so 0 steps are derived"), "{err}");
 }
+
+/// Issue 35: a cpfg view file's `angle factor: 0` (360° / 0) was ignored
+/// without a word; it is a warning at its line.
+#[test]
+fn a_zero_angle_factor_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("plant.l"),
+        "lsystem: 1\nderivation length: 1\nAxiom: F+F\nendlsystem\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("plant.v"), "angle factor: 0\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["--color", "never", "check", "plant.l"])
+        .current_dir(dir.path())
+        .env("COLUMNS", "100")
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("lsys::load::angle_factor"), "{err}");
+    assert!(err.contains("plant.v:1:1"), "{err}");
+    std::fs::write(dir.path().join("plant.v"), "angle factor: 8\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["--color", "never", "check", "plant.l"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("angle_factor"));
+}

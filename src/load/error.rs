@@ -176,6 +176,20 @@ pub enum LoadError {
     )]
     ContourFile { view: String, why: String },
 
+    /// `angle factor: 0` in a cpfg view file: 360° / 0 is no angle.
+    #[error("`angle factor: 0` gives no turning angle (360° / 0), so it is ignored")]
+    #[diagnostic(
+        code(lsys::load::angle_factor),
+        severity(Warning),
+        help("the turning angle stays at 90° (or the model's own `angle:`); write the number of turns in a full circle (`angle factor: 8` for 45°), or `angle increment: 45`")
+    )]
+    ZeroAngleFactor {
+        #[source_code]
+        src: Src,
+        #[label("360° / 0")]
+        span: SourceSpan,
+    },
+
     #[error("cannot use the view file {path}")]
     #[diagnostic(code(lsys::load::view_file))]
     ViewUnreadable {

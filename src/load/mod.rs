@@ -177,6 +177,16 @@ pub fn load(input: &Input, opts: &Options) -> Result<Loaded, InputError> {
             .view
             .map(|v| loaded.sources.get(v).name.clone())
             .unwrap_or_default();
+        if let (true, Some(id)) = (profile.cpfg_model_file, loaded.side.view) {
+            if let Some(span) = view::zero_angle_factor(loaded.sources.get(id), id) {
+                loaded
+                    .warnings
+                    .push(Report::new(LoadError::ZeroAngleFactor {
+                        src: loaded.sources.named_source(span),
+                        span: span.into(),
+                    }));
+            }
+        }
         for why in std::mem::take(&mut loaded.side.contour_problems) {
             let view = view.clone();
             loaded

@@ -398,6 +398,17 @@ fn view_angle(text: &str) -> Option<f64> {
     angle
 }
 
+/// The line of a view file that says `angle factor: 0` (360° / 0 is no
+/// angle, so the file's angle is ignored), if any.
+pub(super) fn zero_angle_factor(file: &SourceFile, id: FileId) -> Option<Span> {
+    file.text.lines().enumerate().find_map(|(n, line)| {
+        let (key, rest) = line.split_once(':')?;
+        let value = rest.split_whitespace().next()?.parse::<f32>().ok()?;
+        (key.trim().eq_ignore_ascii_case("angle factor") && value == 0.0)
+            .then(|| line_span(file, id, n + 1))
+    })
+}
+
 /// The span of 1-based line `line` of `file` (without its line break); an
 /// empty span at the end for a line past the end.
 fn line_span(file: &SourceFile, id: FileId, line: usize) -> Span {
