@@ -293,6 +293,17 @@ impl Compiler<'_> {
                 .collect();
             match consts {
                 Some(vals) => {
+                    // cpfg stores parameters as f32: a constant past its
+                    // range would be written as inf, with no word.
+                    if self.program.profile.f32_params {
+                        if let Some(k) = vals.iter().position(|v| v.abs() > f32::MAX as f64) {
+                            return Err(BytecodeError::F32Overflow {
+                                value: vals[k],
+                                src: self.program.sources.named_source(m.args[k].span),
+                                span: m.args[k].span.into(),
+                            });
+                        }
+                    }
                     let first = self.tuple(&vals)?;
                     b.push(
                         Op::EmitConst {

@@ -22,6 +22,19 @@ pub enum BytecodeError {
         span: SourceSpan,
     },
 
+    #[error("the parameter {value:e} is too large for cpfg's 32-bit parameters: it would be stored as infinity")]
+    #[diagnostic(
+        code(lsys::bytecode::f32_overflow),
+        help("cpfg keeps parameters as 32-bit floats (at most about 3.4e38): scale the value down; the paper's dialect (a `.lsys` file without `dialect: cpfg`) keeps 64-bit parameters")
+    )]
+    F32Overflow {
+        value: f64,
+        #[source_code]
+        src: NamedSource<crate::source::SourceText>,
+        #[label("{value:e} does not fit")]
+        span: SourceSpan,
+    },
+
     #[error("the program needs more than {limit} constants")]
     #[diagnostic(
         code(lsys::bytecode::too_many_constants),
