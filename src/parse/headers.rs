@@ -8,7 +8,7 @@ use super::error::ParseError;
 use crate::source::{FileId, SourceFile, Span};
 
 /// Header keywords as the user should write them (before the colon).
-const HEADERS: &[&str] = &[
+pub const HEADERS: &[&str] = &[
     "derivation length",
     "axiom",
     "ignore",

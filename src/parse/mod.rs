@@ -22,6 +22,7 @@ use pest::Parser;
 use pest_derive::Parser;
 
 pub use error::ParseError;
+pub use headers::HEADERS;
 pub use long_axiom::axiom_piece;
 
 use crate::source::{FileId, SourceFile, Span};

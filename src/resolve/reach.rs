@@ -163,29 +163,15 @@ fn check(program: &Program, p: &Production, occurs: &HashSet<Shape>) -> Option<R
 
 /// The header a production's head most likely misspells: its first word
 /// is a multi-word header's first word (`derivation steps`), or the whole
-/// is a few letters from a header (`homomorphsm`).
+/// is a few letters from a header (`homomorphsm`). The parser's list:
+/// near misses of one or two letters are its `misspelt_header` error.
 fn header_like(head: &str) -> Option<&'static str> {
-    const HEADERS: [&str; 13] = [
-        "derivation length",
-        "maximum depth",
-        "ring lsystem",
-        "axiom",
-        "ignore",
-        "consider",
-        "homomorphism",
-        "decomposition",
-        "endlsystem",
-        "lsystem",
-        "seed",
-        "angle",
-        "width",
-    ];
     let words: Vec<String> = head.split_whitespace().map(str::to_lowercase).collect();
     let text = words.join(" ");
     if text.len() < 4 {
         return None;
     }
-    HEADERS.into_iter().find(|h| {
+    crate::parse::HEADERS.iter().copied().find(|h| {
         let first = h.split(' ').next().unwrap_or(h);
         (h.contains(' ') && words.len() > 1 && words[0] == first)
             || (text.len() >= 6 && strsim::levenshtein(&text, h) <= h.len() / 5)
