@@ -211,6 +211,14 @@ impl ParseError {
                 let line_start = file.text[..at].rfind('\n').map_or(0, |i| i + 1);
                 let stmt = file.text[line_start..line_end].trim();
                 let h = match rest.chars().next() {
+                    // `A --> B \` + `B --> C`: C's line join made one
+                    // statement of two lines.
+                    _ if joined_at(&file.text, line_start).is_some() => {
+                        let line = joined_at(&file.text, line_start).unwrap_or(0);
+                        Some(format!(
+                            "line {line} ends with `\\`, which joins this line onto it (as in C and cpfg), so this line was read as more of that statement; if the `\\` is the roll-left command, put a space or a comment after it, otherwise remove it"
+                        ))
+                    }
                     // `#include shared.lsys`: read as component names up
                     // to the `.`.
                     _ if stmt.starts_with("#include") && !stmt.contains(['"', '<']) => {
@@ -428,4 +436,14 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | plain_char | cont | blank_line | indent | may_start | line_has_arrow | lctx_marker
         | nl_indent | keyword | word_char | statement_fast | exact | op_stop => return None,
     })
+}
+
+/// When the line starting at `line_start` is joined onto the line above
+/// by a `\\` right before the line break: that line's number (from 1).
+fn joined_at(text: &str, line_start: usize) -> Option<usize> {
+    let above = text[..line_start].strip_suffix('\n')?;
+    let above = above.strip_suffix('\r').unwrap_or(above);
+    above
+        .ends_with('\\')
+        .then(|| above.matches('\n').count() + 1)
 }

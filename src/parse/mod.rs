@@ -238,7 +238,11 @@ fn parse_statements(
     file: &SourceFile,
     reuse: Option<stored::Reuse>,
 ) -> (ast::File, Vec<ParseError>, Vec<(u32, u32)>) {
-    let text = file.text.as_str();
+    // As in C, everything after an unclosed `/*` is comment: the
+    // statements are read up to it (else `A --> B /* note` would give the
+    // modules `/ *` and errors that are consequences of the one mistake).
+    let unclosed = unclosed_comment_at(&file.text);
+    let text = &file.text[..unclosed.unwrap_or(file.text.len())];
     let mut items = Vec::new();
     let mut errors = Vec::new();
     let mut broken = Vec::new();
@@ -252,13 +256,8 @@ fn parse_statements(
     loop {
         pos = match skip_blank(text, pos) {
             Ok(p) => p,
-            Err(start) => {
-                errors.push(ParseError::unclosed_comment(
-                    file,
-                    Span::new(file_id, start, start + 2),
-                ));
-                break;
-            }
+            // Reported below, with any unclosed `/*` after code.
+            Err(_) => break,
         };
         if pos >= text.len() {
             break;
@@ -267,7 +266,9 @@ fn parse_statements(
             items.extend(last);
             break;
         }
-        if let Some((item, end)) = long_axiom::parse(file_id, file, pos) {
+        if let Some((item, end)) = long_axiom::parse(file_id, file, pos)
+            .filter(|&(_, end)| unclosed.is_none_or(|at| end <= at))
+        {
             let after = skip_inline(text, end);
             if after >= text.len() || text.as_bytes()[after] == b'\n' {
                 items.push(item);
@@ -320,7 +321,36 @@ fn parse_statements(
             }
         }
     }
+    if let Some(at) = unclosed {
+        errors.push(ParseError::unclosed_comment(
+            file,
+            Span::new(file_id, at, at + 2),
+        ));
+    }
     (ast::File { items, broken }, errors, bounds)
+}
+
+/// Where the first `/*` without a matching `*/` begins, outside line
+/// comments and double-quoted text, as the C preprocessor reads it.
+fn unclosed_comment_at(text: &str) -> Option<usize> {
+    let b = text.as_bytes();
+    let mut i = 0;
+    while i + 1 < b.len() {
+        match (b[i], b[i + 1]) {
+            (b'/', b'/') => i = text[i..].find('\n').map_or(b.len(), |k| i + k),
+            (b'/', b'*') => match text[i + 2..].find("*/") {
+                Some(k) => i += 2 + k + 2,
+                None => return Some(i),
+            },
+            (b'"', _) => {
+                let rest = &b[i + 1..];
+                let end = rest.iter().position(|&c| c == b'"' || c == b'\n');
+                i += 1 + end.map_or(rest.len(), |k| k + 1);
+            }
+            _ => i += 1,
+        }
+    }
+    None
 }
 
 /// Parses the statement at the start of `rest`: first by `statement_fast`,
