@@ -267,7 +267,7 @@ fn parse_statements(
             break;
         }
         if let Some((item, end)) = long_axiom::parse(file_id, file, pos)
-            .filter(|&(_, end)| unclosed.is_none_or(|at| end <= at))
+            .filter(|&(_, end)| unclosed.map_or(true, |at| end <= at))
         {
             let after = skip_inline(text, end);
             if after >= text.len() || text.as_bytes()[after] == b'\n' {
