@@ -281,6 +281,8 @@ pub struct Built {
     pub timings: Timings,
     /// Decomposition and homomorphism depth warnings.
     pub warnings: Vec<DepthWarning>,
+    /// Meshing's warnings (`lsys::mesh::distorted_component`).
+    pub mesh_warnings: Vec<MeshError>,
 }
 
 #[derive(Debug, Error, Diagnostic)]
@@ -490,7 +492,9 @@ fn model(
         &mut grammars,
     )?;
     let t3 = Instant::now();
+    let mesh_warnings = mesh::distortion::distortions(program, &drawing, &scene);
     Ok(Built {
+        mesh_warnings,
         scene,
         drawing,
         modules: string.len(),

@@ -443,3 +443,30 @@ fn a_guided_grammar_built_alone_points_to_its_scene() {
     );
     assert!(stderr(&o).contains(&expected), "{}", stderr(&o));
 }
+
+/// `~X(s)` draws the unit box scaled alike on every axis: an elongated
+/// model becomes a cube, which is warned at the placement; three scales in
+/// the model's proportions, or a model that is nearly a cube, are not.
+#[test]
+fn a_uniform_scale_that_squashes_a_component_is_warned() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |axiom: &str| {
+        std::fs::write(
+            dir.path().join("g.lsys"),
+            format!("#include TM, MCa\nAxiom: {axiom}\n"),
+        )
+        .unwrap();
+        let o = common::lsys_in(dir.path(), &["build", "g.lsys", "-o", "g.glb"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let squashed = run("~TM(1.4) f ~TM(2)");
+    insta::assert_snapshot!("uniform_toukung", squashed);
+    assert_eq!(
+        squashed.matches("distorted_component").count(),
+        1,
+        "once per component"
+    );
+    assert!(!run("~TM(0.29, 0.45, 1.4)").contains("distorted_component"));
+    assert!(!run("~MCa(2)").contains("distorted_component"));
+}

@@ -144,6 +144,9 @@ pub fn run(job: &Job, observe: &mut dyn FnMut(Event)) -> Result<Done, Failure> {
     for w in &built.warnings {
         observe(Event::Warning(w));
     }
+    for w in &built.mesh_warnings {
+        observe(Event::Warning(w));
+    }
     let problems = match super::structure::check(&built.scene, &job.check) {
         Ok(p) => p,
         Err(e) => {

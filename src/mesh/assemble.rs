@@ -287,13 +287,30 @@ fn internodes(
     Ok(())
 }
 
+/// The grammar text of symbol `sym` and where it first appears, for a
+/// diagnostic about its placements.
+pub(super) fn symbol_source(
+    program: &Program,
+    sym: SymId,
+) -> (
+    miette::NamedSource<crate::source::SourceText>,
+    Option<miette::SourceSpan>,
+) {
+    match program.symbols.list[sym as usize].span {
+        Some(s) => (program.sources.named_source(s), Some(s.into())),
+        None => (
+            miette::NamedSource::new("", crate::source::SourceText::from(String::new())),
+            None,
+        ),
+    }
+}
+
 pub(super) fn missing(
     program: &Program,
     sym: SymId,
     name: &str,
     searched: &[std::path::PathBuf],
 ) -> MeshError {
-    let symbol = &program.symbols.list[sym as usize];
     let mut places: Vec<String> = searched
         .iter()
         .map(|p| format!("  {}", p.display()))
@@ -305,13 +322,7 @@ pub(super) fn missing(
         .map(|(n, _)| *n)
         .chain(["RC", "RE"])
         .collect();
-    let (src, span) = match symbol.span {
-        Some(s) => (program.sources.named_source(s), Some(s.into())),
-        None => (
-            miette::NamedSource::new("", crate::source::SourceText::from(String::new())),
-            None,
-        ),
-    };
+    let (src, span) = symbol_source(program, sym);
     MeshError::MissingComponent(Box::new(super::error::MissingComponent {
         name: name.to_string(),
         searched: places.join("\n"),

@@ -33,6 +33,12 @@ pub struct Component {
     /// `parts()`; exporters that keep a node hierarchy (glTF) write this
     /// instead, so each smaller component is stored once in the file.
     pub nested: Option<Box<Nested>>,
+    /// The model's size before it was normalised to the unit box (width,
+    /// height, depth), when it has proportions of its own: an OBJ model, a
+    /// grammar component. `None` for meshes made to be stretched (roofs,
+    /// the unit cylinder, cpfg surfaces). Read to warn when `~X` or `~X(s)`
+    /// draws an elongated model as a cube.
+    pub modelled: Option<glam::Vec3>,
     parts: OnceLock<Vec<Part>>,
     /// Builds `parts` when they were left for later.
     later: Option<Later>,
@@ -86,9 +92,16 @@ impl Component {
             name: name.into(),
             origin: origin.into(),
             nested: None,
+            modelled: None,
             parts: OnceLock::from(parts),
             later: None,
         }
+    }
+
+    /// The same, with the model's size before normalisation.
+    pub fn with_modelled(mut self, size: glam::Vec3) -> Self {
+        self.modelled = Some(size);
+        self
     }
 
     /// A component kept as `nested`, whose flattened parts `later` builds
@@ -103,6 +116,7 @@ impl Component {
             name: name.into(),
             origin: origin.into(),
             nested: Some(Box::new(nested)),
+            modelled: None,
             parts: OnceLock::new(),
             later: Some(later),
         }

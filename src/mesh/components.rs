@@ -375,8 +375,14 @@ fn component_of(
     if parts.is_empty() {
         return Err("it has no faces (`f` lines)".to_string());
     }
+    let size = super::scene::bounds_of(parts.iter().flat_map(|p| p.mesh.positions.iter().copied()))
+        .map(|(lo, hi)| hi - lo);
     normalise(&mut parts);
-    Ok(Component::new(name, origin, parts))
+    let c = Component::new(name, origin, parts);
+    Ok(match size {
+        Some(size) => c.with_modelled(size),
+        None => c,
+    })
 }
 
 /// Centres the parts at the origin and scales each axis to extent 1. An

@@ -11,6 +11,10 @@ pub enum MeshError {
     #[diagnostic(transparent)]
     MissingComponent(Box<MissingComponent>),
 
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    Distorted(Box<Distorted>),
+
     #[error("cpfg surface `~{name}` cannot be drawn: {why}")]
     #[diagnostic(
         code(lsys::mesh::cpfg_surface),
@@ -85,5 +89,28 @@ pub struct MissingComponent {
     #[source_code]
     pub src: NamedSource<crate::source::SourceText>,
     #[label("placed here")]
+    pub span: Option<SourceSpan>,
+}
+
+/// A warning: `~X` or `~X(s)` draws an elongated model as a cube
+/// (`super::distortion`).
+#[derive(Debug, Error, Diagnostic)]
+#[error("`~{name}` is modelled {modelled} but drawn as a cube of side {side}: {factor} times out of proportion")]
+#[diagnostic(
+    code(lsys::mesh::distorted_component),
+    severity(Warning),
+    help("every model is fitted to the unit box one axis at a time, so `~{name}` and `~{name}(s)` ({count} {placements}) draw a cube; to keep its proportions give three scales, width, height and depth: `{example}`; if the cube is meant, write `~{name}(s, s, s)`")
+)]
+pub struct Distorted {
+    pub name: String,
+    pub modelled: String,
+    pub side: String,
+    pub factor: String,
+    pub count: usize,
+    pub placements: &'static str,
+    pub example: String,
+    #[source_code]
+    pub src: NamedSource<crate::source::SourceText>,
+    #[label("placed with one scale")]
     pub span: Option<SourceSpan>,
 }

@@ -6,6 +6,7 @@
 pub mod assemble;
 pub mod component;
 pub mod components;
+pub mod distortion;
 pub mod error;
 pub mod internodes;
 pub mod obj_options;

@@ -125,12 +125,9 @@ pub fn grammar_component(
             parts
         }),
     };
-    Ok(Component::built_later(
-        name,
-        origin,
-        Nested { frame, ..nested },
-        later,
-    ))
+    let mut c = Component::built_later(name, origin, Nested { frame, ..nested }, later);
+    c.modelled = Some(hi - lo);
+    Ok(c)
 }
 
 /// The search grammar component `name` (read from `input`) is built with:

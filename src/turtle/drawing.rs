@@ -70,6 +70,9 @@ pub struct Placement {
     pub colour: u32,
     /// Index of the module in the derived string, for error messages.
     pub module: usize,
+    /// Placed as `~X` or `~X(s)` outside a scope: the unit box scaled
+    /// alike on every axis, whatever the model's proportions.
+    pub uniform: bool,
 }
 
 /// Everything one interpretation draws.

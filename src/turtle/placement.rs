@@ -37,15 +37,22 @@ impl Turtle<'_> {
             (-fu * s.z).extend(0.0),
             Vec4::from((fp + fh * (s.y * 0.5), 1.0)),
         );
-        self.push_placement(sym, transform, index);
+        self.push_placement(sym, transform, index, args.len() <= 1);
     }
 
-    pub(super) fn push_placement(&mut self, sym: SymId, transform: Mat4, index: usize) {
+    pub(super) fn push_placement(
+        &mut self,
+        sym: SymId,
+        transform: Mat4,
+        index: usize,
+        uniform: bool,
+    ) {
         self.drawing.placements.push(Placement {
             symbol: sym,
             transform,
             colour: self.state.colour,
             module: index,
+            uniform,
         });
     }
 
@@ -71,6 +78,6 @@ impl Turtle<'_> {
             (-f.u * depth).as_vec3().extend(0.0),
             Vec4::from((centre.as_vec3(), 1.0)),
         );
-        self.push_placement(sym, transform, index);
+        self.push_placement(sym, transform, index, false);
     }
 }
