@@ -492,7 +492,8 @@ fn model(
         &mut grammars,
     )?;
     let t3 = Instant::now();
-    let mesh_warnings = mesh::distortion::distortions(program, &drawing, &scene);
+    let mut mesh_warnings = mesh::distortion::distortions(program, &drawing, &scene);
+    mesh_warnings.extend(mesh::widths::wide_lines(program, &drawing));
     Ok(Built {
         mesh_warnings,
         scene,

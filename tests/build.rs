@@ -470,3 +470,26 @@ fn a_uniform_scale_that_squashes_a_component_is_warned() {
     assert!(!run("~TM(0.29, 0.45, 1.4)").contains("distorted_component"));
     assert!(!run("~MCa(2)").contains("distorted_component"));
 }
+
+/// ABOP's Fig. 2.6 with its pixel widths (`!(10)`) and steps of 1 is a
+/// blob of tubes: warned, with what to scale; with ABOP's own step
+/// lengths (100) the same widths are in scale and nothing is said.
+#[test]
+fn line_widths_that_dwarf_the_model_are_warned() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |axiom: &str| {
+        let grammar = format!(
+            "#define r1 0.9\n#define r2 0.6\n#define d 137.5\n#define wr 0.707\n\
+             derivation length: 10\nAxiom: {axiom}\n\
+             A(l,w) --> !(w)F(l)[&(45)B(l*r2,w*wr)]/(d)A(l*r1,w*wr)\n\
+             B(l,w) --> !(w)F(l)[-(45)$C(l*r2,w*wr)]C(l*r1,w*wr)\n\
+             C(l,w) --> !(w)F(l)[+(45)$B(l*r2,w*wr)]B(l*r1,w*wr)\n"
+        );
+        std::fs::write(dir.path().join("tree.lsys"), grammar).unwrap();
+        let o = common::lsys_in(dir.path(), &["build", "tree.lsys", "-o", "tree.glb"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    insta::assert_snapshot!("pixel_widths", run("A(1,10)"));
+    assert_eq!(run("A(100,30)"), "");
+}

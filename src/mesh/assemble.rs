@@ -288,15 +288,16 @@ fn internodes(
 }
 
 /// The grammar text of symbol `sym` and where it first appears, for a
-/// diagnostic about its placements.
+/// diagnostic about what it drew (no place when there is no such symbol).
 pub(super) fn symbol_source(
     program: &Program,
-    sym: SymId,
+    sym: Option<SymId>,
 ) -> (
     miette::NamedSource<crate::source::SourceText>,
     Option<miette::SourceSpan>,
 ) {
-    match program.symbols.list[sym as usize].span {
+    let span = sym.and_then(|s| program.symbols.list.get(s as usize)?.span);
+    match span {
         Some(s) => (program.sources.named_source(s), Some(s.into())),
         None => (
             miette::NamedSource::new("", crate::source::SourceText::from(String::new())),
@@ -322,7 +323,7 @@ pub(super) fn missing(
         .map(|(n, _)| *n)
         .chain(["RC", "RE"])
         .collect();
-    let (src, span) = symbol_source(program, sym);
+    let (src, span) = symbol_source(program, Some(sym));
     MeshError::MissingComponent(Box::new(super::error::MissingComponent {
         name: name.to_string(),
         searched: places.join("\n"),

@@ -54,7 +54,7 @@ pub fn distortions(program: &Program, drawing: &Drawing, scene: &Scene) -> Vec<M
             .count();
         let side = p.transform.y_axis.truncate().length();
         let shape = size / size.max_element();
-        let (src, span) = super::assemble::symbol_source(program, p.symbol);
+        let (src, span) = super::assemble::symbol_source(program, Some(p.symbol));
         out.push(MeshError::Distorted(Box::new(super::error::Distorted {
             name: name.to_string(),
             modelled: sizes(size),

@@ -15,6 +15,10 @@ pub enum MeshError {
     #[diagnostic(transparent)]
     Distorted(Box<Distorted>),
 
+    #[error(transparent)]
+    #[diagnostic(transparent)]
+    WideLines(Box<WideLines>),
+
     #[error("cpfg surface `~{name}` cannot be drawn: {why}")]
     #[diagnostic(
         code(lsys::mesh::cpfg_surface),
@@ -112,5 +116,24 @@ pub struct Distorted {
     #[source_code]
     pub src: NamedSource<crate::source::SourceText>,
     #[label("placed with one scale")]
+    pub span: Option<SourceSpan>,
+}
+
+/// A warning: line widths that dwarf the model (`super::widths`).
+#[derive(Debug, Error, Diagnostic)]
+#[error("the lines are up to {widest} wide (typically {typical}) in a model {size} across: the tubes hide its shape")]
+#[diagnostic(
+    code(lsys::mesh::wide_lines),
+    severity(Warning),
+    help("widths are in the model's units, like steps, and the widest line here is {ratio} times the model's size; ABOP and cpfg give widths in pixels (`!(10)`). Scale the widths down (`!(w*0.01)`) or the steps up; a cpfg `.l` file is read with cpfg's pixel widths (docs/cpfg.md)")
+)]
+pub struct WideLines {
+    pub widest: String,
+    pub typical: String,
+    pub size: String,
+    pub ratio: String,
+    #[source_code]
+    pub src: NamedSource<crate::source::SourceText>,
+    #[label("widths set here")]
     pub span: Option<SourceSpan>,
 }

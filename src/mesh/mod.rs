@@ -19,6 +19,7 @@ pub mod subgrammar;
 pub mod surface;
 pub mod tube;
 pub mod tubes;
+pub mod widths;
 pub use assemble::{assemble_scene, MeshOptions};
 pub use components::ComponentSearch;
 pub use error::MeshError;
