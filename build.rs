@@ -46,6 +46,7 @@ mod stdlib {
 fn main() {
     let out = std::env::var("OUT_DIR").expect("cargo sets OUT_DIR");
     std_syntax_trees(Path::new(&out));
+    studio_page(Path::new(&out));
     println!("cargo:rerun-if-changed=src/mesh/obj_options.rs");
     for set in ["", "preview"] {
         let src = Path::new("grammar/std/components").join(set);
@@ -144,4 +145,39 @@ fn files(dir: &Path, ext: &str) -> Vec<std::path::PathBuf> {
         println!("cargo:rerun-if-changed={}", path.display());
     }
     found
+}
+
+/// The studio's built front end (`web/studio/dist`, made by `npm run
+/// build`), embedded when it exists at build time, so that an installed
+/// binary serves its page from anywhere; without it the server's own page
+/// says how to build it. Writes `OUT_DIR/studio_page.rs`: `PAGE`, each
+/// file's path in `dist` and its bytes.
+fn studio_page(out: &Path) {
+    // The folder around it: `dist` may not exist yet, and a path that
+    // does not exist makes cargo run this script on every build.
+    println!("cargo:rerun-if-changed=web/studio");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("web/studio/dist");
+    let mut files = Vec::new();
+    if std::env::var_os("CARGO_FEATURE_STUDIO").is_some() && root.join("index.html").is_file() {
+        collect(&root, &root, &mut files);
+    }
+    files.sort();
+    let mut code = String::from("pub static PAGE: &[(&str, &[u8])] = &[\n");
+    for (rel, full) in &files {
+        code += &format!("    ({rel:?}, include_bytes!({full:?})),\n");
+    }
+    code += "];\n";
+    std::fs::write(out.join("studio_page.rs"), code).expect("OUT_DIR is writable");
+}
+
+fn collect(root: &Path, dir: &Path, files: &mut Vec<(String, String)>) {
+    for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+        let path = e.path();
+        if path.is_dir() {
+            collect(root, &path, files);
+        } else if let Ok(rel) = path.strip_prefix(root) {
+            let rel = rel.to_string_lossy().replace('\\', "/");
+            files.push((rel, path.to_string_lossy().into_owned()));
+        }
+    }
 }

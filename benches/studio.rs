@@ -19,7 +19,12 @@ fn pailou_graph_4_3_7(bencher: Bencher) {
     let layout = pailou::style_layout("4-3-7", PailouType::Ridge).expect("a style");
     let text = graph::emit(&layout, PailouType::Ridge, "4-3-7");
     bencher.bench_local(|| {
-        let s = PailouSession::open("g.toml", black_box(&text), None);
+        let s = PailouSession::open(
+            "g.toml",
+            black_box(&text),
+            None,
+            lsys::internals::studio::DEFAULT_MAX_TRIANGLES,
+        );
         assert!(s.error.is_none());
         black_box(s.model.map(|m| m.glb.len()))
     });

@@ -11,11 +11,16 @@ use lsys::internals::studio::{start, Config, Handle};
 use serde_json::{json, Value};
 
 fn studio(path: &Path) -> Handle {
+    studio_with(path, None)
+}
+
+fn studio_with(path: &Path, max_triangles: Option<usize>) -> Handle {
     start(Config {
         path: Some(path.to_path_buf()),
         bind: "127.0.0.1".parse().unwrap(),
         port: 0,
         assets: Some(path.join("no-assets")),
+        max_triangles,
     })
     .expect("the studio starts")
 }
@@ -301,10 +306,23 @@ fn foreign_hosts_origins_and_big_bodies_are_refused() {
         422
     );
     assert_eq!(get(&h, "/api/state").0, 200);
-    // The page without a built front end says how to build it.
+    // Without a built front end the page says how to build it; a binary
+    // built after `npm run build` serves the front end it carries.
     let (code, page) = request(&h, "GET", "/", &[], b"");
     assert_eq!(code, 200);
-    assert!(String::from_utf8_lossy(&page).contains("npm ci &amp;&amp; npm run build"));
+    let page = String::from_utf8_lossy(&page).into_owned();
+    if lsys::internals::studio::has_embedded_page() {
+        let script = page
+            .split("src=\"/")
+            .nth(1)
+            .and_then(|r| r.split('"').next())
+            .unwrap_or_else(|| panic!("the page loads a script: {page}"));
+        let (code, js) = request(&h, "GET", &format!("/{script}"), &[], b"");
+        assert_eq!(code, 200, "/{script}");
+        assert!(js.len() > 1000, "/{script} is {} bytes", js.len());
+    } else {
+        assert!(page.contains("npm ci &amp;&amp; npm run build"), "{page}");
+    }
     h.stop();
 }
 
@@ -456,4 +474,185 @@ fn example_graphs_survive_the_editor() {
         n += 1;
     }
     assert!(n >= 15, "{n} graphs");
+}
+
+/// Save replaces neither a file that is not a Pailou graph (Cargo.toml,
+/// a guided scene) nor another graph unless the page says the user
+/// agreed; the session's own graph is saved over freely.
+#[test]
+fn save_never_replaces_what_it_did_not_write() {
+    let dir = tempfile::tempdir().unwrap();
+    let cargo = "[package]\nname = \"mine\"\nversion = \"0.1.0\"\n";
+    std::fs::write(dir.path().join("Cargo.toml"), cargo).unwrap();
+    let scene = "steps = 3\n[[guide]]\nkind = \"line\"\n";
+    std::fs::write(dir.path().join("scene.toml"), scene).unwrap();
+    let h = studio(dir.path());
+    for name in ["Cargo.toml", "scene.toml"] {
+        let (code, r) = post(&h, "/api/save", json!({"path": name, "replace": true}));
+        assert_eq!(code, 409, "{name}: {r}");
+        assert!(
+            r["error"].as_str().unwrap().contains("not a Pailou graph"),
+            "{r}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("Cargo.toml")).unwrap(),
+        cargo
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("scene.toml")).unwrap(),
+        scene
+    );
+    // A new file, then the session's own file again.
+    assert_eq!(post(&h, "/api/save", json!({"path": "a.toml"})).0, 200);
+    assert_eq!(post(&h, "/api/save", json!({"path": "a.toml"})).0, 200);
+    assert_eq!(post(&h, "/api/save", json!({"path": "b.toml"})).0, 200);
+    // Another graph: asked first.
+    let (code, r) = post(&h, "/api/save", json!({"path": "a.toml"}));
+    assert_eq!((code, &r["exists"]), (409, &json!(true)), "{r}");
+    assert_eq!(
+        post(&h, "/api/save", json!({"path": "a.toml", "replace": true})).0,
+        200
+    );
+    // Opening a file that is not a graph fails and leaves nothing to
+    // overwrite it with.
+    assert_eq!(post(&h, "/api/open", json!({"path": "Cargo.toml"})).0, 403);
+    assert_eq!(post(&h, "/api/save", json!({"path": "Cargo.toml"})).0, 409);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("Cargo.toml")).unwrap(),
+        cargo
+    );
+    h.stop();
+}
+
+/// Event streams last as long as their pages: past 16 the next stream is
+/// refused, and other requests are still answered at once.
+#[test]
+fn open_event_streams_do_not_starve_other_requests() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    let host = format!("127.0.0.1:{}", h.addr.port());
+    let open = || {
+        let mut s = TcpStream::connect(h.addr).unwrap();
+        let head = format!("GET /api/events HTTP/1.1\r\nHost: {host}\r\n\r\n");
+        s.write_all(head.as_bytes()).unwrap();
+        let mut first = [0u8; 12];
+        s.read_exact(&mut first).unwrap();
+        (s, String::from_utf8_lossy(&first[9..12]).into_owned())
+    };
+    let mut streams = Vec::new();
+    for _ in 0..16 {
+        let (s, status) = open();
+        assert_eq!(status, "200");
+        streams.push(s);
+    }
+    let (_, status) = open();
+    assert_eq!(status, "503", "the 17th stream");
+    let t0 = std::time::Instant::now();
+    for _ in 0..70 {
+        assert_eq!(get(&h, "/api/state").0, 200);
+    }
+    assert!(t0.elapsed() < std::time::Duration::from_secs(10));
+    drop(streams);
+    h.stop();
+}
+
+/// A model over the triangle budget is refused with the mesh stage's
+/// diagnostic on the page, instead of being built and served.
+#[test]
+fn the_studio_builds_within_a_triangle_budget() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = dir.path().join("big.lsys");
+    std::fs::write(
+        &g,
+        "#define N 6\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n",
+    )
+    .unwrap();
+    let h = studio_with(&g, Some(10_000));
+    let (_, s) = get(&h, "/api/state");
+    let d = &s["diagnostics"][0];
+    assert_eq!(d["code"], "lsys::mesh::too_many_triangles", "{s}");
+    assert_eq!(s["triangles"], 0, "nothing is served");
+    let (_, s) = post(&h, "/api/grammar", json!({"defines": {"N": 2}}));
+    assert!(s["triangles"].as_u64().unwrap() > 0, "{s}");
+    h.stop();
+}
+
+/// The Pailou's parameters are checked on the server: NTL = 40 and
+/// ω = -5 are refused, the graph unchanged; the defaults pass.
+#[test]
+fn pailou_parameters_out_of_range_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    for (name, value) in [
+        ("NTL", json!(40)),
+        ("ω", json!(-5)),
+        ("NTL", json!(2.5)),
+        ("αEW", json!("50/1")),
+    ] {
+        let (code, r) = post(
+            &h,
+            "/api/edit",
+            json!({"op": "define", "name": name, "value": value}),
+        );
+        assert_eq!(code, 422, "{name} = {value}: {r}");
+        assert!(
+            r["refused"]["message"].as_str().unwrap().contains(name),
+            "{r}"
+        );
+    }
+    for (name, value) in [("NTL", json!(7)), ("ω", json!(10)), ("αEW", json!("10/12"))] {
+        let (code, r) = post(
+            &h,
+            "/api/edit",
+            json!({"op": "define", "name": name, "value": value}),
+        );
+        assert_eq!(code, 200, "{name} = {value}: {r}");
+    }
+    h.stop();
+}
+
+/// In grammar mode `.lsys` downloads the grammar; `.toml` (a graph) says
+/// why there is none.
+#[test]
+fn grammar_mode_exports_its_grammar() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "derivation length: 2\nAxiom: F\nF --> F[+F]F\n";
+    let g = dir.path().join("plant.lsys");
+    std::fs::write(&g, text).unwrap();
+    let h = studio(&g);
+    let (code, body) = request(&h, "GET", "/api/export?format=lsys", &[], b"");
+    assert_eq!(
+        (code, String::from_utf8_lossy(&body).into_owned()),
+        (200, text.to_string())
+    );
+    let (code, body) = request(&h, "GET", "/api/export?format=toml", &[], b"");
+    assert_eq!(code, 409);
+    assert!(String::from_utf8_lossy(&body).contains("export .lsys"));
+    h.stop();
+}
+
+/// A cpfg model's define moves the model (the override wins over the
+/// file's #define, as `-D` does), a define with a `/* */` comment is a
+/// slider, and grammars in subfolders are listed to open.
+#[test]
+fn cpfg_defines_move_the_model_and_subfolders_are_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    let l = "#define N 2 /* steps */\nLsystem: 1\nderivation length: N\nAxiom: F\nF --> F[+F]F\nendlsystem\n";
+    std::fs::write(dir.path().join("plant.l"), l).unwrap();
+    std::fs::create_dir_all(dir.path().join("more/deeper")).unwrap();
+    std::fs::write(dir.path().join("more/deeper/bush.lsys"), "Axiom: F\n").unwrap();
+    std::fs::create_dir_all(dir.path().join(".hidden")).unwrap();
+    std::fs::write(dir.path().join(".hidden/no.lsys"), "Axiom: F\n").unwrap();
+    let h = studio(&dir.path().join("plant.l"));
+    let (_, s) = get(&h, "/api/state");
+    assert_eq!(s["defines"][0]["number"], 2.0, "{}", s["defines"]);
+    let t2 = s["triangles"].as_u64().unwrap();
+    let (_, s) = post(&h, "/api/grammar", json!({"defines": {"N": 3}}));
+    assert!(s["triangles"].as_u64().unwrap() > t2, "{s}");
+    let (_, f) = get(&h, "/api/files");
+    assert_eq!(f["files"], json!(["more/deeper/bush.lsys", "plant.l"]));
+    let (code, r) = post(&h, "/api/open", json!({"path": "more/deeper/bush.lsys"}));
+    assert_eq!(code, 200, "{r}");
+    h.stop();
 }

@@ -24,6 +24,9 @@ pub struct StudioArgs {
     /// The built front end (default: web/studio/dist beside lsys's sources; see docs/studio.md).
     #[arg(long, value_name = "DIR")]
     pub assets: Option<PathBuf>,
+    /// Triangles a model may have (instances counted in full); a larger one is refused with a message on the page.
+    #[arg(long, value_name = "N", default_value_t = crate::studio::DEFAULT_MAX_TRIANGLES)]
+    pub max_triangles: usize,
 }
 
 pub fn studio_cmd(a: &StudioArgs) -> i32 {
@@ -32,6 +35,7 @@ pub fn studio_cmd(a: &StudioArgs) -> i32 {
         bind: a.bind,
         port: a.port,
         assets: a.assets.clone(),
+        max_triangles: Some(a.max_triangles),
     }) {
         Ok(h) => h,
         Err(e) => {
@@ -43,7 +47,10 @@ pub fn studio_cmd(a: &StudioArgs) -> i32 {
     if !a.bind.is_loopback() {
         eprintln!("lsys: warning: studio listens on {}: anyone who reaches it can read and write the opened folder", a.bind);
     }
-    if a.assets.is_none() && !crate::studio::default_assets().join("index.html").is_file() {
+    if a.assets.is_none()
+        && !crate::studio::default_assets().join("index.html").is_file()
+        && !crate::studio::has_embedded_page()
+    {
         eprintln!("lsys: studio: the front end is not built; the page says how (cd web/studio && npm ci && npm run build)");
     }
     println!("lsys studio: {url}  (Ctrl-C stops)");

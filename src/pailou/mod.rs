@@ -10,6 +10,7 @@ pub mod document;
 mod emit;
 pub mod graph;
 pub mod kinds;
+pub mod ranges;
 pub mod structure;
 pub mod style;
 

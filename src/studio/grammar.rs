@@ -51,22 +51,27 @@ pub struct GrammarSession {
     pub diagnostics: Vec<Value>,
     /// Whether `model` is from the current text (false: the last good one).
     pub current: bool,
+    /// The triangle budget of its models.
+    pub max_triangles: usize,
 }
 
 impl GrammarSession {
     pub fn open(folder: PathBuf, path: PathBuf, file: String) -> GrammarSession {
-        GrammarSession::open_watched(folder, path, file, None)
+        GrammarSession::open_watched(folder, path, file, None, model::DEFAULT_MAX_TRIANGLES)
     }
 
     /// [`GrammarSession::open`], telling `watcher` the files to watch on
     /// every build, starting with the first.
+    /// Models have at most `max_triangles` triangles.
     pub fn open_watched(
         folder: PathBuf,
         path: PathBuf,
         file: String,
         watcher: Option<Arc<Watcher>>,
+        max_triangles: usize,
     ) -> GrammarSession {
         let mut s = GrammarSession {
+            max_triangles,
             folder,
             sources: Vec::new(),
             watcher,
@@ -98,7 +103,7 @@ impl GrammarSession {
             .collect();
         let name = self.path.to_string_lossy().into_owned();
         let input = crate::driver::Input::Path(self.path.clone());
-        let job = model::job(input, &name, &defines, self.step, false);
+        let job = model::job(input, &name, &defines, self.step, false, self.max_triangles);
         let (built, sources) = model::build_reading(&job);
         // None read (the root file is unreadable): the last build's, as
         // a fix may come in any of them.
@@ -210,8 +215,8 @@ pub fn defines_of(text: &str) -> Vec<Define> {
         let Some(rest) = line.trim_start().strip_prefix("#define") else {
             continue;
         };
-        let rest = rest.split("//").next().unwrap_or("");
-        for item in top_level_items(rest) {
+        let rest = without_comments(rest);
+        for item in top_level_items(&rest) {
             let item = item.trim();
             let name: String = item
                 .chars()
@@ -227,6 +232,35 @@ pub fn defines_of(text: &str) -> Vec<Define> {
         }
     }
     out
+}
+
+/// A line's text without its `//` comment and `/* */` comments (an
+/// unclosed `/*` comments out the rest).
+fn without_comments(line: &str) -> String {
+    let mut out = String::new();
+    let mut rest = line;
+    loop {
+        let line_comment = rest.find("//");
+        let block = rest.find("/*");
+        match (line_comment, block) {
+            (Some(l), b) if b.map_or(true, |b| l < b) => {
+                out.push_str(&rest[..l]);
+                return out;
+            }
+            (_, Some(b)) => {
+                out.push_str(&rest[..b]);
+                out.push(' ');
+                match rest[b + 2..].find("*/") {
+                    Some(e) => rest = &rest[b + 2 + e + 2..],
+                    None => return out,
+                }
+            }
+            _ => {
+                out.push_str(rest);
+                return out;
+            }
+        }
+    }
 }
 
 /// `text` cut at the commas outside brackets (the items of a list define).
@@ -286,7 +320,7 @@ mod tests {
     #[test]
     fn defines_become_sliders() {
         let d = defines_of(
-            "#define N 4\n#define angle 22.5 // degrees\n#define F(x) x\n#define NAME foo\n",
+            "#define N 4\n#define angle 22.5 // degrees\n#define F(x) x\n#define NAME foo\n#define W 3 /* wide */\n",
         );
         let shown: Vec<String> = d
             .iter()
@@ -297,7 +331,8 @@ mod tests {
             [
                 "N 4 Some((0.0, 9.0)) true",
                 "angle 22.5 Some((0.0, 45.0)) false",
-                "NAME foo None false"
+                "NAME foo None false",
+                "W 3 Some((0.0, 8.0)) true"
             ]
         );
     }

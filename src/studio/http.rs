@@ -3,6 +3,8 @@
 //! `catch_unwind`: a bug answers 500 and the server stays up.
 
 use std::io::{Cursor, Write};
+use std::path::Path;
+use std::sync::atomic::{AtomicUsize, Ordering::SeqCst};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -14,28 +16,46 @@ use super::{lock, open_file, Session, Shared};
 
 type Reply = Response<Cursor<Vec<u8>>>;
 
+/// Requests handled at once (each on a thread of its own); more wait
+/// for an answer 503.
+const MAX_BUSY: usize = 64;
+/// Event streams open at once. A stream lasts as long as its page, so
+/// they are counted apart from [`MAX_BUSY`]: 63 open tabs used to take
+/// every request's place and answer everything else 503.
+const MAX_STREAMS: usize = 16;
+
 /// Accepts requests until the server is unblocked; one thread each.
 pub fn serve(server: &Server, shared: &Arc<Shared>) {
-    let busy = Arc::new(std::sync::atomic::AtomicUsize::new(0));
+    let busy = Arc::new(AtomicUsize::new(0));
+    let streams = Arc::new(AtomicUsize::new(0));
     while let Ok(req) = server.recv() {
         if *lock(&shared.stopped) {
             return;
         }
-        use std::sync::atomic::Ordering::SeqCst;
-        if busy.load(SeqCst) >= 64 {
-            let _ = req.respond(text(503, "busy: too many requests at once"));
+        let stream = *req.method() == Method::Get && split_url(req.url()).0 == "/api/events";
+        let (count, limit, refusal) = if stream {
+            (
+                &streams,
+                MAX_STREAMS,
+                "too many open event streams (pages of this studio): close some tabs",
+            )
+        } else {
+            (&busy, MAX_BUSY, "busy: too many requests at once")
+        };
+        if count.load(SeqCst) >= limit {
+            let _ = req.respond(text(503, refusal));
             continue;
         }
-        busy.fetch_add(1, SeqCst);
-        let (sh, b) = (shared.clone(), busy.clone());
+        count.fetch_add(1, SeqCst);
+        let (sh, c) = (shared.clone(), count.clone());
         let spawned = std::thread::Builder::new()
             .stack_size(crate::driver::WORKER_STACK)
             .spawn(move || {
                 handle(req, &sh);
-                b.fetch_sub(1, SeqCst);
+                c.fetch_sub(1, SeqCst);
             });
         if spawned.is_err() {
-            busy.fetch_sub(1, SeqCst);
+            count.fetch_sub(1, SeqCst);
         }
     }
 }
@@ -197,7 +217,7 @@ fn route(
             // Under the session's lock: the watcher thread cannot rebuild
             // the old grammar (and tell the watcher its files) meanwhile.
             let mut session = lock(&sh.session);
-            match open_file(&sh.root, &rel, sh.watcher.as_ref()) {
+            match open_file(&sh.root, &rel, sh.watcher.as_ref(), sh.max_triangles) {
                 Ok(s) => {
                     *session = s;
                     drop(session);
@@ -241,10 +261,14 @@ fn save(sh: &Shared, body: Option<Value>) -> Reply {
         Ok(f) => f,
         Err(e) => return json_reply(403, json!({"error": e.to_string()})),
     };
+    let replace = body.as_ref().is_some_and(|v| v["replace"] == json!(true));
     let mut s = lock(&sh.session);
     let Session::Pailou(p) = &mut *s else {
         return text(409, "only a Pailou graph is saved from the studio");
     };
+    if let Err(refusal) = may_replace(&full, rel, p.file.as_deref(), replace) {
+        return json_reply(409, refusal);
+    }
     let text_out = p.graph.to_toml();
     match crate::driver::write_file::<std::io::Error>(&full, |w| w.write_all(text_out.as_bytes())) {
         Ok(_) => {
@@ -253,6 +277,38 @@ fn save(sh: &Shared, body: Option<Value>) -> Reply {
         }
         Err(e) => json_reply(500, json!({"error": format!("cannot write {rel}: {e}")})),
     }
+}
+
+/// Whether saving over `full` (`rel` in the folder) is allowed: a new
+/// file, or the graph this session opened or saved; another graph only
+/// when the page asked the user (`replace`); a file that is not a Pailou
+/// graph (`Cargo.toml`, a guided scene) never.
+fn may_replace(full: &Path, rel: &str, own: Option<&str>, replace: bool) -> Result<(), Value> {
+    let Ok(existing) = std::fs::read_to_string(full) else {
+        return if full.exists() {
+            Err(
+                json!({"error": format!("{rel} exists and is not a text file: the studio does not replace it; save under another name")}),
+            )
+        } else {
+            Ok(())
+        };
+    };
+    if own == Some(rel) {
+        return Ok(());
+    }
+    let is_graph = matches!(
+        crate::driver::toml_file(Path::new(rel), &existing),
+        Ok(crate::driver::TomlFile::PailouGraph)
+    );
+    if !is_graph {
+        return Err(
+            json!({"error": format!("{rel} exists and is not a Pailou graph: the studio never replaces it; save under another name")}),
+        );
+    }
+    if replace {
+        return Ok(());
+    }
+    Err(json!({"error": format!("{rel} is another graph; replace it?"), "exists": true}))
 }
 
 /// A download of the model (.glb, .obj, .png) or the emitted grammar
@@ -265,14 +321,20 @@ fn export(sh: &Shared, format: &str) -> Reply {
             Some(p.lsys.clone()),
             Some(p.graph.to_toml()),
         ),
-        Session::Grammar(g) => (g.model.as_ref(), None, None),
+        // The grammar as it is on disk (the page's define values are
+        // not written into it).
+        Session::Grammar(g) => (
+            g.model.as_ref(),
+            std::fs::read_to_string(&g.path).ok(),
+            None,
+        ),
     };
     let file = |ext: &str| format!("attachment; filename=\"studio.{ext}\"");
     match format {
         "lsys" | "toml" => match if format == "lsys" { lsys } else { toml } {
             Some(t) => bytes(t.into_bytes(), "text/plain; charset=utf-8")
                 .with_header(hdr("Content-Disposition", &file(format))),
-            None => text(409, "the emitted grammar and graph are Pailou mode's"),
+            None => text(409, "a grammar opened in the studio has no component graph: export .lsys, .glb, .obj or .png"),
         },
         "glb" | "obj" | "png" => {
             let Some(m) = model else {
@@ -301,18 +363,44 @@ fn export(sh: &Shared, format: &str) -> Reply {
     }
 }
 
-/// Graphs and grammars in the opened folder (one level), to open.
+/// Graphs and grammars in the opened folder and its subfolders (paths
+/// relative to it, `/`-separated), to open.
 fn files(sh: &Shared) -> Vec<String> {
-    let mut out: Vec<String> = std::fs::read_dir(&sh.root)
-        .map(|d| {
-            d.flatten()
-                .map(|e| e.file_name().to_string_lossy().into_owned())
-                .filter(|n| [".toml", ".lsys", ".l"].iter().any(|x| n.ends_with(x)))
-                .collect()
-        })
-        .unwrap_or_default();
+    let mut out = Vec::new();
+    list(&sh.root, "", 0, &mut out);
     out.sort();
     out
+}
+
+/// Folders below the opened one that are listed.
+const LIST_DEPTH: usize = 4;
+/// Files listed at most (a folder opened by mistake, such as `~`).
+const LIST_MAX: usize = 2000;
+
+fn list(dir: &Path, prefix: &str, depth: usize, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    let mut entries: Vec<_> = entries.flatten().collect();
+    entries.sort_by_key(|e| e.file_name());
+    for e in entries {
+        if out.len() >= LIST_MAX {
+            return;
+        }
+        let name = e.file_name().to_string_lossy().into_owned();
+        // Links are not followed (the folder's confinement), nor hidden
+        // folders and build output.
+        let Ok(kind) = e.file_type() else { continue };
+        if kind.is_dir() {
+            let skipped =
+                name.starts_with('.') || ["target", "node_modules"].contains(&name.as_str());
+            if depth < LIST_DEPTH && !skipped {
+                list(&e.path(), &format!("{prefix}{name}/"), depth + 1, out);
+            }
+        } else if kind.is_file() && [".toml", ".lsys", ".l"].iter().any(|x| name.ends_with(x)) {
+            out.push(format!("{prefix}{name}"));
+        }
+    }
 }
 
 /// Server-sent events: `update` with the version whenever the model
@@ -353,11 +441,32 @@ fn events(req: Request, sh: &Shared) {
     }
 }
 
+/// The front end built into the binary (`build.rs`; empty when
+/// `web/studio/dist` was not built before it).
+mod embedded {
+    include!(concat!(env!("OUT_DIR"), "/studio_page.rs"));
+}
+
+/// A file of the embedded front end.
+fn embedded_file(rel: &str) -> Option<&'static [u8]> {
+    embedded::PAGE
+        .iter()
+        .find(|(p, _)| *p == rel)
+        .map(|(_, b)| *b)
+}
+
+/// Whether the binary carries its front end.
+pub fn has_embedded_page() -> bool {
+    embedded_file("index.html").is_some()
+}
+
 fn page(sh: &Shared) -> Reply {
     if let Some(dir) = &sh.assets {
         if let Ok(b) = std::fs::read(dir.join("index.html")) {
             return bytes(b, "text/html; charset=utf-8");
         }
+    } else if let Some(b) = embedded_file("index.html") {
+        return bytes(b.to_vec(), "text/html; charset=utf-8");
     }
     bytes(
         FALLBACK_PAGE.as_bytes().to_vec(),
@@ -366,15 +475,22 @@ fn page(sh: &Shared) -> Reply {
 }
 
 fn asset(sh: &Shared, rel: &str) -> Reply {
-    let Some(dir) = &sh.assets else {
-        return text(404, "the front end is not built (docs/studio.md)");
+    let found = match &sh.assets {
+        Some(dir) => match confine(dir, rel) {
+            Ok(full) => std::fs::read(full).ok(),
+            Err(_) => return text(403, "not an asset"),
+        },
+        None => match embedded_file(rel) {
+            Some(b) => Some(b.to_vec()),
+            None if !has_embedded_page() => {
+                return text(404, "the front end is not built (docs/studio.md)")
+            }
+            None => None,
+        },
     };
-    let Ok(full) = confine(dir, rel) else {
-        return text(403, "not an asset");
-    };
-    match std::fs::read(&full) {
-        Ok(b) => {
-            let mime = match full.extension().and_then(|e| e.to_str()) {
+    match found {
+        Some(b) => {
+            let mime = match rel.rsplit_once('.').map(|(_, e)| e) {
                 Some("js") => "text/javascript",
                 Some("css") => "text/css",
                 Some("svg") => "image/svg+xml",
@@ -383,7 +499,7 @@ fn asset(sh: &Shared, rel: &str) -> Reply {
             };
             bytes(b, mime)
         }
-        Err(_) => text(404, "no such asset"),
+        None => text(404, "no such asset"),
     }
 }
 

@@ -26,7 +26,8 @@ use std::time::Duration;
 use crate::driver::{Change, Watcher};
 
 pub use grammar::{defines_of, Define, GrammarSession};
-pub use model::Model;
+pub use http::has_embedded_page;
+pub use model::{Model, DEFAULT_MAX_TRIANGLES};
 pub use pailou::{PailouSession, DEFAULT_ENTRANCE};
 pub use safety::{confine, ConfineError};
 
@@ -44,6 +45,9 @@ pub struct Config {
     /// crate's sources, and without one the server's own page says how to
     /// build it.
     pub assets: Option<PathBuf>,
+    /// Triangles a model may have (instances counted in full); `None`:
+    /// [`model::DEFAULT_MAX_TRIANGLES`].
+    pub max_triangles: Option<usize>,
 }
 
 /// A running studio.
@@ -106,6 +110,8 @@ pub(crate) struct Shared {
     pub version: Mutex<u64>,
     pub changed: Condvar,
     pub stopped: Mutex<bool>,
+    /// The triangle budget of every model built.
+    pub max_triangles: usize,
     /// Grammar mode's watcher (`None`: the system's could not be made;
     /// saves then wait for the page's next change).
     pub watcher: Option<Arc<Watcher>>,
@@ -131,6 +137,7 @@ pub fn default_assets() -> PathBuf {
 
 /// Opens `config.path` and starts serving; returns once listening.
 pub fn start(config: Config) -> Result<Handle, String> {
+    let budget = config.max_triangles.unwrap_or(model::DEFAULT_MAX_TRIANGLES);
     // Made before the first session reads its grammar: a save right after
     // opening is its first change.
     let watcher = match Watcher::new() {
@@ -140,7 +147,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
             None
         }
     };
-    let (root, session) = open_path(config.path.as_deref(), watcher.as_ref())?;
+    let (root, session) = open_path(config.path.as_deref(), watcher.as_ref(), budget)?;
     let server = tiny_http::Server::http(SocketAddr::new(config.bind, config.port))
         .map_err(|e| format!("cannot listen on {}:{}: {e}", config.bind, config.port))?;
     let addr = server
@@ -157,6 +164,9 @@ pub fn start(config: Config) -> Result<Handle, String> {
         std::net::IpAddr::V6(ip) => format!("[{ip}]:{port}"),
         ip => format!("{ip}:{port}"),
     });
+    // `--assets`, else the build beside the sources (a developer's
+    // checkout, rebuilt after the binary), else the one built into the
+    // binary (`None` here).
     let assets = config
         .assets
         .or_else(|| Some(default_assets()))
@@ -166,6 +176,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
         assets,
         hosts,
         session: Mutex::new(session),
+        max_triangles: budget,
         version: Mutex::new(1),
         changed: Condvar::new(),
         stopped: Mutex::new(false),
@@ -197,6 +208,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
 fn open_path(
     path: Option<&Path>,
     watcher: Option<&Arc<Watcher>>,
+    budget: usize,
 ) -> Result<(PathBuf, Session), String> {
     let path = path.unwrap_or(Path::new("."));
     let full = path
@@ -207,6 +219,7 @@ fn open_path(
             "default entrance",
             DEFAULT_ENTRANCE,
             None,
+            budget,
         ));
         return Ok((full, session));
     }
@@ -218,7 +231,7 @@ fn open_path(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    Ok((root.clone(), open_file(&root, &name, watcher)?))
+    Ok((root.clone(), open_file(&root, &name, watcher, budget)?))
 }
 
 /// A session for `rel` (a graph `.toml` or a grammar), inside `root`; a
@@ -227,6 +240,7 @@ pub(crate) fn open_file(
     root: &Path,
     rel: &str,
     watcher: Option<&Arc<Watcher>>,
+    budget: usize,
 ) -> Result<Session, String> {
     let full = confine(root, rel).map_err(|e| e.to_string())?;
     if rel.ends_with(".toml") {
@@ -252,6 +266,7 @@ pub(crate) fn open_file(
             rel,
             &text,
             Some(rel.to_string()),
+            budget,
         )))
     } else if full.is_file() {
         Ok(Session::Grammar(grammar::GrammarSession::open_watched(
@@ -259,6 +274,7 @@ pub(crate) fn open_file(
             full,
             rel.to_string(),
             watcher.cloned(),
+            budget,
         )))
     } else {
         Err(format!(

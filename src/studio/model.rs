@@ -31,13 +31,42 @@ pub fn job(
     defines: &[(String, String)],
     steps: Option<u32>,
     check: bool,
+    budget: usize,
 ) -> Job {
     let o = Grammar::options().steps(steps).defines_from(defines);
-    for_page(Job::new(input, name, o).check(if check { Check::Library } else { Check::None }))
+    let check = if check { Check::Library } else { Check::None };
+    for_page(Job::new(input, name, o).check(check), budget)
 }
 
-/// `job` writing the GLB the page's 3D view loads, in memory.
-pub fn for_page(job: Job) -> Job {
+/// Triangles a studio model may have by default (instances counted in
+/// full; `lsys studio --max-triangles`): more is refused before it is
+/// meshed, with the mesh stage's diagnostic. Software WebGL draws 365 k
+/// triangles in about a second; a 6-5-15 Pailou has 2.1 M. An 88 M
+/// triangle grammar used to be built (5.3 GB) and served as a 2 GB GLB.
+pub const DEFAULT_MAX_TRIANGLES: usize = 8_000_000;
+
+/// The GLB the page may be sent, at most: a model within the triangle
+/// budget can still be larger (tubes and polygons are not instanced).
+pub const MAX_GLB_BYTES: usize = 256 << 20;
+
+/// The refusal of a model whose GLB is over [`MAX_GLB_BYTES`].
+#[derive(Debug, thiserror::Error, miette::Diagnostic)]
+#[error("the model's GLB is {mib} MiB, more than the {limit} MiB the studio sends to a page")]
+#[diagnostic(
+    code(lsys::studio::too_large),
+    help("derive fewer steps or draw less; `lsys build` writes a model of any size to a file")
+)]
+pub struct TooLarge {
+    mib: usize,
+    limit: usize,
+}
+
+/// `job` writing the GLB the page's 3D view loads, in memory, with at
+/// most `budget` triangles.
+pub fn for_page(mut job: Job, budget: usize) -> Job {
+    let options = job.options.clone();
+    let limit = options.build.mesh.max_triangles.min(budget);
+    job.options = options.max_triangles(limit);
     job.output(Output::Bytes {
         format: driver::Format::Glb,
         picture: Default::default(),
@@ -57,6 +86,14 @@ pub fn build_reading(job: &Job) -> (Result<(Model, Grammar), Diagnostics>, Vec<P
     match driver::run(job, &mut |_| {}) {
         Ok(mut done) => {
             let sources = std::mem::take(&mut done.sources);
+            let glb = done.bytes.as_ref().map_or(0, Vec::len);
+            if glb > MAX_GLB_BYTES {
+                let e = TooLarge {
+                    mib: glb >> 20,
+                    limit: MAX_GLB_BYTES >> 20,
+                };
+                return (Err(Diagnostics::new(vec![miette::Report::new(e)])), sources);
+            }
             (Ok(model_of(done)), sources)
         }
         Err(mut f) => {

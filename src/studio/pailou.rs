@@ -14,6 +14,8 @@ use crate::driver::{is_graph_kind, GraphDocument, Pailou, PailouError, PailouTyp
 use crate::Grammar;
 
 pub struct PailouSession {
+    /// The triangle budget of its models.
+    pub max_triangles: usize,
     /// The graph file (relative to the opened folder), if one was opened.
     pub file: Option<String>,
     pub graph: GraphDocument,
@@ -36,8 +38,15 @@ pub const DEFAULT_ENTRANCE: &str = "type = \"ridge\"\ncentre = \"L11\"\n\n[compo
 impl PailouSession {
     /// Opens a graph's text, named `name` in diagnostics; `file` is where
     /// it is saved back.
-    pub fn open(name: &str, text: &str, file: Option<String>) -> PailouSession {
+    /// Models have at most `max_triangles` triangles.
+    pub fn open(
+        name: &str,
+        text: &str,
+        file: Option<String>,
+        max_triangles: usize,
+    ) -> PailouSession {
         let mut s = PailouSession {
+            max_triangles,
             file,
             graph: GraphDocument::parse(text).unwrap_or_default(),
             model: None,
@@ -63,7 +72,7 @@ impl PailouSession {
                 e => json!({"severity": "error", "message": e.to_string(), "rendered": e.to_string()}),
             })?
             .named("pailou-graph.lsys");
-        let job = model::for_page(p.job(Grammar::options()));
+        let job = model::for_page(p.job(Grammar::options()), self.max_triangles);
         let defines = job.options.defines().to_vec();
         let (built, _) = model::build(&job).map_err(|d| first_diagnostic(&d))?;
         self.model = Some(built);
@@ -124,6 +133,14 @@ impl PailouSession {
                 let name = edit["name"].as_str().unwrap_or("");
                 if name.is_empty() {
                     return Err(refuse("a define needs a name".into()));
+                }
+                let number = match &edit["value"] {
+                    Value::Number(n) => n.as_f64(),
+                    Value::String(s) => fraction(s),
+                    _ => None,
+                };
+                if let Some(v) = number {
+                    crate::pailou::ranges::check(name, v).map_err(refuse)?;
                 }
                 let value = match &edit["value"] {
                     Value::Null => None,
@@ -285,4 +302,12 @@ fn positions(g: &GraphDocument) -> BTreeMap<String, (f64, f64)> {
         }
     }
     at
+}
+
+/// A define's text as a number when it is one or a fraction (`7/61`).
+fn fraction(s: &str) -> Option<f64> {
+    match s.split_once('/') {
+        Some((a, b)) => Some(a.trim().parse::<f64>().ok()? / b.trim().parse::<f64>().ok()?),
+        None => s.trim().parse().ok(),
+    }
 }

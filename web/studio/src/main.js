@@ -293,7 +293,7 @@ async function show(s, reload) {
   const pailou = s.mode === "pailou";
   $("mode").textContent = pailou ? "Pailou editor" : "grammar preview";
   $("file").textContent = s.file || "(default entrance, not saved)";
-  for (const id of ["pailou-left", "pailou-right", "save"]) $(id).hidden = !pailou;
+  for (const id of ["pailou-left", "pailou-right", "save", "export-toml"]) $(id).hidden = !pailou;
   $("grammar-left").hidden = pailou;
   document.querySelector("main").classList.toggle("grammar", !pailou);
   if (pailou) showPailou(s); else showGrammar(s);
@@ -306,12 +306,29 @@ async function show(s, reload) {
 $("save").addEventListener("click", async () => {
   const name = prompt("Save the graph as (a .toml in the opened folder):", studio.state.file || "pailou.toml");
   if (!name) return;
-  const r = await api("/api/save", { path: name });
+  let r = await api("/api/save", { path: name });
+  // Another graph of that name: replaced only when the user says so.
+  if (r.status === 409 && r.data.exists && confirm(`${name} is another graph. Replace it?`)) {
+    r = await api("/api/save", { path: name, replace: true });
+  }
   $("status").textContent = r.status === 200 ? `saved ${name}` : `not saved: ${r.data.error || r.data}`;
   refreshFiles();
 });
-document.querySelectorAll(".exports a").forEach((a) => a.addEventListener("click", () => {
-  window.location = `/api/export?format=${a.dataset.format}`;
+// Downloads without leaving the page: a refusal is shown in the status line.
+document.querySelectorAll(".exports a").forEach((a) => a.addEventListener("click", async (e) => {
+  e.preventDefault();
+  const format = a.dataset.format;
+  const r = await fetch(`/api/export?format=${format}`);
+  if (!r.ok) {
+    $("status").textContent = `not exported: ${(await r.text()).trim()}`;
+    return;
+  }
+  const link = Object.assign(document.createElement("a"), {
+    href: URL.createObjectURL(await r.blob()),
+    download: `studio.${format}`,
+  });
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 10000);
 }));
 async function refreshFiles() {
   const r = await api("/api/files");

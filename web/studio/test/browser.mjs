@@ -44,7 +44,8 @@ try {
   });
   const page = await browser.newPage();
   page.on("pageerror", (e) => console.log("page error:", e.message));
-  page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? "fig6.toml" : undefined));
+  let saveAs = "fig6.toml";
+  page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? saveAs : undefined));
   await page.goto(url);
   const loads = () => page.evaluate(() => window.studio.loads);
   const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 });
@@ -139,6 +140,16 @@ try {
   check("the saved graph reopens as the same Pailou", reopened.file === "fig6.toml" && reopened.components.length === 12 && reopened.parts === s.parts,
     `${reopened.file} ${reopened.components.length} ${reopened.parts}/${s.parts}`);
   check("the saved text is the graph's", readFileSync(join(dir, "fig6.toml"), "utf8").includes('FBn1 = ["L11"]') && readFileSync(join(dir, "fig6.toml"), "utf8").includes("# @pos IBn1 ") && before.includes("FBn1"));
+  // Save never replaces a file that is not a graph (issue 34).
+  const cargo = "[package]\nname = \"mine\"\n";
+  writeFileSync(join(dir, "Cargo.toml"), cargo);
+  saveAs = "Cargo.toml";
+  await page.click("#save");
+  await page.waitForFunction(() => document.querySelector("#status").textContent.startsWith("not saved"));
+  check("saving over a file that is not a graph is refused and the file kept",
+    readFileSync(join(dir, "Cargo.toml"), "utf8") === cargo && (await page.textContent("#status")).includes("not a Pailou graph"),
+    await page.textContent("#status"));
+  saveAs = "fig6.toml";
 
   // Parameters the layout cannot honour: the structural check's warnings
   // are listed and their parts drawn red (docs/pailou.md: αSide 0.4 on 4-3-7).
@@ -184,6 +195,13 @@ try {
   await page.click('#views button[data-view="front"]');
   await page.waitForTimeout(300);
   await page.screenshot({ path: join(images, "studio-grammar.png") });
+  // Exports download without leaving the page; a grammar has no graph.
+  check("grammar mode hides the graph export", await page.$eval("#export-toml", (a) => a.hidden));
+  const at = page.url();
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click('.exports a[data-format="lsys"]')]);
+  const saved = join(dir, "exported.lsys");
+  await download.saveAs(saved);
+  check("the .lsys export downloads the grammar and the page stays", readFileSync(saved, "utf8") === grammar(3) && page.url() === at, page.url());
   const v = await page.evaluate(() => window.studio.version);
   writeFileSync(g, grammar(3).replace("F[-F]F\n", "F[-F]F(\n"));
   await page.waitForFunction((v) => window.studio.version > v && window.studio.state.diagnostics.length > 0, v, { timeout: 20000 });

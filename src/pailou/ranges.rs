@@ -1,0 +1,61 @@
+//! The ranges a Pailou's parameters may take: outside them the grammar
+//! builds nothing an architect would recognise (a negative pillar height
+//! sinks the gate into the ground, which the structural check then
+//! reports part by part; 40 Toukung levels stack brackets far above the
+//! roofs). Input: a define's name and value; output: `Err` with the
+//! sentence the studio shows.
+
+/// (name, lowest, highest, whole numbers only). Table 3's Pailous keep
+/// ω at 9 or 10 and the ratios between 7/61 and 20/12; the ranges leave
+/// room around them for design, not for nonsense.
+const RANGES: &[(&str, f64, f64, bool)] = &[
+    ("ω", 0.5, 100.0, false),
+    ("NTL", 1.0, 12.0, true),
+    ("TM.NTL", 1.0, 12.0, true),
+    ("TS.NTL", 1.0, 12.0, true),
+    ("αPW", 0.01, 2.0, false),
+    ("αEW", 0.1, 5.0, false),
+    ("αLH", 0.05, 2.0, false),
+    ("αLW", 0.1, 3.0, false),
+    ("αUp", 0.1, 2.0, false),
+    ("αSide", 0.1, 2.0, false),
+];
+
+/// Whether `value` is a value `name` may take (names without a range may
+/// take any finite value).
+pub fn check(name: &str, value: f64) -> Result<(), String> {
+    if !value.is_finite() {
+        return Err(format!("`{name}` = {value} is not a number"));
+    }
+    let Some(&(_, lo, hi, whole)) = RANGES.iter().find(|r| r.0 == name) else {
+        return Ok(());
+    };
+    if whole && value.fract() != 0.0 {
+        return Err(format!(
+            "`{name}` counts levels: a whole number from {lo} to {hi}, not {value}"
+        ));
+    }
+    if value < lo || value > hi {
+        return Err(format!(
+            "`{name}` = {value} is out of range: it goes from {lo} to {hi} (docs/pailou.md)"
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check;
+
+    #[test]
+    fn the_paper_defaults_pass_and_the_absurd_do_not() {
+        assert!(check("ω", 9.0).is_ok());
+        assert!(check("NTL", 5.0).is_ok());
+        assert!(check("αSide", 0.8).is_ok());
+        assert!(check("ω", -5.0).is_err());
+        assert!(check("NTL", 40.0).is_err());
+        assert!(check("NTL", 4.5).is_err());
+        assert!(check("κT", f64::NAN).is_err());
+        assert!(check("κT", 0.3).is_ok());
+    }
+}
