@@ -271,14 +271,28 @@ fn table_3_pailous_build_with_their_pillars_and_roofs() {
     assert_eq!(graphs.len(), 15, "Table 3 has 15 Pailous");
     let dir = tempfile::tempdir().unwrap();
     let mut files = Vec::new();
+    let mut known = String::new();
     for graph in &graphs {
         let stem = graph.file_stem().unwrap().to_string_lossy().into_owned();
         let style = stem.split('_').nth(1).unwrap();
         let out = dir.path().join(format!("{stem}.glb"));
         let o = lsys(&["pailou", path_str(graph), "-o", path_str(&out), "--stats"]);
         assert!(o.status.success(), "{stem}: {}", stderr(&o));
-        // No structural warning (tests/pailou.rs has the details).
-        assert!(!stderr(&o).contains("warning"), "{stem}: {}", stderr(&o));
+        // No structural warning (tests/pailou.rs has the details) but
+        // issue 37's roof defects, listed below.
+        let err = stderr(&o);
+        let (roofs, other): (Vec<&str>, Vec<&str>) =
+            err.lines().partition(|l| common::is_known_roof_defect(l));
+        assert!(
+            !other.iter().any(|l| l.contains("warning")),
+            "{stem}: {err}"
+        );
+        for l in roofs {
+            known += &format!(
+                "{stem}: {}\n",
+                l.trim_start_matches("lsys: warning: structure: ")
+            );
+        }
         let stats: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let n: Vec<u64> = style.split('-').map(|x| x.parse().unwrap()).collect();
         let count = |c: &str| stats["instances"][c].as_u64().unwrap_or(0);
@@ -298,6 +312,7 @@ fn table_3_pailous_build_with_their_pillars_and_roofs() {
         }
         files.push(out);
     }
+    insta::assert_snapshot!("issue_37_roof_defects_table_3", known);
     let npm = root.join("target/npm");
     if npm.join("node_modules/gltf-validator").is_dir() {
         let o = Command::new("node")

@@ -29,6 +29,10 @@ use crate::mesh::Scene;
 /// allowed, in model units.
 pub const TOLERANCE: f32 = 0.02;
 
+/// A part whose top is within this of a roof's bottom may hold the roof
+/// (a Toukung row, a lintel, a pillar's top), in model units.
+pub const HOLD_GAP: f32 = 0.1;
+
 /// How a part meets its support.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Mode {
@@ -121,6 +125,22 @@ pub enum Problem {
     OneSided { part: String, touching: Vec<String> },
     /// `a` and `b` overlap by `depth` (the smallest overlap of the axes).
     Interpenetrate { a: String, b: String, depth: f32 },
+    /// Two roofs at one height meet (their eaves corners collide).
+    RoofsMeet { a: String, b: String, x: f32 },
+    /// A pillar whose foot is on or in a roof: it rises out of the roof
+    /// instead of standing on a lintel inside it.
+    PillarOnRoof {
+        part: String,
+        roof: String,
+        depth: f32,
+    },
+    /// A roof that nothing holds under its middle nor under both halves:
+    /// `side` is the half without support (`left`, `right` or `either`).
+    RoofOverNothing {
+        part: String,
+        side: &'static str,
+        x: f32,
+    },
 }
 
 impl fmt::Display for Problem {
@@ -160,6 +180,26 @@ impl fmt::Display for Problem {
             Problem::Interpenetrate { a, b, depth } => {
                 write!(f, "{a} and {b} interpenetrate by {}", mm(*depth))
             }
+            Problem::RoofsMeet { a, b, x } => write!(
+                f,
+                "{a} and {b} (roofs at one height) meet at x = {}: their eaves corners collide",
+                mm(*x)
+            ),
+            Problem::PillarOnRoof { part, roof, depth } if depth.abs() <= TOLERANCE => write!(
+                f,
+                "{part} (suspended pillar) rises out of {roof}: its foot is on the roof's top, not on a lintel under the roof"
+            ),
+            Problem::PillarOnRoof { part, roof, depth } => write!(
+                f,
+                "{part} (suspended pillar) rises out of {roof}: its foot is {} below the roof's top, not on a lintel under the roof",
+                mm(*depth)
+            ),
+            Problem::RoofOverNothing { part, side, x } => write!(
+                f,
+                "{part} (roof) is over nothing: no part holds its middle nor {} half (x = {})",
+                if *side == "either" { "either".to_string() } else { format!("its {side}") },
+                mm(*x)
+            ),
         }
     }
 }
@@ -215,7 +255,88 @@ pub fn check(scene: &Scene, rules: &Rules) -> Vec<Problem> {
         }
     }
     overlaps(&parts, rules, &mut out);
+    roofs(&parts, &mut out);
     out
+}
+
+fn is_roof(p: &Part) -> bool {
+    matches!(p.kind.as_deref(), Some("eaves_roof" | "clipped_roof"))
+}
+
+/// The roofs' own rules (issue 37): roofs at one height must not meet, a
+/// pillar must not rise out of a roof, and a roof must have something
+/// under both its ends.
+fn roofs(parts: &[Part], out: &mut Vec<Problem>) {
+    let roofs: Vec<&Part> = parts.iter().filter(|p| is_roof(p)).collect();
+    for (n, a) in roofs.iter().enumerate() {
+        for b in &roofs[n + 1..] {
+            let o = a.hi.min(b.hi) - a.lo.max(b.lo);
+            let same_height = o.y > 0.5 * (a.hi.y - a.lo.y).min(b.hi.y - b.lo.y);
+            // Touching or overlapping (a deeper overlap is also reported
+            // as interpenetrating), along x, their footprints side by side.
+            if same_height && o.z > TOLERANCE && o.x > -TOLERANCE {
+                let x = 0.5 * (a.hi.x.min(b.hi.x) + a.lo.x.max(b.lo.x));
+                out.push(Problem::RoofsMeet {
+                    a: a.name.clone(),
+                    b: b.name.clone(),
+                    x,
+                });
+            }
+        }
+    }
+    for p in parts {
+        if p.kind.as_deref() != Some("suspended_pillar") {
+            continue;
+        }
+        let centre = (p.lo + p.hi) * 0.5;
+        let roof = roofs.iter().find(|r| {
+            (r.lo.x..=r.hi.x).contains(&centre.x)
+                && (r.lo.z..=r.hi.z).contains(&centre.z)
+                && p.lo.y > r.lo.y + TOLERANCE
+                && p.lo.y < r.hi.y + TOLERANCE
+        });
+        if let Some(r) = roof {
+            out.push(Problem::PillarOnRoof {
+                part: p.name.clone(),
+                roof: r.name.clone(),
+                depth: r.hi.y - p.lo.y,
+            });
+        }
+    }
+    for r in &roofs {
+        // What may hold a roof: a part (not a roof) reaching up to within
+        // [HOLD_GAP] under the roof's bottom and not above its middle,
+        // its footprint under the roof's.
+        let mid = (r.lo.y + r.hi.y) * 0.5;
+        let holds = |q: &&Part, x0: f32, x1: f32| {
+            !is_roof(q)
+                && q.lo.x < x1
+                && q.hi.x > x0
+                && q.hi.z > r.lo.z
+                && q.lo.z < r.hi.z
+                && q.hi.y > r.lo.y - HOLD_GAP
+                && q.lo.y < mid
+        };
+        let c = (r.lo.x + r.hi.x) * 0.5;
+        // Held under its middle (a Toukung row, a lintel, a pillar's top),
+        // or at both ends (between two pillars, as the paper's clipped
+        // roofs sit between suspended pillars).
+        let under_middle = parts.iter().any(|q| holds(&q, c - 1e-3, c + 1e-3));
+        let left = parts.iter().any(|q| holds(&q, r.lo.x, c));
+        let right = parts.iter().any(|q| holds(&q, c, r.hi.x));
+        if !(under_middle || left && right) {
+            let (side, x) = match (left, right) {
+                (true, _) => ("right", (c + r.hi.x) * 0.5),
+                (_, true) => ("left", (r.lo.x + c) * 0.5),
+                _ => ("either", c),
+            };
+            out.push(Problem::RoofOverNothing {
+                part: r.name.clone(),
+                side,
+                x,
+            });
+        }
+    }
 }
 
 /// Footprints (x and z) overlap (by more than a rounding error).
@@ -433,5 +554,42 @@ mod tests {
         bad[6].1 = Vec3::new(-1.0, 3.5, 0.0); // the Queti sinks into the lintel
         let got = report(&check(&scene(&bad), &rules()));
         insta::assert_snapshot!(got);
+    }
+
+    /// Issue 37's roof rules: two roofs at one height that touch meet; a
+    /// pillar whose foot is on a roof rises out of it; a roof held by
+    /// nothing is over nothing. A roof on its Toukung row, and one between
+    /// two pillars, are held.
+    #[test]
+    fn roofs_meet_carry_no_pillars_and_are_held() {
+        let roof = Vec3::new(4.0, 1.0, 2.0);
+        let row = Vec3::new(3.0, 0.5, 1.0);
+        let held = [
+            ("TM", Vec3::new(0.0, 5.0, 0.0), row),
+            ("RE", Vec3::new(0.0, 5.5, 0.0), roof),
+        ];
+        let problems = |boxes: &[(&str, Vec3, Vec3)]| -> Vec<Problem> {
+            check(&scene(boxes), &rules())
+                .into_iter()
+                .filter(|p| !matches!(p, Problem::Unsupported { .. }))
+                .collect()
+        };
+        assert_eq!(problems(&held), vec![]);
+        let mut two = held.to_vec();
+        two.push(("TM", Vec3::new(4.0, 5.0, 0.0), row));
+        two.push(("RE", Vec3::new(4.0, 5.5, 0.0), roof));
+        assert!(matches!(problems(&two)[..], [Problem::RoofsMeet { .. }]), "{:?}", problems(&two));
+        let mut pillar = held.to_vec();
+        pillar.push(("MP", Vec3::new(0.0, 6.5, 0.0), Vec3::new(0.3, 3.0, 0.3)));
+        assert!(matches!(problems(&pillar)[..], [Problem::PillarOnRoof { .. }]), "{:?}", problems(&pillar));
+        let alone = [("RC", Vec3::new(0.0, 5.5, 0.0), roof)];
+        assert!(matches!(problems(&alone)[..], [Problem::RoofOverNothing { .. }]));
+        let between = [
+            ("RC", Vec3::new(0.0, 5.5, 0.0), roof),
+            ("MP", Vec3::new(-1.9, 4.0, 0.0), Vec3::new(0.3, 3.0, 0.3)),
+            ("MP", Vec3::new(1.9, 4.0, 0.0), Vec3::new(0.3, 3.0, 0.3)),
+        ];
+        let got = problems(&between);
+        assert!(!got.iter().any(|p| matches!(p, Problem::RoofOverNothing { .. })), "{got:?}");
     }
 }

@@ -125,7 +125,9 @@ fn parts_of(p: &Problem) -> Vec<String> {
     match p {
         Unsupported { part, .. } => vec![part.clone()],
         OneSided { part, .. } => vec![part.clone()],
-        Interpenetrate { a, b, .. } => vec![a.clone(), b.clone()],
+        Interpenetrate { a, b, .. } | RoofsMeet { a, b, .. } => vec![a.clone(), b.clone()],
+        PillarOnRoof { part, roof, .. } => vec![part.clone(), roof.clone()],
+        RoofOverNothing { part, .. } => vec![part.clone()],
     }
 }
 
