@@ -36,7 +36,7 @@ mod watch;
 
 pub use guided::{run_guided, GuidedDone, GuidedJob};
 pub use job::{format_of, grammar_dir, Check, Job, Output};
-pub use pailou::{Pailou, PailouError, PailouType};
+pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};
 pub use stats::ms;
 pub use structure::library_rules;

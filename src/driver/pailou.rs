@@ -164,3 +164,9 @@ impl Pailou {
         Job::new(input, self.name.clone(), options).check(check)
     }
 }
+
+/// Whether a Pailou define may take `value` (`src/pailou/ranges.rs`): the
+/// studio checks the page's values with it.
+pub fn check_pailou_define(name: &str, value: f64) -> Result<(), String> {
+    crate::pailou::ranges::check(name, value)
+}

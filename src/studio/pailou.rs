@@ -140,7 +140,7 @@ impl PailouSession {
                     _ => None,
                 };
                 if let Some(v) = number {
-                    crate::pailou::ranges::check(name, v).map_err(refuse)?;
+                    crate::driver::check_pailou_define(name, v).map_err(refuse)?;
                 }
                 let value = match &edit["value"] {
                     Value::Null => None,
