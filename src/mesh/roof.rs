@@ -267,6 +267,9 @@ fn shell(kind: RoofKind, detail: u8) -> TriMesh {
         let (a, b) = (at(nx, k), at(nx, k + 1));
         quad(&mut m, a, b, b + down, a + down);
     }
+    if kind == RoofKind::Clipped {
+        gables(&mut m, nz, &y);
+    }
     // The ridge along the top, with end blocks no higher than it (what
     // stands on a roof stands on its ridge, the top of its box).
     let top = height(kind, 0.0, 0.0);
@@ -288,6 +291,69 @@ fn shell(kind: RoofKind, detail: u8) -> TriMesh {
         );
     }
     m
+}
+
+/// Where a clipped roof's gable walls stand, inside its ends (the roof
+/// overhangs them), and how thick they are.
+const GABLE_X: f32 = 0.46;
+const GABLE_THICK: f32 = 0.02;
+
+/// A clipped roof's two gable ends (issue 37: seen end-on the roof was a
+/// thin arc): under the shell near each end, a wall filling the profile
+/// down to the eaves, closed so it reads as solid from any side. Inside
+/// the unit box, so the roof's normalisation and placement are unchanged.
+fn gables(m: &mut TriMesh, nz: usize, y: &dyn Fn(f32, f32) -> f32) {
+    for s in [-1.0f32, 1.0] {
+        let (outer, inner) = (s * GABLE_X, s * (GABLE_X - GABLE_THICK));
+        let profile: Vec<(f32, f32)> = (0..=nz)
+            .map(|k| {
+                let z = -0.5 + k as f32 / nz as f32;
+                (z, y(outer, z) - THICK)
+            })
+            .collect();
+        let eave = profile.iter().map(|p| p.1).fold(f32::INFINITY, f32::min);
+        let at = |x: f32, (z, h): (f32, f32)| Vec3::new(x, h, z);
+        let foot = |x: f32, z: f32| Vec3::new(x, eave, z);
+        for pair in profile.windows(2) {
+            let (p, q) = (pair[0], pair[1]);
+            // Outer and inner faces: a strip from the eave line up to
+            // the profile (outward is +x at the +x end).
+            let (op, oq, fp, fq) = (
+                at(outer, p),
+                at(outer, q),
+                foot(outer, p.0),
+                foot(outer, q.0),
+            );
+            let (ip, iq, gp, gq) = (
+                at(inner, p),
+                at(inner, q),
+                foot(inner, p.0),
+                foot(inner, q.0),
+            );
+            if s < 0.0 {
+                quad(m, fq, oq, op, fp);
+                quad(m, gp, ip, iq, gq);
+                quad(m, op, oq, iq, ip);
+            } else {
+                quad(m, fp, op, oq, fq);
+                quad(m, gq, iq, ip, gp);
+                quad(m, oq, op, ip, iq);
+            }
+        }
+        // The bottom, along the eave line.
+        let (z0, z1) = (profile[0].0, profile[nz].0);
+        let (a, b, c, d) = (
+            foot(outer, z0),
+            foot(outer, z1),
+            foot(inner, z1),
+            foot(inner, z0),
+        );
+        if s > 0.0 {
+            quad(m, a, b, c, d);
+        } else {
+            quad(m, a, d, c, b);
+        }
+    }
 }
 
 /// One row of round tiles on the `side` slope (+1 front, -1 back) at `x`:
@@ -435,6 +501,50 @@ mod tests {
                 .sum();
             assert!(vol > 0.0, "{kind:?} volume {vol}");
         }
+    }
+
+    /// A clipped roof's gables are closed solids facing outward, their
+    /// outer faces at the ends looking away from the middle; an eaves
+    /// roof (hipped) has none.
+    #[test]
+    fn clipped_roofs_have_closed_gable_ends() {
+        let mut m = TriMesh::default();
+        gables(&mut m, NZ, &|x, z| surface(RoofKind::Clipped, x, z));
+        let vol: f32 = m
+            .indices
+            .chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum();
+        // Two walls, each the profile's area times the thickness.
+        let area = 2.0 * GABLE_THICK * (0.6 / 2.7);
+        assert!(
+            (vol - area).abs() < 0.3 * area,
+            "volume {vol}, about {area}"
+        );
+        let outer: Vec<f32> = m
+            .positions
+            .iter()
+            .zip(&m.normals)
+            .filter(|(p, _)| (p.x.abs() - GABLE_X).abs() < 1e-6)
+            .map(|(p, n)| p.x * n.x)
+            .filter(|d| d.abs() > 1e-3)
+            .collect();
+        assert!(!outer.is_empty() && outer.iter().all(|&d| d > 0.0));
+        // The two bottoms (two triangles, six vertices each) face down;
+        // every other level face is a wall's top, under the roof, up.
+        let down = m.normals.iter().filter(|n| n.y < -0.999).count();
+        assert_eq!(down, 12);
+        let eaves = roof(RoofKind::Eaves, 1);
+        let flat_ends = eaves.normals.iter().filter(|n| n.x.abs() > 0.999).count();
+        let clipped = roof(RoofKind::Clipped, 1);
+        let clipped_ends = clipped.normals.iter().filter(|n| n.x.abs() > 0.999).count();
+        assert!(
+            clipped_ends > flat_ends + 4 * NZ,
+            "{clipped_ends} vs {flat_ends}"
+        );
     }
 
     /// Each level has more triangles than the one below; the preview is

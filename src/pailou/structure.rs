@@ -578,18 +578,33 @@ mod tests {
         let mut two = held.to_vec();
         two.push(("TM", Vec3::new(4.0, 5.0, 0.0), row));
         two.push(("RE", Vec3::new(4.0, 5.5, 0.0), roof));
-        assert!(matches!(problems(&two)[..], [Problem::RoofsMeet { .. }]), "{:?}", problems(&two));
+        assert!(
+            matches!(problems(&two)[..], [Problem::RoofsMeet { .. }]),
+            "{:?}",
+            problems(&two)
+        );
         let mut pillar = held.to_vec();
         pillar.push(("MP", Vec3::new(0.0, 6.5, 0.0), Vec3::new(0.3, 3.0, 0.3)));
-        assert!(matches!(problems(&pillar)[..], [Problem::PillarOnRoof { .. }]), "{:?}", problems(&pillar));
+        assert!(
+            matches!(problems(&pillar)[..], [Problem::PillarOnRoof { .. }]),
+            "{:?}",
+            problems(&pillar)
+        );
         let alone = [("RC", Vec3::new(0.0, 5.5, 0.0), roof)];
-        assert!(matches!(problems(&alone)[..], [Problem::RoofOverNothing { .. }]));
+        assert!(matches!(
+            problems(&alone)[..],
+            [Problem::RoofOverNothing { .. }]
+        ));
         let between = [
             ("RC", Vec3::new(0.0, 5.5, 0.0), roof),
             ("MP", Vec3::new(-1.9, 4.0, 0.0), Vec3::new(0.3, 3.0, 0.3)),
             ("MP", Vec3::new(1.9, 4.0, 0.0), Vec3::new(0.3, 3.0, 0.3)),
         ];
         let got = problems(&between);
-        assert!(!got.iter().any(|p| matches!(p, Problem::RoofOverNothing { .. })), "{got:?}");
+        assert!(
+            !got.iter()
+                .any(|p| matches!(p, Problem::RoofOverNothing { .. })),
+            "{got:?}"
+        );
     }
 }
