@@ -374,3 +374,39 @@ fn examples_carry_table_3() {
         assert_eq!(get("αSide"), row.5, "{name} αSide");
     }
 }
+
+/// A middle Toukung on a lintel without a roof is not drawn (its row
+/// stands under the roof), and the graph reader says so instead of
+/// leaving it out in silence (issue 34).
+#[test]
+fn a_middle_toukung_without_a_roof_is_told() {
+    let dir = tempfile::tempdir().unwrap();
+    let graph = "type = \"ridge\"\ncentre = \"L11\"\n[components]\nP1R = \"pillar\"\nL11 = \"lintel\"\nP1L = \"pillar\"\nTMn1 = \"middle_toukung\"\n[attach]\nL11 = [\"P1L\", \"P1R\"]\nTMn1 = [\"L11\"]\n";
+    std::fs::write(dir.path().join("g.toml"), graph).unwrap();
+    let out = dir.path().join("g.glb");
+    let o = lsys(&[
+        "pailou",
+        dir.path().join("g.toml").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        warnings(&o).contains("`TMn1` (middle_toukung) on L11 is not drawn"),
+        "{}",
+        stderr(&o)
+    );
+    // With its roof it is drawn, and nothing is said.
+    let roofed = graph.replace(
+        "[attach]",
+        "REn1 = \"eaves_roof\"\n[attach]\nREn1 = [\"TMn1\"]",
+    );
+    std::fs::write(dir.path().join("g.toml"), roofed).unwrap();
+    let o = lsys(&[
+        "pailou",
+        dir.path().join("g.toml").to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(warnings(&o), "", "{}", stderr(&o));
+}

@@ -316,9 +316,33 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             r.used.borrow_mut().insert(pillar.to_string());
         }
     }
+    // A row of middle Toukungs is drawn under its entrance's roof (the
+    // grammar's `Row` needs the roof's span): one on a lintel without a
+    // roof would be neither drawn nor told (issue 34).
+    let roofless: Vec<String> = r
+        .kinds
+        .iter()
+        .filter(|(_, kind)| **kind == "middle_toukung")
+        .filter_map(|(id, _)| {
+            let roofed = |x: &str| {
+                ["eaves_roof", "clipped_roof"]
+                    .iter()
+                    .any(|k| !r.attached(x, k).is_empty())
+            };
+            let lintels = r.on.get(id)?;
+            if roofed(id) || lintels.iter().any(|l| roofed(l)) {
+                return None;
+            }
+            Some(format!(
+                "`{id}` (middle_toukung) on {} is not drawn: a row of middle Toukungs stands under its entrance's roof; attach an eaves_roof or a clipped_roof to it",
+                lintels.join(", ")
+            ))
+        })
+        .collect();
     let unplaced = {
         let used = r.used.borrow();
-        r.kinds
+        let mut out: Vec<String> = r
+            .kinds
             .iter()
             .filter(|(id, _)| !used.contains(**id))
             .map(|(id, kind)| {
@@ -329,7 +353,9 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
                     format!("`{id}` ({kind}) on {on} is not placed: the layout has no place for it (docs/pailou.md, \"The layout\")")
                 }
             })
-            .collect()
+            .collect();
+        out.extend(roofless);
+        out
     };
     let defines = doc
         .defines
