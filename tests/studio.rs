@@ -656,3 +656,31 @@ fn cpfg_defines_move_the_model_and_subfolders_are_listed() {
     assert_eq!(code, 200, "{r}");
     h.stop();
 }
+
+/// From the default entrance, a lateral entrance with its Toukungs and
+/// roof and no roof on the centre: the side roofs stop at the central
+/// pillars and their Toukungs at the lintels' ends, so the clicks give no
+/// structural warning (they gave ten: Toukungs off the lintel, roofs
+/// through the central pillars and lintel).
+#[test]
+fn a_lateral_entrance_with_its_roof_stands() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    for (id, kind) in [
+        ("P1R", "lintel"),
+        ("Ln1R", "middle_toukung"),
+        ("TMn1R", "eaves_roof"),
+    ] {
+        let (code, r) = post(
+            &h,
+            "/api/edit",
+            json!({"op": "add", "id": id, "kind": kind}),
+        );
+        assert_eq!(code, 200, "{id} + {kind}: {r}");
+    }
+    let (_, s) = get(&h, "/api/state");
+    assert_eq!(s["problems"], json!([]), "{}", s["chart"]);
+    assert_eq!(s["unplaced"], json!([]));
+    assert!(s["parts"].as_u64().unwrap() > 20, "{}", s["parts"]);
+    h.stop();
+}
