@@ -205,3 +205,45 @@ fn colour_maps_and_materials_colour_a_cpfg_model() {
     let first = mesh.materials[mesh.strokes[0].material].rgb;
     assert_eq!(first, [1.0, 0.0, 0.0]);
 }
+
+/// Writes `files` into a fresh folder and derives `model` there with
+/// `lsys derive --cpfg-format` (and `extra`); the string without
+/// whitespace, as cpfg's `-str` file reads once its line breaks go.
+fn derive_cpfg(files: &[(&str, &str)], model: &str, extra: &[&str]) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(tmp.path().join(name), text).unwrap();
+    }
+    let mut args = vec!["derive", "--cpfg-format"];
+    args.extend(extra);
+    args.push(model);
+    let out = lsys(tmp.path(), &args);
+    assert!(out.status.success(), "{}", common::stderr(&out));
+    String::from_utf8_lossy(&out.stdout)
+        .split_whitespace()
+        .collect()
+}
+
+/// cpfg's `&` moves the heading toward its up vector U (interpret.c:
+/// `change_dir(temp, heading, up, ...)`, as `+` moves it toward L), and
+/// cpfg's U starts at -z: pitching down from the start heads toward -z.
+/// lsys pitched away from U (the paper's rule), toward +z, so every `?P`
+/// after a pitch had its z negated (`?P(0,0.866025,0.5)` after `&(30)`),
+/// while turns and rolls agreed. Expected: cpfg built from the vlab
+/// sources (github.com/AlgorithmicBotany/vlab, commit 9bf820d), `cpfg -g
+/// -str`.
+#[test]
+fn pitch_turns_the_heading_toward_cpfgs_up_vector() {
+    let model = "Lsystem: 1\nderivation length: 1\nAxiom: A\n\
+        A --> [&(30)F(1)?P(0,0,0)][^(30)F(1)?P(0,0,0)][/(90)+(30)F(1)?P(0,0,0)]\
+        [/(40)&(20)+(10)^(70)\\(15)-(33)F(1)?P(0,0,0)?H(0,0,0)?L(0,0,0)?U(0,0,0)]\n\
+        endlsystem\n";
+    let got = derive_cpfg(&[("p.l", model), ("p.v", "angle factor: 12\n")], "p.l", &[]);
+    assert_eq!(
+        got,
+        "[&(30)F(1)?P(0,0.866025,-0.5)][^(30)F(1)?P(0,0.866025,0.5)][/(90)+(30)F(1)\
+         ?P(-3.06162e-17,0.866025,-0.5)][/(40)&(20)+(10)^(70)\\(15)-(33)F(1)\
+         ?P(0.00506312,0.726929,0.686694)?H(0.00506312,0.726929,0.686694)\
+         ?L(-0.997521,0.0518715,-0.0475558)?U(0.0701895,0.684751,-0.725389)]"
+    );
+}

@@ -201,12 +201,12 @@ fn clover_reads_light_from_its_image_and_leaves_shade_their_cells() {
     assert_eq!(
         answers,
         [
-            "?E(1,0.0001)",  // a leaf: no answer
-            "?E(0.5,0.5)",   // full light under one leaf (t = 0.5), ratio 64/128
-            "?E(0.5019608)", // 128/255
-            "?E(0.2509804)", // 64/255
-            "?E(0)",         // no light
-            "?E(0)",         // outside the grid
+            "?E(1,0.0001)", // a leaf: no answer
+            "?E(0.5,0.5)",  // full light under one leaf (t = 0.5), ratio 64/128
+            "?E(0.501961)", // 128/255, as %g sends it to cpfg
+            "?E(0.25098)",  // 64/255
+            "?E(0)",        // no light
+            "?E(0)",        // outside the grid
         ]
     );
 }
@@ -343,4 +343,61 @@ fn density_is_low_away_from_the_pattern_and_its_gradient_points_away() {
     let r = Density::new(one_point).respond(&src);
     assert_eq!(r[0][0], Some(1.0));
     assert_eq!(r[1], [None]);
+}
+
+/// A light (chiba) model of our own, run as cpfg runs it (`cpfg -M q.mat
+/// -e q.e q.l q.v`): spheres after turns, pitches and rolls, and each
+/// answer `r` written back as `D(r - 0.1)`. Expected string: cpfg and
+/// chiba built from the vlab sources (github.com/AlgorithmicBotany/vlab,
+/// commit 9bf820d), `cpfg -g -str`. Two things had to be as cpfg does
+/// them. The positions sent: lsys negated z for every query, right after
+/// a pitch (lsys's pitch went the other way from cpfg's) and wrong after
+/// a roll (`/(90)+(30)` got the light of its mirror image, D(-0.0599957)
+/// instead of D(-0.009013)). And the text between the two programs: each
+/// parameter crosses as `%g` (6 digits) both ways, so `r` arrives as
+/// 0.185836, not 0.185836285 (D(0.085836), not D(0.0858363)).
+#[test]
+fn chiba_answers_reach_the_model_as_cpfgs_text_protocol_delivers_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let w = |name: &str, text: &str| std::fs::write(dir.path().join(name), text).unwrap();
+    w("specifications", "cpfg -M q.mat -e q.e q.l q.v\n");
+    w(
+        "q.e",
+        "executable: chiba -e q.e light.spec\ncommunication type: pipes\n\
+         turtle position:P:%.4g %.4g %.4g\n",
+    );
+    w(
+        "light.spec",
+        "transmittance: 0.25\nlower to upper ratio: 0.0\nestimate intersection area: on\n\
+         grid size: 8x8x8\nsource direction: 0 100 0 4\nsource direction: 40 100 0 3\n\
+         source direction: 0 75 -80 2\n",
+    );
+    w("q.v", "angle factor: 12\n");
+    w(
+        "q.l",
+        "Lsystem: 1\nderivation length: 2\nAxiom: A\n\
+         A --> F(1)?P(0,0,0)?E(1)[+(30)F(1)?E(1)][-(30)F(1)?E(1)][&(30)F(1)?P(0,0,0)?E(1)]\
+         [^(30)F(1)?E(1)][/(90)+(30)F(1)?P(0,0,0)?E(1)][\\(90)+(30)F(1)?E(1)]\
+         [/(40)&(20)+(10)^(70)\\(15)-(33)F(1)?P(0,0,0)?H(0,0,0)?L(0,0,0)?U(0,0,0)?E(1)]\
+         [f(0.7995)f(0.7995)f(0.7995)?E(0.5)]\n\
+         ?E(r) --> D(r-0.1)\nendlsystem\n",
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["derive", "--cpfg-format", "q.l"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let got: String = String::from_utf8_lossy(&o.stdout)
+        .split_whitespace()
+        .collect();
+    assert_eq!(
+        got,
+        "F(1)?P(0,1,0)D(-0.088258)[+(30)F(1)D(-0.0152461)][-(30)F(1)D(0.280225)]\
+         [&(30)F(1)?P(0,1.86603,-0.5)D(0.085836)][^(30)F(1)D(0.034854)]\
+         [/(90)+(30)F(1)?P(-3.06162e-17,1.86603,-0.5)D(-0.009013)][\\(90)+(30)F(1)D(-0.0599957)]\
+         [/(40)&(20)+(10)^(70)\\(15)-(33)F(1)?P(0.00506312,1.72693,0.686694)\
+         ?H(0.00506312,0.726929,0.686694)?L(-0.997521,0.0518715,-0.0475558)\
+         ?U(0.0701895,0.684751,-0.725389)D(-0.0748173)][f(0.7995)f(0.7995)f(0.7995)D(0.9)]"
+    );
 }

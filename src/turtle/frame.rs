@@ -70,6 +70,9 @@ impl Default for Frame {
 impl Frame {
     /// cpfg's start frame: as the default, but with U toward −z, so that
     /// rotations written in H, L and U mirror the model in z as cpfg does.
+    /// cpfg's `&` moves H toward this U, not away from it as
+    /// [`Frame::pitch`] does: the turtle negates cpfg's pitch angles
+    /// (`Action::Pitch` in `interp.rs`).
     pub fn cpfg() -> Frame {
         Frame {
             u: DVec3::NEG_Z,
@@ -237,7 +240,8 @@ mod tests {
         f.roll_to_horizontal();
         f.orthonormalize();
         assert!(close(f.h.cross(f.l), -f.u), "{f:?}");
-        // Pitching down from the start moves H toward +z (away from U).
+        // Frame::pitch moves H away from U, toward +z here; the turtle
+        // negates cpfg's angles, so cpfg's `&` heads toward -z.
         let mut g = Frame::cpfg();
         g.pitch(90.0);
         assert!(close(g.h, DVec3::Z), "{:?}", g.h);

@@ -424,6 +424,15 @@ impl Turtle<'_> {
                 self.state.frame.turn_by(sc)
             }
             Pitch(sign) => {
+                // cpfg's `&` moves H toward its U (interpret.c: `change_dir(
+                // temp, heading, up, sin, cos)`, the form of `+` toward L),
+                // the paper's away from U; with cpfg's U = -z both pitch
+                // down toward -z, so the cpfg frame pitches the other way.
+                let sign = if self.opts.profile.cpfg_turtle {
+                    -sign
+                } else {
+                    sign
+                };
                 let sc = self.trig.sin_cos(f64::from(sign * self.angle(args)));
                 self.state.frame.pitch_by(sc)
             }
