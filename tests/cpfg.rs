@@ -247,3 +247,22 @@ fn pitch_turns_the_heading_toward_cpfgs_up_vector() {
          ?L(-0.997521,0.0518715,-0.0475558)?U(0.0701895,0.684751,-0.725389)]"
     );
 }
+
+/// cpfg sets a string's query modules whenever it interprets the string:
+/// before each step (the environment pass) and, after the last step, for
+/// the view volume, which `cpfg -g` computes only when the view file has
+/// no `box:`. With a box, the `?P` the last step wrote keeps the
+/// grammar's parameters (the topiary model's new apices print
+/// `?P(0,0,0)`); lsys filled it in either way. Expected: cpfg built from
+/// the vlab sources (commit 9bf820d), `cpfg -g -str`.
+#[test]
+fn a_view_box_leaves_the_last_steps_queries_unset() {
+    let model = "Lsystem: 1\nderivation length: 2\nAxiom: A\n\
+        A --> F(1)?P(0,0,0)B\nB --> +(90)F(2)?P(0,0,0)\n\
+        ?P(x,y,z) --> ?P(x,y,z)C(x+y)\nendlsystem\n";
+    let boxed = "angle factor: 4\nbox: x: -4,4 y: -2,7 z:-4,4\n";
+    let got = derive_cpfg(&[("b.l", model), ("b.v", boxed)], "b.l", &[]);
+    assert_eq!(got, "F(1)?P(0,1,0)C(1)+(90)F(2)?P(0,0,0)");
+    let got = derive_cpfg(&[("b.l", model), ("b.v", "angle factor: 4\n")], "b.l", &[]);
+    assert_eq!(got, "F(1)?P(0,1,0)C(1)+(90)F(2)?P(-2,1,0)");
+}

@@ -41,6 +41,9 @@ pub struct SideFiles {
     /// How a cpfg model's lines are drawn (its view file's line width
     /// lines, else cpfg's defaults); `None` for other models.
     pub lines: Option<ViewLines>,
+    /// The view file gives cpfg's bounding box (`box: x: ... y: ... z:
+    /// ...`), which turns cpfg's automatic view volume off.
+    pub view_box: bool,
     /// The contour curves of its `curve:` lines, in `curveX` order.
     pub curves: Vec<Result<crate::lang::curve::Curve, String>>,
     /// The cross-sections of its `contour:` lines (`@#(id)`).
@@ -114,6 +117,7 @@ pub(super) fn read_side_files(
                 colours: Vec::new(),
                 initial_colour: None,
                 lines: profile.cpfg_model_file.then(ViewLines::default),
+                view_box: false,
                 curves: Vec::new(),
                 contours: Vec::new(),
                 contour_problems: Vec::new(),
@@ -150,6 +154,7 @@ pub(super) fn read_side_files(
         lines: profile
             .cpfg_model_file
             .then(|| view_lines(&sources.get(id).text)),
+        view_box: keyed_lines(&sources.get(id).text, "box").next().is_some(),
     }
 }
 

@@ -399,6 +399,11 @@ pub struct TurtleSettings {
     /// The cross-sections of a cpfg view file's `contour:` lines, which
     /// `@#(id)` selects for generalized cylinders.
     pub contours: Vec<crate::load::Contour>,
+    /// A cpfg model whose view file gives its bounding box (`box:`):
+    /// cpfg then computes no view volume, the interpretation that
+    /// otherwise sets the final string's `?P`, `?H`, ... and draws the
+    /// homomorphism's random numbers before the string is printed.
+    pub view_box: bool,
 }
 
 impl Program {

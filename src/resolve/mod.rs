@@ -78,6 +78,7 @@ pub fn resolve(loaded: Loaded, opts: &Options) -> Result<Resolved, Failure> {
         view_angle: loaded.side.angle,
         view_colours: loaded.side.colours,
         view_initial_colour: loaded.side.initial_colour,
+        view_box: loaded.side.view_box,
         view_lines: loaded.side.lines,
         view_curves: loaded.side.curves,
         view_contours: loaded.side.contours,
@@ -169,6 +170,8 @@ pub(crate) struct Resolver {
     pub view_colours: Vec<(usize, [f32; 3])>,
     /// The turtle's first colour index, from a cpfg view file.
     pub view_initial_colour: Option<u32>,
+    /// A cpfg view file's `box:` line.
+    pub view_box: bool,
     /// A cpfg model's line widths, from its view file.
     pub view_lines: Option<crate::load::ViewLines>,
     /// A cpfg model's contour curves (`curve:` lines of its view file).

@@ -152,6 +152,7 @@ impl Resolver {
             turtle.pixel_lines = lines.pixels;
         }
         turtle.contours = std::mem::take(&mut self.view_contours);
+        turtle.view_box = self.profile.cpfg_model_file && self.view_box;
         // Its colours are in its colour map and material files; the
         // file's own `colour i:` headers come after, and win.
         if self.profile.cpfg_model_file && !self.view_colours.is_empty() {

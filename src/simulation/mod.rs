@@ -53,6 +53,14 @@ pub struct Simulation<'p> {
     interprets_each: bool,
     /// That interpretation of the current string.
     drawn: Option<ModuleStore>,
+    /// cpfg interprets the final string for its view volume (the pass
+    /// that sets its query modules and draws the homomorphism's random
+    /// numbers) only when the view file gives no `box:`; `cpfg -g` then
+    /// prints the string as the last step left it.
+    view_pass: bool,
+    /// The interpretation after the target step, left out because cpfg
+    /// makes none there (`view_pass` off); made before a further step.
+    deferred: bool,
 }
 
 impl<'p> Simulation<'p> {
@@ -108,6 +116,7 @@ impl<'p> Simulation<'p> {
                 .list
                 .iter()
                 .any(|s| s.kind == SymbolKind::Query && s.name != "?");
+        let view_pass = !(program.profile.shared_random_stream && program.turtle.view_box);
         Simulation {
             derivation,
             program,
@@ -118,6 +127,8 @@ impl<'p> Simulation<'p> {
             ended: false,
             interprets_each,
             drawn: None,
+            view_pass,
+            deferred: false,
         }
     }
 
@@ -129,7 +140,7 @@ impl<'p> Simulation<'p> {
         target: u32,
     ) -> Result<Simulation<'p>, DeriveError> {
         let mut s = Simulation::bare(derivation, program, compiled, opts, target);
-        s.answer(true)?;
+        s.answer_after()?;
         Ok(s)
     }
 
@@ -145,7 +156,7 @@ impl<'p> Simulation<'p> {
         let derivation = Derivation::new(program, compiled, opts.clone())?;
         let mut s = Simulation::bare(derivation, program, compiled, opts, target);
         s.environments.extend(extra);
-        s.answer(true)?;
+        s.answer_after()?;
         Ok(s)
     }
 
@@ -154,6 +165,20 @@ impl<'p> Simulation<'p> {
     pub fn with_environment(mut self, env: Box<dyn Environment + 'p>) -> Simulation<'p> {
         self.environments.push(env);
         self
+    }
+
+    /// The environments' answers after the axiom or a step, except after
+    /// the target step of a cpfg model whose view file has `box:`: cpfg's
+    /// batch run interprets the final string only for its view volume,
+    /// which a `box:` makes it skip, so the string keeps the query
+    /// parameters the last step wrote (topiary's new `?P(0,0,0)`) and no
+    /// random number is drawn. Made before a further step, if any.
+    fn answer_after(&mut self) -> Result<(), DeriveError> {
+        if !self.view_pass && self.derivation.step_number() == self.target {
+            self.deferred = true;
+            return Ok(());
+        }
+        self.answer(true)
     }
 
     /// Every environment answers the queries of the current string, after
@@ -192,11 +217,14 @@ impl<'p> Simulation<'p> {
     /// `StartEach:`, productions, decomposition, `EndEach:`, the turtle's
     /// answers to query modules, and `End:` when this was the target step.
     pub fn step(&mut self) -> Result<(), DeriveError> {
+        if std::mem::take(&mut self.deferred) {
+            self.answer(true)?;
+        }
         self.answer(false)?;
         self.drawn = None;
         self.derivation.rewrite_step()?;
         self.derivation.end_each()?;
-        self.answer(true)?;
+        self.answer_after()?;
         if self.derivation.step_number() == self.target {
             self.finish()?;
         }
@@ -242,7 +270,7 @@ impl<'p> Simulation<'p> {
                 self.derivation.step_number(),
             );
         }
-        if !self.interprets_each {
+        if !self.interprets_each && self.view_pass {
             self.derivation.interpret()?;
         }
         self.derivation.interpret()
