@@ -266,3 +266,20 @@ fn a_view_box_leaves_the_last_steps_queries_unset() {
     let got = derive_cpfg(&[("b.l", model), ("b.v", "angle factor: 4\n")], "b.l", &[]);
     assert_eq!(got, "F(1)?P(0,1,0)C(1)+(90)F(2)?P(-2,1,0)");
 }
+
+/// cpfg's scanner reads `@Gc(4)` as `@`, `G`, `c(4)`, so the
+/// homomorphism's `@G --> *` (two-trees uses it to drop generalized
+/// cylinders) eats the `@G` of `@Gs`, `@Gc(4)`, `@Ge` and of an unknown
+/// `@GA`, leaving the rest of each. lsys kept those commands whole (and
+/// warned that the production never fires). Expected: cpfg built from the
+/// vlab sources (commit 9bf820d), `cpfg -g -homo -str`.
+#[test]
+fn a_production_for_an_at_command_also_eats_the_start_of_longer_ones() {
+    let model = "Lsystem: 1\nderivation length: 1\nAxiom: A\n\
+        A --> @GsF(1)@Gc(4)F(1)@Gc(2,3)@Ge@GA\nhomomorphism\n@G --> *\nendlsystem\n";
+    let files = [("g.l", model), ("g.v", "angle factor: 12\n")];
+    let got = derive_cpfg(&files, "g.l", &["--homomorphism"]);
+    assert_eq!(got, "sF(1)c(4)F(1)c(2,3)eA");
+    let got = derive_cpfg(&files, "g.l", &[]);
+    assert_eq!(got, "@GsF(1)@Gc(4)F(1)@Gc(2,3)@Ge@GA");
+}

@@ -26,12 +26,16 @@ use std::collections::HashMap;
 
 use std::collections::HashSet;
 
-use super::ir::{ContextFilter, Production, SymId, Table};
+use super::ir::{ContextFilter, Expr, ExprKind, Production, SuccModule, SymId, Table};
 use super::Resolver;
 
 impl Resolver {
     /// Adds the twins of every table's productions (see the module doc).
-    pub(super) fn command_twins(&mut self, tables: &mut HashMap<Table, Vec<Production>>) {
+    pub(super) fn command_twins(
+        &mut self,
+        tables: &mut HashMap<Table, Vec<Production>>,
+        axiom: &[SuccModule],
+    ) {
         for prods in tables.values_mut() {
             let twins: Vec<Production> = prods
                 .iter()
@@ -48,6 +52,76 @@ impl Resolver {
                     })
                 })
                 .collect();
+            prods.extend(twins);
+        }
+        self.prefix_twins(tables, axiom);
+    }
+
+    /// cpfg's scanner reads `@Gc(4)` as `@`, `G`, `c(4)`, so a production
+    /// for `@G` also matches the start of `@Gs`, `@Gc(4)` and `@Ge` and
+    /// leaves the rest: two-trees' homomorphism `@G --> *` prints `s`,
+    /// `c(4)`, `e`. lsys keeps each command one module; a production whose
+    /// strict predecessor is one `@` name without parameters, with no
+    /// context, gets a twin for every longer `@` name the file writes (and
+    /// every parameter count the axiom and successors write it with, none
+    /// if they do not write it) whose successor ends with the remaining
+    /// letters, the last one taking the command's parameters.
+    fn prefix_twins(&mut self, tables: &mut HashMap<Table, Vec<Production>>, axiom: &[SuccModule]) {
+        let mut counts: HashMap<SymId, HashSet<usize>> = HashMap::new();
+        for m in tables.values().flatten().flat_map(|p| &p.succ).chain(axiom) {
+            counts.entry(m.sym).or_default().insert(m.args.len());
+        }
+        for prods in tables.values_mut() {
+            let mut twins = Vec::new();
+            for p in prods.iter() {
+                let [pred] = p.pred.as_slice() else {
+                    continue;
+                };
+                let name = self.symbols.name(pred.sym).to_string();
+                if !name.starts_with('@') || pred.arity != 0 || p.has_context() {
+                    continue;
+                }
+                let longer: Vec<(SymId, String)> = self
+                    .symbols
+                    .list
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.name.len() > name.len() && s.name.starts_with(&name))
+                    .map(|(id, s)| (id as SymId, s.name[name.len()..].to_string()))
+                    .collect();
+                for (sym, rest) in longer {
+                    let mut arities: Vec<usize> = counts
+                        .get(&sym)
+                        .map_or(vec![0], |c| c.iter().copied().collect());
+                    arities.sort_unstable();
+                    let letters: Vec<SymId> = rest
+                        .chars()
+                        .map(|c| self.intern(&c.to_string(), None))
+                        .collect();
+                    for k in arities {
+                        let mut twin = p.clone();
+                        twin.pred[0].sym = sym;
+                        twin.pred[0].arity = k as u8;
+                        twin.pred[0].first_param = p.nparams;
+                        twin.nparams = p.nparams + k as u16;
+                        twin.param_names
+                            .extend((0..k).map(|i| format!("{rest}{i}")));
+                        let span = p.head_span;
+                        for (j, &l) in letters.iter().enumerate() {
+                            let last = j + 1 == letters.len();
+                            let args = (0..k)
+                                .filter(|_| last)
+                                .map(|i| Expr {
+                                    kind: ExprKind::Param(p.nparams + i as u16),
+                                    span,
+                                })
+                                .collect();
+                            twin.succ.push(SuccModule { sym: l, args, span });
+                        }
+                        twins.push(twin);
+                    }
+                }
+            }
             prods.extend(twins);
         }
     }

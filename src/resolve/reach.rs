@@ -93,9 +93,21 @@ pub(super) fn never_fires(program: &Program) -> Vec<ResolveError> {
         }
     }
     for (prods, occurs) in [(&derived, &occurs), (&drawn, &occurs_drawn)] {
-        for p in prods.iter() {
+        for (i, p) in prods.iter().enumerate() {
+            // cpfg's twins of a production (cpfg_commands.rs) share its
+            // span: the production fires when one of them can, and is
+            // warned about once.
+            if prods[..i].iter().any(|q| q.span == p.span) {
+                continue;
+            }
             if let Some(w) = check(program, p, occurs) {
-                out.push(w);
+                if prods[i + 1..]
+                    .iter()
+                    .filter(|q| q.span == p.span)
+                    .all(|q| check(program, q, occurs).is_some())
+                {
+                    out.push(w);
+                }
             }
         }
     }

@@ -73,7 +73,8 @@ impl Resolver {
             }
         }
         if self.profile.cpfg_model_file {
-            self.command_twins(&mut tables);
+            let axiom = s.axiom.as_ref().map_or(&[][..], |(a, _)| a.as_slice());
+            self.command_twins(&mut tables, axiom);
             if let Some((filter, _)) = &mut s.context {
                 self.cpfg_context_letters(filter);
             }
