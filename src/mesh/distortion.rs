@@ -96,9 +96,7 @@ fn elongation(size: Vec3) -> Option<f32> {
 }
 
 fn short(x: f32) -> String {
-    let s = format!("{x:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    s.to_string()
+    crate::turtle::scope::num_places(f64::from(x), 2)
 }
 
 /// `s*0.21`, or `s` for the longest side.

@@ -314,45 +314,33 @@ fn gables(m: &mut TriMesh, nz: usize, y: &dyn Fn(f32, f32) -> f32) {
         let eave = profile.iter().map(|p| p.1).fold(f32::INFINITY, f32::min);
         let at = |x: f32, (z, h): (f32, f32)| Vec3::new(x, h, z);
         let foot = |x: f32, z: f32| Vec3::new(x, eave, z);
+        // Each face as the +x end has it; the -x end is its mirror, wound
+        // the other way (all the faces are flat, so either diagonal).
+        let mut face = |a, b, c, d| {
+            if s > 0.0 {
+                quad(m, a, b, c, d)
+            } else {
+                quad(m, a, d, c, b)
+            }
+        };
         for pair in profile.windows(2) {
             let (p, q) = (pair[0], pair[1]);
             // Outer and inner faces: a strip from the eave line up to
-            // the profile (outward is +x at the +x end).
-            let (op, oq, fp, fq) = (
-                at(outer, p),
-                at(outer, q),
-                foot(outer, p.0),
-                foot(outer, q.0),
-            );
-            let (ip, iq, gp, gq) = (
-                at(inner, p),
-                at(inner, q),
-                foot(inner, p.0),
-                foot(inner, q.0),
-            );
-            if s < 0.0 {
-                quad(m, fq, oq, op, fp);
-                quad(m, gp, ip, iq, gq);
-                quad(m, op, oq, iq, ip);
-            } else {
-                quad(m, fp, op, oq, fq);
-                quad(m, gq, iq, ip, gp);
-                quad(m, oq, op, ip, iq);
-            }
+            // the profile; then the wall's top, under the shell.
+            let (op, oq) = (at(outer, p), at(outer, q));
+            let (ip, iq) = (at(inner, p), at(inner, q));
+            face(foot(outer, p.0), op, oq, foot(outer, q.0));
+            face(foot(inner, q.0), iq, ip, foot(inner, p.0));
+            face(oq, op, ip, iq);
         }
         // The bottom, along the eave line.
         let (z0, z1) = (profile[0].0, profile[nz].0);
-        let (a, b, c, d) = (
+        face(
             foot(outer, z0),
             foot(outer, z1),
             foot(inner, z1),
             foot(inner, z0),
         );
-        if s > 0.0 {
-            quad(m, a, b, c, d);
-        } else {
-            quad(m, a, d, c, b);
-        }
     }
 }
 
@@ -491,16 +479,20 @@ mod tests {
                 }
             }
             // Signed volume of the closed pieces: positive when outward.
-            let vol: f32 = m
-                .indices
-                .chunks_exact(3)
-                .map(|t| {
-                    let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
-                    a.dot(b.cross(c)) / 6.0
-                })
-                .sum();
+            let vol = signed_volume(&m);
             assert!(vol > 0.0, "{kind:?} volume {vol}");
         }
+    }
+
+    /// The volume a mesh's triangles enclose, positive when they face out.
+    fn signed_volume(m: &TriMesh) -> f32 {
+        m.indices
+            .chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
     }
 
     /// A clipped roof's gables are closed solids facing outward, their
@@ -510,14 +502,7 @@ mod tests {
     fn clipped_roofs_have_closed_gable_ends() {
         let mut m = TriMesh::default();
         gables(&mut m, NZ, &|x, z| surface(RoofKind::Clipped, x, z));
-        let vol: f32 = m
-            .indices
-            .chunks_exact(3)
-            .map(|t| {
-                let [a, b, c] = [0, 1, 2].map(|k| m.positions[t[k] as usize]);
-                a.dot(b.cross(c)) / 6.0
-            })
-            .sum();
+        let vol = signed_volume(&m);
         // Two walls, each the profile's area times the thickness.
         let area = 2.0 * GABLE_THICK * (0.6 / 2.7);
         assert!(

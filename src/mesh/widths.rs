@@ -18,27 +18,39 @@ pub const WIDEST: f32 = 0.75;
 /// the model: all drawn as meant, none warned.
 pub const TYPICAL: f32 = 0.3;
 
-/// The warning for `drawing`, if its line widths dwarf it.
+/// The warning for `drawing`, if its line widths dwarf it. Runs on every
+/// build: one pass for the bounds and the widest line, and the segments
+/// are only collected and sorted for the median when the widest line is
+/// wide enough for the median to matter (almost never).
 pub fn wide_lines(program: &Program, drawing: &Drawing) -> Option<MeshError> {
     let mut lo = glam::Vec3::splat(f32::INFINITY);
     let mut hi = glam::Vec3::splat(f32::NEG_INFINITY);
-    // (width, drawn length) of every segment.
-    let mut segments: Vec<(f32, f32)> = Vec::new();
+    let mut widest = 0.0f32;
     for c in &drawing.chains {
         for p in &c.points {
             lo = lo.min(p.pos);
             hi = hi.max(p.pos);
         }
         for pair in c.points.windows(2) {
-            let length = pair[0].pos.distance(pair[1].pos);
-            segments.push((pair[0].radius + pair[1].radius, length));
+            widest = widest.max(pair[0].radius + pair[1].radius);
         }
     }
     let size = (hi - lo).max_element();
-    if segments.is_empty() || size.is_nan() || size <= 0.0 {
+    // The typical line is no wider than the widest: below TYPICAL there
+    // is nothing to say (and no chains at all gives a size of -inf).
+    if size.is_nan() || size <= 0.0 || widest <= TYPICAL * size {
         return None;
     }
-    let widest = segments.iter().map(|s| s.0).fold(0.0, f32::max);
+    // (width, drawn length) of every segment.
+    let mut segments: Vec<(f32, f32)> = drawing
+        .chains
+        .iter()
+        .flat_map(|c| {
+            c.points
+                .windows(2)
+                .map(|p| (p[0].radius + p[1].radius, p[0].pos.distance(p[1].pos)))
+        })
+        .collect();
     let typical = weighted_median(&mut segments)?;
     if widest <= WIDEST * size && typical <= TYPICAL * size {
         return None;
@@ -69,8 +81,7 @@ fn weighted_median(segments: &mut [(f32, f32)]) -> Option<f32> {
 }
 
 fn short(x: f32) -> String {
-    let s = format!("{x:.3}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
+    crate::turtle::scope::num(f64::from(x))
 }
 
 #[cfg(test)]

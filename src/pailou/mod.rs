@@ -4,7 +4,7 @@
 //! library's Pailou grammar with its layout tables filled in, ready to
 //! compile (or to print for an expert to continue by hand); and a layout's
 //! canonical graph back out (`emit.rs`, written by `document.rs`).
-//! `kinds.rs` names the component kinds, `structure.rs` checks a built
+//! `kinds.rs` names the component kinds, `structure/` checks a built
 //! Pailou's parts against the relation matrix.
 pub mod document;
 mod emit;

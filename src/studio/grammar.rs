@@ -281,16 +281,18 @@ fn top_level_items(text: &str) -> Vec<&str> {
     items
 }
 
+/// A define's text as a number when it is one or a fraction of two
+/// (`7/61`); `1/0` is infinite.
+pub(super) fn number_or_fraction(s: &str) -> Option<f64> {
+    match s.split_once('/') {
+        Some((a, b)) => Some(a.trim().parse::<f64>().ok()? / b.trim().parse::<f64>().ok()?),
+        None => s.trim().parse().ok(),
+    }
+}
+
 /// A define as the page shows it: a slider for a number or `a/b`.
 fn slider(name: String, value: String) -> Define {
-    let number = match value.split_once('/') {
-        Some((a, b)) => match (a.trim().parse::<f64>(), b.trim().parse::<f64>()) {
-            (Ok(a), Ok(b)) => Some(a / b),
-            _ => None,
-        },
-        None => value.parse::<f64>().ok(),
-    }
-    .filter(|v| v.is_finite());
+    let number = number_or_fraction(&value).filter(|v| v.is_finite());
     let integer = number.is_some() && !value.contains(['.', 'e', 'E', '/']);
     let range = number.map(|v| match v {
         v if v > 0.0 => (

@@ -136,7 +136,7 @@ impl PailouSession {
                 }
                 let number = match &edit["value"] {
                     Value::Number(n) => n.as_f64(),
-                    Value::String(s) => fraction(s),
+                    Value::String(s) => super::grammar::number_or_fraction(s),
                     _ => None,
                 };
                 if let Some(v) = number {
@@ -302,12 +302,4 @@ fn positions(g: &GraphDocument) -> BTreeMap<String, (f64, f64)> {
         }
     }
     at
-}
-
-/// A define's text as a number when it is one or a fraction (`7/61`).
-fn fraction(s: &str) -> Option<f64> {
-    match s.split_once('/') {
-        Some((a, b)) => Some(a.trim().parse::<f64>().ok()? / b.trim().parse::<f64>().ok()?),
-        None => s.trim().parse().ok(),
-    }
 }

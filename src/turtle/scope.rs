@@ -60,12 +60,17 @@ pub struct Misfit {
 }
 
 pub(crate) fn num(x: f64) -> String {
+    num_places(x, 3)
+}
+
+/// `x` with at most `places` decimals, trailing zeros dropped.
+pub(crate) fn num_places(x: f64, places: usize) -> String {
     // Sizes far from 1 (a 1e308 scope, a denormal piece) in exponent form:
     // three decimals would print 309 digits, or 0.
     if x != 0.0 && x.is_finite() && !(1e-3..1e15).contains(&x.abs()) {
         return format!("{x:e}");
     }
-    let s = format!("{x:.3}");
+    let s = format!("{x:.places$}");
     let s = s.trim_end_matches('0').trim_end_matches('.').to_string();
     if s == "-0" {
         "0".into()

@@ -1,7 +1,7 @@
 //! The structural check: a [`Scene`]'s component instances -> the parts
 //! that do not stand. Each instance is its component's unit box carried to
 //! world space (an axis-aligned box around it; the Pailou's parts are all
-//! axis-aligned). Two kinds of problem are reported, each naming both
+//! axis-aligned). Three kinds of problem are reported, each naming the
 //! instances (`MPB#3`, `RC#1`) and a length in model units:
 //!
 //! * **Support.** Every part whose kind the rules know must rest on, hang
@@ -14,6 +14,8 @@
 //!   joined through each other by a relation of the matrix: a pillar
 //!   through its base and cap, a lintel mortised into its pillars, a Queti
 //!   set against its pillar.
+//! * **Roofs** ([`roofs`]): roofs at one height that meet, a pillar rising
+//!   out of a roof, a roof that nothing holds.
 //!
 //! Symbols of other grammars have no kind: they are checked for
 //! interpenetration only, and never count as joined.
@@ -25,13 +27,12 @@ use glam::Vec3;
 
 use crate::mesh::Scene;
 
+mod roofs;
+pub use roofs::HOLD_GAP;
+
 /// Contact within this gap counts, and overlaps up to this depth are
 /// allowed, in model units.
 pub const TOLERANCE: f32 = 0.02;
-
-/// A part whose top is within this of a roof's bottom may hold the roof
-/// (a Toukung row, a lintel, a pillar's top), in model units.
-pub const HOLD_GAP: f32 = 0.1;
 
 /// How a part meets its support.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -255,88 +256,8 @@ pub fn check(scene: &Scene, rules: &Rules) -> Vec<Problem> {
         }
     }
     overlaps(&parts, rules, &mut out);
-    roofs(&parts, &mut out);
+    roofs::roofs(&parts, &mut out);
     out
-}
-
-fn is_roof(p: &Part) -> bool {
-    matches!(p.kind.as_deref(), Some("eaves_roof" | "clipped_roof"))
-}
-
-/// The roofs' own rules (issue 37): roofs at one height must not meet, a
-/// pillar must not rise out of a roof, and a roof must have something
-/// under both its ends.
-fn roofs(parts: &[Part], out: &mut Vec<Problem>) {
-    let roofs: Vec<&Part> = parts.iter().filter(|p| is_roof(p)).collect();
-    for (n, a) in roofs.iter().enumerate() {
-        for b in &roofs[n + 1..] {
-            let o = a.hi.min(b.hi) - a.lo.max(b.lo);
-            let same_height = o.y > 0.5 * (a.hi.y - a.lo.y).min(b.hi.y - b.lo.y);
-            // Touching or overlapping (a deeper overlap is also reported
-            // as interpenetrating), along x, their footprints side by side.
-            if same_height && o.z > TOLERANCE && o.x > -TOLERANCE {
-                let x = 0.5 * (a.hi.x.min(b.hi.x) + a.lo.x.max(b.lo.x));
-                out.push(Problem::RoofsMeet {
-                    a: a.name.clone(),
-                    b: b.name.clone(),
-                    x,
-                });
-            }
-        }
-    }
-    for p in parts {
-        if p.kind.as_deref() != Some("suspended_pillar") {
-            continue;
-        }
-        let centre = (p.lo + p.hi) * 0.5;
-        let roof = roofs.iter().find(|r| {
-            (r.lo.x..=r.hi.x).contains(&centre.x)
-                && (r.lo.z..=r.hi.z).contains(&centre.z)
-                && p.lo.y > r.lo.y + TOLERANCE
-                && p.lo.y < r.hi.y + TOLERANCE
-        });
-        if let Some(r) = roof {
-            out.push(Problem::PillarOnRoof {
-                part: p.name.clone(),
-                roof: r.name.clone(),
-                depth: r.hi.y - p.lo.y,
-            });
-        }
-    }
-    for r in &roofs {
-        // What may hold a roof: a part (not a roof) reaching up to within
-        // [HOLD_GAP] under the roof's bottom and not above its middle,
-        // its footprint under the roof's.
-        let mid = (r.lo.y + r.hi.y) * 0.5;
-        let holds = |q: &&Part, x0: f32, x1: f32| {
-            !is_roof(q)
-                && q.lo.x < x1
-                && q.hi.x > x0
-                && q.hi.z > r.lo.z
-                && q.lo.z < r.hi.z
-                && q.hi.y > r.lo.y - HOLD_GAP
-                && q.lo.y < mid
-        };
-        let c = (r.lo.x + r.hi.x) * 0.5;
-        // Held under its middle (a Toukung row, a lintel, a pillar's top),
-        // or at both ends (between two pillars, as the paper's clipped
-        // roofs sit between suspended pillars).
-        let under_middle = parts.iter().any(|q| holds(&q, c - 1e-3, c + 1e-3));
-        let left = parts.iter().any(|q| holds(&q, r.lo.x, c));
-        let right = parts.iter().any(|q| holds(&q, c, r.hi.x));
-        if !(under_middle || left && right) {
-            let (side, x) = match (left, right) {
-                (true, _) => ("right", (c + r.hi.x) * 0.5),
-                (_, true) => ("left", (r.lo.x + c) * 0.5),
-                _ => ("either", c),
-            };
-            out.push(Problem::RoofOverNothing {
-                part: r.name.clone(),
-                side,
-                x,
-            });
-        }
-    }
 }
 
 /// Footprints (x and z) overlap (by more than a rounding error).
@@ -529,7 +450,7 @@ mod tests {
 
     fn rules() -> Rules {
         // The standard library's relation matrix (as `pailou` reads it).
-        Rules::pailou(include_str!("../../grammar/std/relations.toml")).unwrap()
+        Rules::pailou(include_str!("../../../grammar/std/relations.toml")).unwrap()
     }
 
     /// A Π with a Toukung on its lintel stands; lift the Toukung, sink a
