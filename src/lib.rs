@@ -80,6 +80,7 @@ mod environment;
 mod exit_code;
 mod export;
 mod guided;
+mod infer;
 mod lang;
 mod load;
 #[cfg(feature = "cli")]
@@ -127,6 +128,9 @@ pub mod internals {
     }
     pub mod guided {
         pub use crate::guided::*;
+    }
+    pub mod infer {
+        pub use crate::infer::*;
     }
     pub mod lang {
         pub use crate::lang::*;

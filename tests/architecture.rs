@@ -36,6 +36,7 @@ const ABOVE: &[&str] = &[
     "build",
     "guided",
     "pailou",
+    "infer",
     "api",
     "driver",
     "exit_code",
@@ -186,7 +187,7 @@ const FRONT_ENDS: &[&str] = &["cli", "studio", "repl"];
 
 /// What a front end may not name.
 fn behind_the_door(m: &str) -> bool {
-    rank(m).is_some() || ["pipeline", "build", "guided", "pailou"].contains(&m)
+    rank(m).is_some() || ["pipeline", "build", "guided", "pailou", "infer"].contains(&m)
 }
 
 #[test]

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::driver::limits::*;
-use crate::driver::View;
+use crate::driver::{Style, View};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -45,6 +45,8 @@ pub enum Command {
     Commands,
     /// Build a Pailou from a component graph or a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
     Pailou(PailouArgs),
+    /// Infer a hall's shape grammar from an elevation line drawing (PNG): lsys infer front.png -o hall.lsys
+    Infer(InferArgs),
     /// Explore a grammar step by step: step, go back, show, edit rules, set defines, export.
     Repl(ReplArgs),
     /// Build many models from a manifest (one JSON item a line) into a folder with an index; resumable, in shards (see docs/batch.md).
@@ -316,6 +318,34 @@ pub struct LookArgs {
     pub guides: bool,
 }
 
+/// `lsys infer`: a grammar from an elevation drawing.
+#[derive(Args, Debug)]
+pub struct InferArgs {
+    /// The drawing: a PNG of dark lines on a light background.
+    pub drawing: PathBuf,
+    /// The grammar to write (.lsys).
+    #[arg(short = 'o', long = "output", value_name = "OUT.lsys")]
+    pub output: PathBuf,
+    /// Also write the labelled shape tree as JSON.
+    #[arg(long, value_name = "OUT.json")]
+    pub tree: Option<PathBuf>,
+    /// Bridge breaks in the lines up to twice this many pixels.
+    #[arg(long, value_name = "PIXELS", default_value_t = 2,
+          value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=8))]
+    pub gap: usize,
+    /// Metres per pixel of the drawing (default: the columns are 4.2 m high).
+    #[arg(long, value_name = "METRES", value_parser = positive)]
+    pub scale: Option<f64>,
+}
+
+/// A finite number above zero.
+fn positive(s: &str) -> Result<f64, String> {
+    match finite(s)? {
+        x if x > 0.0 => Ok(x),
+        _ => Err("must be above zero".to_string()),
+    }
+}
+
 /// `lsys pailou`: a Pailou from a component graph or a style.
 #[derive(Args, Debug)]
 pub struct PailouArgs {
@@ -379,14 +409,20 @@ pub struct RenderArgs {
     pub output: PathBuf,
     #[command(flatten)]
     pub picture: PictureArgs,
+    /// Shaded surfaces, or an architect's line drawing of the visible edges.
+    #[arg(long, value_enum, default_value_t = Style::Shaded)]
+    pub style: Style,
 }
 
 /// How a picture is taken.
-#[derive(Args, Debug)]
+#[derive(Args, Clone, Debug)]
 pub struct PictureArgs {
     /// Where the camera looks from.
     #[arg(long, value_enum, default_value_t = View::Iso)]
     pub view: View,
+    /// Set from `lsys render --style` (`lsys pailou` has its own `--style`).
+    #[arg(skip)]
+    pub style: Style,
     /// Picture size in pixels, WIDTHxHEIGHT.
     #[arg(long, value_name = "WxH", default_value = "1024x768", value_parser = parse_size)]
     pub size: (u32, u32),

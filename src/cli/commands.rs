@@ -22,6 +22,7 @@ pub fn run(cmd: &Command, color: bool, repl_color: Option<bool>) -> i32 {
         Command::Build(b) => super::model::build_cmd(b, color),
         Command::Render(r) => super::model::render_cmd(r, color),
         Command::Pailou(p) => super::model::pailou_cmd(p, color),
+        Command::Infer(i) => super::infer::infer_cmd(i, color),
         Command::Commands => emit_stdout(|out| out.write_all(driver::turtle_commands().as_bytes())),
         Command::Watch(b) => super::watch::watch_cmd(b, color),
         Command::Batch(b) => super::batch::batch_cmd(b, color),

@@ -6,6 +6,7 @@ mod args;
 mod batch;
 mod commands;
 mod guided;
+mod infer;
 mod model;
 mod options;
 mod report;

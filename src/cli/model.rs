@@ -42,13 +42,17 @@ pub fn render_cmd(r: &RenderArgs, color: bool) -> i32 {
         );
         return EX_USAGE;
     }
+    let picture = PictureArgs {
+        style: r.style,
+        ..r.picture.clone()
+    };
     if is_toml(&r.model) {
-        return build_toml(&r.model, &r.output, &r.picture, Format::Png, color);
+        return build_toml(&r.model, &r.output, &picture, Format::Png, color);
     }
     build_once(
         model_job(&r.model),
         &r.output,
-        &r.picture,
+        &picture,
         Format::Png,
         color,
         Report::Stats,

@@ -29,6 +29,7 @@ pub(super) fn grammar_options(
 pub(super) fn picture(pic: &PictureArgs) -> driver::Picture {
     driver::Picture {
         view: pic.view,
+        style: pic.style,
         width: pic.size.0,
         height: pic.size.1,
         ..Default::default()

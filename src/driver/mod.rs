@@ -24,6 +24,7 @@
 pub mod batch;
 mod empty;
 mod guided;
+mod infer;
 mod job;
 mod pailou;
 mod run;
@@ -35,6 +36,9 @@ mod toml_file;
 mod watch;
 
 pub use guided::{run_guided, GuidedDone, GuidedJob};
+pub use infer::{
+    infer_drawing, write_inference, InferError, InferFailure, InferNode, InferOptions, Inference,
+};
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
 pub use run::{run, Done, Event, Failure, Reason};
@@ -46,7 +50,7 @@ pub use watch::{Change, WatchError, Watcher};
 
 pub use crate::build::Stage;
 pub use crate::export::output::Format;
-pub use crate::export::render::{RenderOptions as Picture, View};
+pub use crate::export::render::{RenderOptions as Picture, Style, View};
 pub use crate::load::Input;
 pub use crate::pailou::kinds::is_graph_kind;
 pub use crate::pailou::structure::Problem;

@@ -125,6 +125,16 @@ impl Camera {
         )
     }
 
+    /// Screen right, screen up and towards the viewer, in world space.
+    pub(super) fn axes(&self) -> (Vec3, Vec3, Vec3) {
+        (self.right, self.up, self.back)
+    }
+
+    /// Samples per world unit.
+    pub(super) fn scale(&self) -> f32 {
+        self.scale
+    }
+
     /// Unit vector from the model towards the viewer.
     pub(super) fn toward_viewer(&self) -> Vec3 {
         self.back

@@ -8,6 +8,7 @@
 //! World convention: +Y is up; the front view looks from +Z towards -Z.
 
 mod camera;
+mod lines;
 mod raster;
 
 use std::fmt;
@@ -94,11 +95,25 @@ impl FromStr for View {
     }
 }
 
+/// How the model is drawn.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+pub enum Style {
+    /// Shaded surfaces in their colours, lit from the upper front-left.
+    #[default]
+    Shaded,
+    /// An architect's line drawing: visible edges in black on white, hidden
+    /// ones removed (outlines, creases, changes of material and depth
+    /// steps). With `--view front` an elevation, as `lsys infer` reads.
+    Lines,
+}
+
 /// How to render. The default is the iso view at 1024 x 768 with 2 x 2
 /// supersampling; a struct literal should end in `..Default::default()`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RenderOptions {
     pub view: View,
+    pub style: Style,
     /// Output width in pixels, 1 to [`MAX_SIZE`].
     pub width: u32,
     /// Output height in pixels, 1 to [`MAX_SIZE`].
@@ -112,6 +127,7 @@ impl Default for RenderOptions {
     fn default() -> Self {
         RenderOptions {
             view: View::Iso,
+            style: Style::Shaded,
             width: 1024,
             height: 768,
             supersample: 2,
@@ -239,6 +255,9 @@ pub enum RenderError {
 /// output alone takes `width * height * 3` bytes, while the working buffer
 /// stays bounded (about 128 MiB) by drawing large images in bands.
 pub fn render(scene: &Scene, opts: &RenderOptions) -> Image {
+    if opts.style == Style::Lines {
+        return lines::render(scene, opts);
+    }
     render_in_bands(scene, opts, MAX_BAND_SAMPLES)
 }
 
@@ -300,42 +319,13 @@ fn draw(scene: &Scene, camera: &Camera, materials: &[Vec3], band: &mut Band) {
         rgb[i] = if nearer { [a[1], a[2], a[3]] } else { rgb[i] };
     };
     scene.for_each_triangle(|p, n, material| {
-        let s = [
-            camera.project(p[0]),
-            camera.project(p[1]),
-            camera.project(p[2]),
-        ];
-        let (lo, hi) = (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]));
-        // Written so that NaN fails every test.
-        let inside = hi.y >= band_lo
-            && lo.y <= band_hi
-            && lo.x > -COORD_LIMIT
-            && lo.y > -COORD_LIMIT
-            && hi.x < COORD_LIMIT
-            && hi.y < COORD_LIMIT
-            && lo.z.is_finite()
-            && hi.z.is_finite();
-        if !inside {
+        let Some(s) = project_triangle(camera, &p, band_lo, band_hi) else {
             return;
-        }
-        // Shade the side that faces the viewer: meshes may be open (leaves,
-        // petals) or wound inconsistently, so decide with the geometric
-        // normal which side is seen, then flip the vertex normals if they
-        // belong to the other side.
-        let g = (p[1] - p[0]).cross(p[2] - p[0]);
-        let seen = if g.dot(toward_viewer) >= 0.0 { g } else { -g };
-        let flip = (n[0] + n[1] + n[2]).dot(seen) < 0.0;
-        let seen = seen.normalize_or_zero();
+        };
+        let normals = facing_normals(&p, &n, toward_viewer);
         let base = materials.get(material).copied().unwrap_or(fallback);
         let attrs: [Attrs; 3] = std::array::from_fn(|k| {
-            let nk = if n[k] == Vec3::ZERO {
-                seen
-            } else if flip {
-                -n[k]
-            } else {
-                n[k]
-            };
-            let c = base * (AMBIENT + KEY * nk.dot(light).max(0.0));
+            let c = base * (AMBIENT + KEY * normals[k].dot(light).max(0.0));
             [s[k].z, c.x, c.y, c.z]
         });
         let v = [s[0].truncate(), s[1].truncate(), s[2].truncate()];
@@ -343,6 +333,50 @@ fn draw(scene: &Scene, camera: &Camera, materials: &[Vec3], band: &mut Band) {
             raster::sliver(v, attrs, &clip, &mut write);
         }
     });
+}
+
+/// Triangle `p` in sample coordinates, when it reaches the sample rows
+/// `band_lo..band_hi` and its coordinates are finite and within
+/// [`COORD_LIMIT`].
+fn project_triangle(
+    camera: &Camera,
+    p: &[Vec3; 3],
+    band_lo: f32,
+    band_hi: f32,
+) -> Option<[Vec3; 3]> {
+    let s = p.map(|q| camera.project(q));
+    let (lo, hi) = (s[0].min(s[1]).min(s[2]), s[0].max(s[1]).max(s[2]));
+    // Written so that NaN fails every test.
+    let inside = hi.y >= band_lo
+        && lo.y <= band_hi
+        && lo.x > -COORD_LIMIT
+        && lo.y > -COORD_LIMIT
+        && hi.x < COORD_LIMIT
+        && hi.y < COORD_LIMIT
+        && lo.z.is_finite()
+        && hi.z.is_finite();
+    inside.then_some(s)
+}
+
+/// The vertex normals of the side of triangle `p` that faces the viewer.
+/// Meshes may be open (leaves, petals) or wound inconsistently, so the
+/// geometric normal decides which side is seen, and the vertex normals are
+/// flipped if they belong to the other side; a zero normal becomes the
+/// geometric one.
+fn facing_normals(p: &[Vec3; 3], n: &[Vec3; 3], toward_viewer: Vec3) -> [Vec3; 3] {
+    let g = (p[1] - p[0]).cross(p[2] - p[0]);
+    let seen = if g.dot(toward_viewer) >= 0.0 { g } else { -g };
+    let flip = (n[0] + n[1] + n[2]).dot(seen) < 0.0;
+    let seen = seen.normalize_or_zero();
+    n.map(|nk| {
+        if nk == Vec3::ZERO {
+            seen
+        } else if flip {
+            -nk
+        } else {
+            nk
+        }
+    })
 }
 
 /// Writes `img` to `path` as PNG, atomically: the file appears complete or

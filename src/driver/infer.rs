@@ -1,0 +1,59 @@
+//! A drawing as a job (`lsys infer`, the studio's drawing page): a line
+//! drawing's path -> the [`Inference`] (shape tree, grammar), the grammar
+//! compiled once to prove it builds, and both written atomically: the
+//! grammar and the tree appear together or not at all.
+
+use std::path::Path;
+
+use crate::export::atomic::AtomicFiles;
+use crate::infer;
+use crate::Diagnostics;
+
+pub use crate::infer::{InferError, InferOptions, Inference, Node as InferNode};
+
+/// Why a drawing gave no grammar.
+#[derive(Debug)]
+pub enum InferFailure {
+    /// The drawing could not be read or is not a line drawing.
+    Drawing(InferError),
+    /// The inferred grammar does not compile (a bug of ours: the text is
+    /// kept so that it can be reported).
+    Grammar(Diagnostics),
+    /// An output could not be written.
+    Write(std::io::Error),
+}
+
+/// Reads the drawing at `path` and infers its hall.
+pub fn infer_drawing(path: &Path, opts: &InferOptions) -> Result<Inference, InferFailure> {
+    let shown = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| {
+        InferFailure::Drawing(InferError::Unreadable {
+            path: shown.clone(),
+            reason: e.to_string(),
+        })
+    })?;
+    let inference = infer::infer(&bytes, &shown, opts).map_err(InferFailure::Drawing)?;
+    crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
+    Ok(inference)
+}
+
+/// Writes the grammar to `grammar` and, when asked, the tree to `tree`.
+pub fn write_inference(
+    inference: &Inference,
+    grammar: &Path,
+    tree: Option<&Path>,
+) -> Result<(), InferFailure> {
+    let mut files = AtomicFiles::new();
+    files
+        .write(grammar, |w| w.write_all(inference.grammar.as_bytes()))
+        .map_err(InferFailure::Write)?;
+    if let Some(tree) = tree {
+        let mut text = serde_json::to_string_pretty(&inference.tree_json())
+            .map_err(|e| InferFailure::Write(std::io::Error::other(e)))?;
+        text.push('\n');
+        files
+            .write(tree, |w| w.write_all(text.as_bytes()))
+            .map_err(InferFailure::Write)?;
+    }
+    files.commit().map_err(InferFailure::Write)
+}

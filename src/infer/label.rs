@@ -1,0 +1,429 @@
+//! Recognition: a shape tree -> the same tree with each node labelled from
+//! the seed's vocabulary (platform, stairs, column, bay, door, window,
+//! wall, lintel, bracket, rafter, roof, ridge, other), and each drawn
+//! column, door, window and bracket set made one leaf.
+//!
+//! Seed 003 labels nodes with an MRF over component priors. Its priors are
+//! what decides here, written as rules instead of learned potentials, from
+//! the top level down (Section 3's order of a hall, bottom to top:
+//! platform, columns and walls, bracket sets, rafters, roof, ridge):
+//!
+//! - the **body** is the band with the most columns: regions at least 0.7
+//!   of the band's height and three times taller than wide;
+//! - bands under it are the **platform** (the middle piece drawn as stacked
+//!   steps is the **stairs**);
+//! - above it, from the top: a band under a third of the next one's height
+//!   is the **ridge**, the highest other band the **roof**, and between the
+//!   body and the roof the first band is the **bracket** layer and the
+//!   second the **rafter** layer, each piece with something drawn in it one
+//!   bracket set or rafter;
+//! - in the body, pieces that are a column are **columns**, the pieces
+//!   between them **bays**; a bay's top piece under 0.3 of its height is its
+//!   **lintel**; under it, what is drawn inside the wall is a **door** when
+//!   it stands on the bay's floor and is at least 0.4 of its height, a
+//!   **window** otherwise; undrawn strips and plain narrow side strips
+//!   are **wall**.
+
+use super::regions::Region;
+use super::tree::{Axis, Node};
+
+/// A column is this much of its band's height, at least.
+const COLUMN_HEIGHT: f64 = 0.7;
+/// ... and this many times taller than wide.
+const COLUMN_SLENDER: f64 = 3.0;
+
+/// Labels `root` in place. Returns the boxes of the regions drawn in
+/// nodes that no rule could name.
+pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
+    let bands: Vec<usize> = if root.split == Some(Axis::Y) {
+        (0..root.children.len()).collect()
+    } else {
+        Vec::new()
+    };
+    if bands.is_empty() {
+        // One band: a body with nothing above or below.
+        body(root, regions);
+        return unlabelled(root, regions);
+    }
+    let columns = |n: &Node| spaced_columns(n, regions);
+    // The body: the band with most columns, the taller on a tie; a drawing
+    // with no columns has the tallest band as its body.
+    let body_at = (0..root.children.len())
+        .max_by_key(|&i| (columns(&root.children[i]), root.children[i].h()))
+        .unwrap_or(0);
+    for c in &mut root.children[body_at + 1..] {
+        platform(c);
+    }
+    body(&mut root.children[body_at], regions);
+    let above: Vec<usize> = (0..body_at).collect();
+    if let Some((&top, rest)) = above.split_first() {
+        let mut roof_at = top;
+        if let Some(&next) = rest.first() {
+            if (root.children[top].h() as f64) < root.children[next].h() as f64 / 3.0 {
+                collapse(&mut root.children[top], "ridge");
+                roof_at = next;
+            }
+        }
+        collapse(&mut root.children[roof_at], "roof");
+        let between: Vec<usize> = (roof_at + 1..body_at).rev().collect();
+        for (k, &i) in between.iter().enumerate() {
+            let kind = match k {
+                0 => "bracket",
+                1 => "rafter",
+                _ => "other",
+            };
+            row_of(&mut root.children[i], kind);
+        }
+    }
+    unlabelled(root, regions)
+}
+
+/// Column-like regions of `band` that stand apart: the gap to the next one
+/// is at least [`COLUMN_APART`] times its width. Columns stand a bay apart;
+/// a roof's tile rows, as tall and thin, stand about their own width apart.
+fn spaced_columns(band: &Node, regions: &[Region]) -> usize {
+    let mut xs: Vec<(i32, i32)> = band
+        .content()
+        .filter(|&r| is_column(&regions[r], band.h()))
+        .map(|r| (regions[r].bbox[0], regions[r].bbox[2]))
+        .collect();
+    xs.sort_unstable();
+    xs.windows(2)
+        .filter(|w| (w[1].0 - w[0].1) as f64 >= COLUMN_APART * (w[0].1 - w[0].0) as f64)
+        .count()
+}
+
+/// See [`spaced_columns`].
+const COLUMN_APART: f64 = 4.0;
+
+fn is_column(r: &Region, band_h: i32) -> bool {
+    r.h() as f64 >= COLUMN_HEIGHT * band_h as f64 && r.h() as f64 >= COLUMN_SLENDER * r.w() as f64
+}
+
+/// Makes `node` one leaf labelled `label`.
+fn collapse(node: &mut Node, label: &'static str) {
+    node.label = label;
+    node.children.clear();
+    node.split = None;
+}
+
+/// The box around the regions drawn in `node` other than its fills, or
+/// its own box when there are none.
+fn content_box(node: &Node, regions: &[Region]) -> [i32; 4] {
+    let mut b = [i32::MAX, i32::MAX, i32::MIN, i32::MIN];
+    for r in node.content() {
+        let rb = regions[r].bbox;
+        b = [
+            b[0].min(rb[0]),
+            b[1].min(rb[1]),
+            b[2].max(rb[2]),
+            b[3].max(rb[3]),
+        ];
+    }
+    if b[0] > b[2] {
+        node.bbox
+    } else {
+        b
+    }
+}
+
+/// A bracket or rafter layer: each piece with something drawn is one
+/// element; the others are the layer's back.
+fn row_of(band: &mut Node, kind: &'static str) {
+    band.label = "other";
+    // A layer narrower than the band (the bracket layer under a wider
+    // roof) is the one drawn piece between two empty margins.
+    let mut band = band;
+    while band.split.is_some()
+        && band
+            .children
+            .iter()
+            .filter(|c| !c.regions.is_empty())
+            .count()
+            == 1
+        && band.children.len() > 1
+    {
+        for c in &mut band.children {
+            if c.regions.is_empty() {
+                collapse(c, "other");
+            }
+        }
+        let inner = band.children.iter().position(|c| !c.regions.is_empty());
+        match inner {
+            Some(i) => band = &mut band.children[i],
+            None => break,
+        }
+        band.label = "other";
+    }
+    if band.split != Some(Axis::X) {
+        if band.content().next().is_some() {
+            collapse(band, kind);
+        }
+        return;
+    }
+    let mut n = 0;
+    for c in &mut band.children {
+        if c.regions.is_empty() {
+            collapse(c, "other");
+        } else {
+            collapse(c, kind);
+            n += 1;
+        }
+    }
+    band.repeat = n >= 3;
+}
+
+fn platform(band: &mut Node) {
+    band.label = "platform";
+    if band.split != Some(Axis::X) {
+        band.children.clear();
+        band.split = None;
+        return;
+    }
+    // The stairs: a middle piece drawn as steps stacked up.
+    let n = band.children.len();
+    for (k, c) in band.children.iter_mut().enumerate() {
+        let stacked = c.split == Some(Axis::Y) && c.children.len() >= 2;
+        let middle = k > 0 && k + 1 < n;
+        collapse(
+            c,
+            if stacked && middle {
+                "stairs"
+            } else {
+                "platform"
+            },
+        );
+    }
+}
+
+/// The body: columns and the bays between them.
+fn body(band: &mut Node, regions: &[Region]) {
+    band.label = "other";
+    if band.split != Some(Axis::X) {
+        bay(band, regions);
+        return;
+    }
+    let h = band.h();
+    let is_col: Vec<bool> = band
+        .children
+        .iter()
+        .map(|c| {
+            // A piece as tall as a column and as thin, with a column
+            // drawn in it (a round column's outline may hold several
+            // regions between its shading lines).
+            c.h() as f64 >= COLUMN_SLENDER * c.w() as f64
+                && c.content()
+                    .chain(c.fills.iter().copied())
+                    .any(|r| regions[r].h() as f64 >= COLUMN_HEIGHT * h as f64)
+        })
+        .collect();
+    // Columns are all about as thin: a bay as narrow as the test above
+    // (an end bay under a tall wall) is wider than the thinnest column.
+    let thinnest = band
+        .children
+        .iter()
+        .zip(&is_col)
+        .filter(|(_, &col)| col)
+        .map(|(c, _)| c.w())
+        .min()
+        .unwrap_or(0);
+    let is_col: Vec<bool> = band
+        .children
+        .iter()
+        .zip(is_col)
+        .map(|(c, col)| col && c.w() as f64 <= 1.5 * thinnest as f64 + 2.0)
+        .collect();
+    // An end column drawn flush with the wall's end is one piece with it,
+    // wider than the other columns: when a bay lies between the outermost
+    // piece and the first column found, that piece is the end column.
+    let mut is_col = is_col;
+    let slender = |c: &Node| c.h() as f64 >= COLUMN_SLENDER * c.w() as f64;
+    let n = band.children.len();
+    if n >= 3 {
+        if is_col.iter().position(|&b| b).is_some_and(|f| f >= 2) && slender(&band.children[0]) {
+            is_col[0] = true;
+        }
+        if is_col.iter().rposition(|&b| b).is_some_and(|l| l + 2 < n)
+            && slender(&band.children[n - 1])
+        {
+            is_col[n - 1] = true;
+        }
+    }
+    let first = is_col.iter().position(|&b| b);
+    let last = is_col.iter().rposition(|&b| b);
+    let mut widths = Vec::new();
+    for (k, c) in band.children.iter_mut().enumerate() {
+        if is_col[k] {
+            collapse(c, "column");
+            c.bbox = content_box(c, regions);
+        } else if first.is_some_and(|f| k < f) || last.is_some_and(|l| k > l) {
+            // Outside the outer columns: the wall's end.
+            if c.w() * 4 < h {
+                collapse(c, "wall");
+            } else {
+                bay(c, regions);
+                widths.push(c.w());
+            }
+        } else {
+            bay(c, regions);
+            widths.push(c.w());
+        }
+    }
+    // The bays repeat when most of them are alike.
+    widths.sort_unstable();
+    let median = widths.get(widths.len() / 2).copied().unwrap_or(0);
+    let alike = widths
+        .iter()
+        .filter(|&&w| (w - median).abs() as f64 <= 0.08 * median as f64)
+        .count();
+    band.repeat = alike >= 3;
+}
+
+fn bay(node: &mut Node, regions: &[Region]) {
+    node.label = "bay";
+    let (floor, height) = (node.bbox[3], node.h());
+    let mut rest_from = 0;
+    if node.split == Some(Axis::Y) && node.children.len() >= 2 {
+        let top = &mut node.children[0];
+        if (top.h() as f64) < 0.3 * height as f64 {
+            collapse(top, "lintel");
+            rest_from = 1;
+        }
+    }
+    if rest_from == 0 {
+        let mut whole = std::mem::replace(node, placeholder());
+        elements(&mut whole, regions, floor, height);
+        let label = whole.label;
+        *node = whole;
+        if label == "wall" {
+            // A bay with nothing drawn in it stays a bay (a leaf).
+            node.label = "bay";
+        } else if node.children.is_empty() {
+            // The element fills the bay: keep the bay as its parent.
+            let element = node.clone();
+            node.label = "bay";
+            node.children = vec![element];
+            node.split = Some(Axis::Y);
+        } else {
+            node.label = "bay";
+        }
+        return;
+    }
+    for c in &mut node.children[rest_from..] {
+        elements(c, regions, floor, height);
+    }
+}
+
+fn placeholder() -> Node {
+    Node {
+        label: "other",
+        bbox: [0; 4],
+        split: None,
+        repeat: false,
+        children: Vec::new(),
+        regions: Vec::new(),
+        fills: Vec::new(),
+    }
+}
+
+/// The doors and windows in `node`, part of a bay whose floor is at `floor`
+/// and whose height is `height`; the rest is wall.
+fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
+    if node.content().next().is_none() {
+        collapse(node, "wall");
+        return;
+    }
+    let Some(axis) = node.split else {
+        element(node, regions, floor, height);
+        return;
+    };
+    // Walls: undrawn pieces, and along x plain narrow strips at the sides.
+    let n = node.children.len();
+    let wall: Vec<bool> = node
+        .children
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            let side = k == 0 || k + 1 == n;
+            // Plain: what is drawn inside besides its own outline is small
+            // (a corner cut off by a stray line).
+            let inner: u64 = c.content().map(|r| regions[r].area as u64).sum();
+            let plain = inner * 5 < (c.w() as u64 * c.h() as u64);
+            c.regions.is_empty() || (axis == Axis::X && side && plain && c.w() * 4 < node.w())
+        })
+        .collect();
+    let drawn: Vec<usize> = (0..n).filter(|&k| !wall[k]).collect();
+    if drawn.len() == 1 {
+        for (k, c) in node.children.iter_mut().enumerate() {
+            if wall[k] {
+                collapse(c, "wall");
+            } else {
+                elements(c, regions, floor, height);
+            }
+        }
+        node.label = "other";
+        return;
+    }
+    // Several drawn pieces next to each other make one element; a wall
+    // between them separates two.
+    let mut children = Vec::new();
+    let mut run: Vec<Node> = Vec::new();
+    let flush = |run: &mut Vec<Node>, children: &mut Vec<Node>| {
+        if run.is_empty() {
+            return;
+        }
+        let mut merged = run[0].clone();
+        for r in run.iter().skip(1) {
+            merged.bbox = [
+                merged.bbox[0].min(r.bbox[0]),
+                merged.bbox[1].min(r.bbox[1]),
+                merged.bbox[2].max(r.bbox[2]),
+                merged.bbox[3].max(r.bbox[3]),
+            ];
+            merged.regions.extend(r.regions.iter().copied());
+        }
+        merged.fills.clear();
+        merged.children.clear();
+        merged.split = None;
+        element(&mut merged, regions, floor, height);
+        children.push(merged);
+        run.clear();
+    };
+    for (k, mut c) in std::mem::take(&mut node.children).into_iter().enumerate() {
+        if wall[k] {
+            flush(&mut run, &mut children);
+            collapse(&mut c, "wall");
+            children.push(c);
+        } else {
+            run.push(c);
+        }
+    }
+    flush(&mut run, &mut children);
+    if children.len() == 1 {
+        *node = children.pop().unwrap_or_else(placeholder);
+    } else {
+        node.children = children;
+        node.label = "other";
+    }
+}
+
+/// A door or a window, by where it stands.
+fn element(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
+    let b = content_box(node, regions);
+    let on_floor = (floor - b[3]) as f64 <= 0.04 * height as f64;
+    let tall = (b[3] - b[1]) as f64 >= 0.4 * height as f64;
+    collapse(node, if on_floor && tall { "door" } else { "window" });
+    node.bbox = b;
+}
+
+/// Boxes of drawn regions in leaves still labelled `other`, where the
+/// drawing had something the rules could not name.
+fn unlabelled(root: &Node, regions: &[Region]) -> Vec<[i32; 4]> {
+    let mut out = Vec::new();
+    for leaf in root.leaves() {
+        if leaf.label == "other" && leaf.content().next().is_some() {
+            out.push(content_box(leaf, regions));
+        }
+    }
+    out
+}

@@ -1,0 +1,132 @@
+//! Grammars from elevation drawings (seed 003): a line drawing (PNG bytes)
+//! -> an [`Inference`]: the shape tree with each node labelled, as JSON for
+//! `--tree`, and a `.lsys` shape grammar that rebuilds the hall in 3D.
+//!
+//! ```text
+//! drawing.rs   PNG -> ink bitmap (Otsu threshold; refuses photographs,
+//!              filled pictures, blank pages, oversized images)
+//! regions.rs   ink -> closed regions (specks erased, gaps bridged)
+//! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
+//! label.rs     shape tree -> labelled tree (the seed's priors as rules)
+//! rules.rs     labelled tree -> measured sizes -> the grammar text
+//! ```
+//!
+//! `docs/drawing.md` describes the method, its choices and the round trip
+//! that measures it.
+
+mod drawing;
+mod error;
+mod label;
+mod regions;
+mod rules;
+mod tree;
+
+use serde_json::{json, Value};
+
+pub use drawing::{binarize, read_png, Ink};
+pub use error::InferError;
+pub use regions::Region;
+pub use tree::{Axis, Node};
+
+/// How to read a drawing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InferOptions {
+    /// Line breaks up to twice this many pixels are bridged (0 to 8).
+    pub gap: usize,
+    /// Metres per pixel; `None` takes the columns as 4.2 m high.
+    pub scale: Option<f64>,
+}
+
+impl Default for InferOptions {
+    fn default() -> Self {
+        InferOptions {
+            gap: 2,
+            scale: None,
+        }
+    }
+}
+
+/// What was read from a drawing.
+#[derive(Clone, Debug)]
+pub struct Inference {
+    pub width: usize,
+    pub height: usize,
+    pub regions: Vec<Region>,
+    pub tree: Node,
+    /// Boxes of drawn regions no rule could label (not rebuilt).
+    pub unlabelled: Vec<[i32; 4]>,
+    pub grammar: String,
+}
+
+/// Reads the drawing `bytes` (PNG), named `path` in messages and in the
+/// grammar's heading.
+pub fn infer(bytes: &[u8], path: &str, opts: &InferOptions) -> Result<Inference, InferError> {
+    let ink = read_png(bytes, path)?;
+    infer_ink(&ink, path, opts)
+}
+
+/// As [`infer`], from an ink bitmap.
+pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference, InferError> {
+    let gap = opts.gap.min(8);
+    let regions = regions::regions(ink, gap);
+    if regions.is_empty() {
+        return Err(InferError::NoRegions {
+            path: path.to_string(),
+        });
+    }
+    let bbox = regions
+        .iter()
+        .fold([i32::MAX, i32::MAX, i32::MIN, i32::MIN], |b, r| {
+            [
+                b[0].min(r.bbox[0]),
+                b[1].min(r.bbox[1]),
+                b[2].max(r.bbox[2]),
+                b[3].max(r.bbox[3]),
+            ]
+        });
+    // Empty strips narrower than this join their neighbours: about two
+    // line widths, and at least a hundredth of the drawing.
+    let tolerance = ((bbox[2] - bbox[0]).max(bbox[3] - bbox[1]) / 100).max(2 * gap as i32 + 2);
+    let mut tree = tree::shape_tree(&regions, bbox, tolerance);
+    let unlabelled = label::recognise(&mut tree, &regions);
+    let measured = rules::measure(&tree, opts.scale);
+    let name = std::path::Path::new(path)
+        .file_name()
+        .map_or(path.to_string(), |n| n.to_string_lossy().into_owned());
+    let grammar = measured.grammar(&name, unlabelled.len());
+    Ok(Inference {
+        width: ink.width,
+        height: ink.height,
+        regions,
+        tree,
+        unlabelled,
+        grammar,
+    })
+}
+
+impl Inference {
+    /// `{"width", "height", "root"}`, each node `{"label", "box", "split",
+    /// "repeat", "children"}` in drawing pixels with y down.
+    pub fn tree_json(&self) -> Value {
+        json!({"width": self.width, "height": self.height, "root": node_json(&self.tree)})
+    }
+
+    /// Leaves labelled `label`.
+    pub fn count(&self, label: &str) -> usize {
+        self.tree
+            .leaves()
+            .iter()
+            .filter(|n| n.label == label)
+            .count()
+    }
+}
+
+fn node_json(n: &Node) -> Value {
+    json!({
+        "label": n.label,
+        "box": n.bbox,
+        "split": n.split.map(|a| match a { Axis::X => "x", Axis::Y => "y" }),
+        "repeat": n.repeat,
+        "children": n.children.iter().map(node_json).collect::<Vec<_>>(),
+    })
+}
