@@ -389,8 +389,22 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
         children.push(merged);
         run.clear();
     };
+    // A narrow undrawn strip between two drawn pieces (the joint between a
+    // double door's leaves, its lines merged by blur) does not part them.
+    let size = |c: &Node| if axis == Axis::X { c.w() } else { c.h() };
+    let joint: Vec<bool> = (0..n)
+        .map(|k| {
+            k > 0
+                && k + 1 < n
+                && wall[k]
+                && !wall[k - 1]
+                && !wall[k + 1]
+                && (size(&node.children[k]) as f64)
+                    < 0.3 * size(&node.children[k - 1]).min(size(&node.children[k + 1])) as f64
+        })
+        .collect();
     for (k, mut c) in std::mem::take(&mut node.children).into_iter().enumerate() {
-        if wall[k] {
+        if wall[k] && !joint[k] {
             flush(&mut run, &mut children);
             collapse(&mut c, "wall");
             children.push(c);

@@ -133,32 +133,53 @@ fn split(
         regions: inside.clone(),
         fills: fills.clone(),
     };
-    let rest: Vec<usize> = inside.into_iter().filter(|i| !fills.contains(i)).collect();
+    let mut rest: Vec<usize> = inside.into_iter().filter(|i| !fills.contains(i)).collect();
     if rest.is_empty() || depth >= MAX_DEPTH {
         return node;
     }
-    for axis in [prefer, prefer.other()] {
-        let pieces = cuts(regions, &rest, bbox, axis, tolerance);
-        if pieces.len() < 2 {
-            continue;
+    // First as drawn; then, when nothing can be cut, with the regions that
+    // run the node's whole width or height taken as its wall: a wall whose
+    // narrow sides beside a window were pinched shut by thick or shaky
+    // lines falls into such pieces, and each would stop every cut.
+    for attempt in 0..2 {
+        if attempt == 1 {
+            let spans = |r: &Region, a: Axis| {
+                let extent = (a.hi(&bbox) - a.lo(&bbox)) as f64;
+                (a.hi(&r.bbox).min(a.hi(&bbox)) - a.lo(&r.bbox).max(a.lo(&bbox))) as f64
+                    >= extent - ((1.0 - FILL) * extent).max(FILL_PIXELS)
+            };
+            let (walls, others): (Vec<usize>, Vec<usize>) = rest
+                .iter()
+                .partition(|&&i| spans(&regions[i], Axis::X) || spans(&regions[i], Axis::Y));
+            if walls.is_empty() || others.is_empty() {
+                break;
+            }
+            node.fills.extend(&walls);
+            rest = others;
         }
-        node.split = Some(axis);
-        node.children = pieces
-            .into_iter()
-            .map(|(lo, hi)| {
-                let piece = axis.with(&bbox, lo, hi);
-                let members = rest
-                    .iter()
-                    .copied()
-                    .filter(|&i| {
-                        let c = (axis.lo(&regions[i].bbox) + axis.hi(&regions[i].bbox)) / 2;
-                        lo <= c && c < hi
-                    })
-                    .collect();
-                split(regions, piece, members, axis.other(), tolerance, depth + 1)
-            })
-            .collect();
-        return node;
+        for axis in [prefer, prefer.other()] {
+            let pieces = cuts(regions, &rest, bbox, axis, tolerance);
+            if pieces.len() < 2 {
+                continue;
+            }
+            node.split = Some(axis);
+            node.children = pieces
+                .into_iter()
+                .map(|(lo, hi)| {
+                    let piece = axis.with(&bbox, lo, hi);
+                    let members = rest
+                        .iter()
+                        .copied()
+                        .filter(|&i| {
+                            let c = (axis.lo(&regions[i].bbox) + axis.hi(&regions[i].bbox)) / 2;
+                            lo <= c && c < hi
+                        })
+                        .collect();
+                    split(regions, piece, members, axis.other(), tolerance, depth + 1)
+                })
+                .collect();
+            return node;
+        }
     }
     node
 }
@@ -216,5 +237,18 @@ fn cuts(
     }
     bounds.push(hi);
     bounds.dedup();
-    bounds.windows(2).map(|w| (w[0], w[1])).collect()
+    // Slivers (a wobbling line's two strokes) join the piece before them.
+    let min = slack.max(2) + 1;
+    let mut kept = vec![lo];
+    for &b in &bounds[1..] {
+        if b == hi {
+            if hi - kept[kept.len() - 1] < min && kept.len() > 1 {
+                kept.pop();
+            }
+            kept.push(hi);
+        } else if b - kept[kept.len() - 1] >= min {
+            kept.push(b);
+        }
+    }
+    kept.windows(2).map(|w| (w[0], w[1])).collect()
 }
