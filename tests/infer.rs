@@ -265,7 +265,7 @@ fn bad_drawings_are_refused_with_a_reason() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // A photograph-like gradient, a blank page, a filled picture, lines
-    // that never close, an SVG, a missing file.
+    // that never close, an empty and a broken SVG, a GIF, a missing file.
     write_png(&d.join("photo.png"), 200, 100, |x, y| ((x + y) % 256) as u8);
     write_png(&d.join("blank.png"), 200, 100, |_, _| 255);
     write_png(&d.join("filled.png"), 200, 100, |x, _| {
@@ -283,17 +283,25 @@ fn bad_drawings_are_refused_with_a_reason() {
         }
     });
     std::fs::write(
-        d.join("drawing.svg"),
+        d.join("empty.svg"),
         "<svg xmlns='http://www.w3.org/2000/svg'/>",
     )
     .unwrap();
+    std::fs::write(
+        d.join("broken.svg"),
+        "<svg xmlns='http://www.w3.org/2000/svg'><rect",
+    )
+    .unwrap();
+    std::fs::write(d.join("drawing.gif"), "GIF89a").unwrap();
     let mut shown = String::new();
     for (file, code) in [
         ("photo.png", 65),
         ("blank.png", 65),
         ("filled.png", 65),
         ("open.png", 65),
-        ("drawing.svg", 66),
+        ("empty.svg", 65),
+        ("broken.svg", 66),
+        ("drawing.gif", 66),
         ("missing.png", 66),
     ] {
         let out = lsys_in(d, &["infer", file, "-o", "out.lsys"]);
@@ -315,4 +323,36 @@ fn the_inferred_grammar_reads_as_written_by_hand() {
     infer(dir.path(), "hall.png", "hall.lsys");
     let text = std::fs::read_to_string(dir.path().join("hall.lsys")).unwrap();
     insta::assert_snapshot!(text);
+}
+
+/// Drawings no grammar of ours produced (`examples/drawings/`, SVG laid
+/// out by hand: other proportions, pen widths from 1.2 to 4, bracket sets
+/// hanging, standing or filling their layer, lattice windows, a shaky
+/// sketch), read with the counts their authors drew.
+#[test]
+fn hand_made_drawings_are_counted_as_drawn() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawings = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/drawings");
+    let c = |columns, bays, doors, windows, brackets| Counts {
+        columns,
+        bays,
+        doors,
+        windows,
+        brackets,
+    };
+    let mut failures = Vec::new();
+    for (file, want) in [
+        ("three-bay-hall.svg", c(4, 3, 1, 2, 6)),
+        ("five-bay-hall.svg", c(6, 5, 1, 4, 8)),
+        ("seven-bay-palace.svg", c(8, 7, 3, 4, 16)),
+        ("gatehouse.svg", c(4, 3, 3, 0, 5)),
+        ("sketch-five-bays.svg", c(6, 5, 1, 4, 8)),
+    ] {
+        let path = format!("{drawings}/{file}");
+        let got = counts(&infer(dir.path(), &path, "hand.lsys"));
+        if got != want {
+            failures.push(format!("{file}: got {got:?}, drew {want:?}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -45,7 +45,7 @@ pub enum Command {
     Commands,
     /// Build a Pailou from a component graph or a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
     Pailou(PailouArgs),
-    /// Infer a hall's shape grammar from an elevation line drawing (PNG): lsys infer front.png -o hall.lsys
+    /// Infer a hall's shape grammar from an elevation line drawing (PNG or SVG): lsys infer front.png -o hall.lsys
     Infer(InferArgs),
     /// Explore a grammar step by step: step, go back, show, edit rules, set defines, export.
     Repl(ReplArgs),
@@ -321,7 +321,7 @@ pub struct LookArgs {
 /// `lsys infer`: a grammar from an elevation drawing.
 #[derive(Args, Debug)]
 pub struct InferArgs {
-    /// The drawing: a PNG of dark lines on a light background.
+    /// The drawing: a PNG or SVG of dark lines on a light background.
     pub drawing: PathBuf,
     /// The grammar to write (.lsys).
     #[arg(short = 'o', long = "output", value_name = "OUT.lsys")]

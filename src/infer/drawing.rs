@@ -1,5 +1,8 @@
-//! Reading a drawing: PNG bytes -> an [`Ink`] bitmap (true where a line is
-//! drawn), after checking that the picture is a line drawing at all.
+//! Reading a drawing: PNG or SVG bytes -> an [`Ink`] bitmap (true where a
+//! line is drawn), after checking that the picture is a line drawing at all.
+//! An SVG is rasterised (resvg) at its own size, scaled up by a whole
+//! factor to at least [`SVG_MIN_WIDTH`] pixels across so that its thin
+//! lines and small parts survive gap bridging; text is ignored.
 //!
 //! The threshold between ink and paper is Otsu's (the split of the grey
 //! histogram with the largest between-class variance), so that scans with a
@@ -34,12 +37,7 @@ pub fn read_png(bytes: &[u8], path: &str) -> Result<Ink, InferError> {
         reason,
     };
     if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
-        let reason = if bytes.trim_ascii_start().starts_with(b"<") {
-            "it looks like SVG or XML; export the drawing as PNG".to_string()
-        } else {
-            "it is not a PNG image".to_string()
-        };
-        return Err(unreadable(reason));
+        return Err(unreadable("it is not a PNG image".to_string()));
     }
     let mut decoder = png::Decoder::new(std::io::Cursor::new(bytes));
     decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
@@ -78,6 +76,54 @@ pub fn read_png(bytes: &[u8], path: &str) -> Result<Ink, InferError> {
         })
         .collect();
     binarize(&grey, width as usize, height as usize, path)
+}
+
+/// SVG drawings narrower than this are scaled up by a whole factor.
+pub const SVG_MIN_WIDTH: f32 = 1000.0;
+
+/// Whether `bytes` look like SVG (or other XML) rather than a PNG.
+pub fn is_svg(bytes: &[u8]) -> bool {
+    let text = bytes.strip_prefix("\u{feff}".as_bytes()).unwrap_or(bytes);
+    text.trim_ascii_start().starts_with(b"<")
+}
+
+/// Rasterises the SVG `bytes` and separates ink from paper.
+pub fn read_svg(bytes: &[u8], path: &str) -> Result<Ink, InferError> {
+    use resvg::{tiny_skia, usvg};
+    let unreadable = |reason: String| InferError::Unreadable {
+        path: path.to_string(),
+        reason,
+    };
+    let tree = usvg::Tree::from_data(bytes, &usvg::Options::default())
+        .map_err(|e| unreadable(format!("not a readable SVG: {e}")))?;
+    let size = tree.size();
+    let k = (SVG_MIN_WIDTH / size.width()).ceil().max(1.0);
+    let (w, h) = ((size.width() * k).ceil(), (size.height() * k).ceil());
+    let too_big = || InferError::TooBig {
+        path: path.to_string(),
+        width: w.min(u32::MAX as f32) as u32,
+        height: h.min(u32::MAX as f32) as u32,
+    };
+    if !(w <= MAX_SIDE as f32
+        && h <= MAX_SIDE as f32
+        && (w as f64) * (h as f64) <= MAX_PIXELS as f64)
+    {
+        return Err(too_big());
+    }
+    let mut pixmap = tiny_skia::Pixmap::new(w as u32, h as u32).ok_or_else(too_big)?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(
+        &tree,
+        tiny_skia::Transform::from_scale(k, k),
+        &mut pixmap.as_mut(),
+    );
+    // Opaque after the white fill, so the premultiplied colour is the colour.
+    let grey: Vec<u8> = pixmap
+        .data()
+        .chunks_exact(4)
+        .map(|p| luma(p).round() as u8)
+        .collect();
+    binarize(&grey, w as usize, h as usize, path)
 }
 
 fn luma(p: &[u8]) -> f32 {

@@ -14,7 +14,7 @@ pub enum InferError {
     #[error("{path}: cannot read the drawing: {reason}")]
     #[diagnostic(
         code(lsys::infer::unreadable),
-        help("give a PNG image (black lines on white) of the elevation")
+        help("give a PNG image or an SVG drawing (dark lines on white) of the elevation")
     )]
     Unreadable { path: String, reason: String },
 

@@ -72,7 +72,7 @@ pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
                 1 => "rafter",
                 _ => "other",
             };
-            row_of(&mut root.children[i], kind);
+            row_of(&mut root.children[i], kind, regions);
         }
     }
     unlabelled(root, regions)
@@ -98,6 +98,13 @@ const COLUMN_APART: f64 = 4.0;
 
 fn is_column(r: &Region, band_h: i32) -> bool {
     r.h() as f64 >= COLUMN_HEIGHT * band_h as f64 && r.h() as f64 >= COLUMN_SLENDER * r.w() as f64
+}
+
+/// A plain piece: what is drawn inside it besides its own outline is
+/// small (a corner cut off by a stray line).
+fn is_plain(c: &Node, regions: &[Region]) -> bool {
+    let inner: u64 = c.content().map(|r| regions[r].area as u64).sum();
+    inner * 5 < (c.w().max(0) as u64 * c.h().max(0) as u64)
 }
 
 /// Makes `node` one leaf labelled `label`.
@@ -129,7 +136,7 @@ fn content_box(node: &Node, regions: &[Region]) -> [i32; 4] {
 
 /// A bracket or rafter layer: each piece with something drawn is one
 /// element; the others are the layer's back.
-fn row_of(band: &mut Node, kind: &'static str) {
+fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     band.label = "other";
     // A layer narrower than the band (the bracket layer under a wider
     // roof) is the one drawn piece between two empty margins.
@@ -155,22 +162,154 @@ fn row_of(band: &mut Node, kind: &'static str) {
         }
         band.label = "other";
     }
+    if band.split == Some(Axis::Y) {
+        // Elements drawn as stacked parts (a bracket set's arm over its
+        // block) are cut into rows first: take the layer by columns.
+        by_columns(band, regions);
+    }
     if band.split != Some(Axis::X) {
         if band.content().next().is_some() {
             collapse(band, kind);
         }
         return;
     }
+    // When the bracket sets stand from the beam to the eave, the layer's
+    // back between them is cut into closed pieces too: an unbroken run of
+    // 2n + 1 drawn pieces whose first, third, ... are plain outlines is n
+    // bracket sets with the back's n + 1 pieces around them. (Rafters are
+    // left alone: their run has no back piece at its ends.)
+    let drawn: Vec<usize> = (0..band.children.len())
+        .filter(|&k| !band.children[k].regions.is_empty())
+        .collect();
+    let unbroken = drawn.windows(2).all(|w| w[1] == w[0] + 1);
+    let alternate = kind == "bracket"
+        && unbroken
+        && drawn.len() >= 5
+        && drawn.len() % 2 == 1
+        && drawn
+            .iter()
+            .step_by(2)
+            .all(|&k| is_plain(&band.children[k], regions));
+    // Bracket sets drawn with inner lines (a block quartered by its arms)
+    // are cut into several pieces, each with something drawn inside; the
+    // back's pieces between them are plain: a run of adjacent detailed
+    // pieces is one set.
+    if kind == "bracket" && !alternate {
+        merge_detailed_runs(band, regions);
+    }
+    // A drawn sliver under a third of the sets' median width is a piece of
+    // back closed off by a line drawn close beside a set.
+    let mut widths: Vec<i32> = band
+        .children
+        .iter()
+        .filter(|c| !c.regions.is_empty())
+        .map(|c| c.w())
+        .collect();
+    widths.sort_unstable();
+    let median = widths.get(widths.len() / 2).copied().unwrap_or(0);
+    let sliver = |c: &Node| kind == "bracket" && c.w() * 3 < median && is_plain(c, regions);
     let mut n = 0;
-    for c in &mut band.children {
-        if c.regions.is_empty() {
+    for (k, c) in band.children.iter_mut().enumerate() {
+        let back =
+            sliver(c) || alternate && drawn.first().is_some_and(|&f| k >= f && (k - f) % 2 == 0);
+        if c.regions.is_empty() || back {
             collapse(c, "other");
+            // The layer's back, not something left unrecognised.
+            c.regions.clear();
+            c.fills.clear();
         } else {
             collapse(c, kind);
             n += 1;
         }
     }
     band.repeat = n >= 3;
+}
+
+/// In a layer with both plain and detailed drawn pieces, joins each run
+/// of adjacent detailed pieces into one piece; the plain ones become
+/// undrawn back.
+fn merge_detailed_runs(band: &mut Node, regions: &[Region]) {
+    let detailed: Vec<bool> = band
+        .children
+        .iter()
+        .map(|c| !c.regions.is_empty() && !is_plain(c, regions))
+        .collect();
+    let plain_drawn = band
+        .children
+        .iter()
+        .zip(&detailed)
+        .any(|(c, &d)| !d && !c.regions.is_empty());
+    if !plain_drawn || !detailed.windows(2).any(|w| w[0] && w[1]) {
+        return;
+    }
+    let mut out: Vec<Node> = Vec::new();
+    let mut last_detailed = false;
+    for (c, d) in std::mem::take(&mut band.children).into_iter().zip(detailed) {
+        match out.last_mut() {
+            Some(prev) if d && last_detailed => {
+                prev.bbox[2] = c.bbox[2];
+                prev.regions.extend(c.regions);
+                prev.children.clear();
+                prev.split = None;
+                prev.fills.clear();
+            }
+            _ if d => out.push(c),
+            _ => out.push(Node {
+                bbox: c.bbox,
+                ..placeholder()
+            }),
+        }
+        last_detailed = d;
+    }
+    band.children = out;
+}
+
+/// Re-cuts `band` along x where no region drawn in it (other than those
+/// filling it, the layer's back) crosses: each cluster of region boxes
+/// projected on x is one piece, and the strips between them are pieces
+/// with nothing drawn.
+fn by_columns(band: &mut Node, regions: &[Region]) {
+    let mut spans: Vec<(i32, i32, usize)> = band
+        .content()
+        .map(|r| (regions[r].bbox[0], regions[r].bbox[2], r))
+        .collect();
+    if spans.is_empty() {
+        return;
+    }
+    spans.sort_unstable();
+    let [x0, y0, x1, y1] = band.bbox;
+    let mut pieces: Vec<Node> = Vec::new();
+    let mut at = x0;
+    let mut k = 0;
+    while k < spans.len() {
+        let (lo, mut hi, _) = spans[k];
+        let mut members = Vec::new();
+        while k < spans.len() && spans[k].0 <= hi {
+            hi = hi.max(spans[k].1);
+            members.push(spans[k].2);
+            k += 1;
+        }
+        if lo > at {
+            pieces.push(Node {
+                bbox: [at, y0, lo, y1],
+                ..placeholder()
+            });
+        }
+        pieces.push(Node {
+            bbox: [lo, y0, hi, y1],
+            regions: members,
+            ..placeholder()
+        });
+        at = hi;
+    }
+    if at < x1 {
+        pieces.push(Node {
+            bbox: [at, y0, x1, y1],
+            ..placeholder()
+        });
+    }
+    band.children = pieces;
+    band.split = Some(Axis::X);
 }
 
 fn platform(band: &mut Node) {
@@ -257,8 +396,11 @@ fn body(band: &mut Node, regions: &[Region]) {
             collapse(c, "column");
             c.bbox = content_box(c, regions);
         } else if first.is_some_and(|f| k < f) || last.is_some_and(|l| k > l) {
-            // Outside the outer columns: the wall's end.
-            if c.w() * 4 < h {
+            // Outside the outer columns: the wall's end, or paper when
+            // nothing is drawn there (the roof's overhang above it).
+            if c.regions.is_empty() {
+                collapse(c, "other");
+            } else if c.w() * 4 < h {
                 collapse(c, "wall");
             } else {
                 bay(c, regions);
@@ -292,7 +434,7 @@ fn bay(node: &mut Node, regions: &[Region]) {
     }
     if rest_from == 0 {
         let mut whole = std::mem::replace(node, placeholder());
-        elements(&mut whole, regions, floor, height);
+        elements(&mut whole, regions, floor, height, false);
         let label = whole.label;
         *node = whole;
         if label == "wall" {
@@ -310,7 +452,7 @@ fn bay(node: &mut Node, regions: &[Region]) {
         return;
     }
     for c in &mut node.children[rest_from..] {
-        elements(c, regions, floor, height);
+        elements(c, regions, floor, height, false);
     }
 }
 
@@ -328,8 +470,14 @@ fn placeholder() -> Node {
 
 /// The doors and windows in `node`, part of a bay whose floor is at `floor`
 /// and whose height is `height`; the rest is wall.
-fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
-    if node.content().next().is_none() {
+///
+/// `nested` is false for the part of the bay under its lintel, where a
+/// region filling the node is the wall itself, and true for the pieces cut
+/// out of that wall, where a region filling a piece is a drawn outline (a
+/// door or window drawn as a plain rectangle).
+fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested: bool) {
+    let plain = node.content().next().is_none();
+    if node.regions.is_empty() || (plain && !nested) {
         collapse(node, "wall");
         return;
     }
@@ -345,10 +493,7 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
         .enumerate()
         .map(|(k, c)| {
             let side = k == 0 || k + 1 == n;
-            // Plain: what is drawn inside besides its own outline is small
-            // (a corner cut off by a stray line).
-            let inner: u64 = c.content().map(|r| regions[r].area as u64).sum();
-            let plain = inner * 5 < (c.w() as u64 * c.h() as u64);
+            let plain = is_plain(c, regions);
             c.regions.is_empty() || (axis == Axis::X && side && plain && c.w() * 4 < node.w())
         })
         .collect();
@@ -358,7 +503,7 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
             if wall[k] {
                 collapse(c, "wall");
             } else {
-                elements(c, regions, floor, height);
+                elements(c, regions, floor, height, true);
             }
         }
         node.label = "other";

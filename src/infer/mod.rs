@@ -1,9 +1,9 @@
-//! Grammars from elevation drawings (seed 003): a line drawing (PNG bytes)
+//! Grammars from elevation drawings (seed 003): a line drawing (PNG or SVG)
 //! -> an [`Inference`]: the shape tree with each node labelled, as JSON for
 //! `--tree`, and a `.lsys` shape grammar that rebuilds the hall in 3D.
 //!
 //! ```text
-//! drawing.rs   PNG -> ink bitmap (Otsu threshold; refuses photographs,
+//! drawing.rs   PNG or SVG -> ink bitmap (Otsu threshold; refuses photographs,
 //!              filled pictures, blank pages, oversized images)
 //! regions.rs   ink -> closed regions (specks erased, gaps bridged)
 //! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
@@ -23,7 +23,7 @@ mod tree;
 
 use serde_json::{json, Value};
 
-pub use drawing::{binarize, read_png, Ink};
+pub use drawing::{binarize, is_svg, read_png, read_svg, Ink};
 pub use error::InferError;
 pub use regions::Region;
 pub use tree::{Axis, Node};
@@ -58,10 +58,14 @@ pub struct Inference {
     pub grammar: String,
 }
 
-/// Reads the drawing `bytes` (PNG), named `path` in messages and in the
-/// grammar's heading.
+/// Reads the drawing `bytes` (PNG or SVG), named `path` in messages and in
+/// the grammar's heading.
 pub fn infer(bytes: &[u8], path: &str, opts: &InferOptions) -> Result<Inference, InferError> {
-    let ink = read_png(bytes, path)?;
+    let ink = if is_svg(bytes) {
+        read_svg(bytes, path)?
+    } else {
+        read_png(bytes, path)?
+    };
     infer_ink(&ink, path, opts)
 }
 

@@ -539,7 +539,15 @@ impl Measured {
                 ),
             };
         }
-        g.push_str(DETAILS);
+        g.push_str(WALL);
+        // Only what some bay holds: a production that never fires is a
+        // warning when the grammar is built.
+        if kinds.iter().any(|(_, f)| matches!(f, Fill::Window { .. })) {
+            g.push_str(WINDOW);
+        }
+        if kinds.iter().any(|(_, f)| matches!(f, Fill::Door { .. })) {
+            g.push_str(DOOR);
+        }
         g
     }
 }
@@ -579,9 +587,13 @@ RafFace --> @RX(RAF_PITCH) [Rafter]
 Rafter --> @SX(flo(1), RAF_W, flo(1)) [] [;(19) @Ext(OV + 0.1) @Block] []
 ";
 
-const DETAILS: &str = "Wall --> ;(21) @Ext(0.25) @Block
-Window --> @SX(0.12, flo(1), 0.12) [;(17) @Ext(0.3) @Block] [Lattice] [;(17) @Ext(0.3) @Block]
+const WALL: &str = "Wall --> ;(21) @Ext(0.25) @Block
+";
+
+const WINDOW: &str = "Window --> @SX(0.12, flo(1), 0.12) [;(17) @Ext(0.3) @Block] [Lattice] [;(17) @Ext(0.3) @Block]
 Lattice --> [;(19) @Ext(0.05) @Block] @RX(0.3) [@SX(flo(1), 0.06, flo(1)) [] [;(17) @Ext(0.15) @Block] []]
-Door --> @SX(rel(0.5), rel(0.5)) [Leaf] [Leaf]
+";
+
+const DOOR: &str = "Door --> @SX(rel(0.5), rel(0.5)) [Leaf] [Leaf]
 Leaf --> @SX(0.1, flo(1), 0.1) [;(17) @Ext(0.3) @Block] [;(19) @Ext(0.12) @Block] [;(17) @Ext(0.3) @Block]
 ";
