@@ -356,3 +356,65 @@ fn hand_made_drawings_are_counted_as_drawn() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Separator strokes (`--strokes`): the line between the body and the
+/// bracket layer erased over 8 rows leaves the drawing ambiguous and the
+/// counts wrong; the user's stroke along it, in a picture of its own,
+/// restores them. Strokes of another size are refused.
+#[test]
+fn separator_strokes_restore_a_missing_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    draw(d, HALL, &["W=24".into()], "h.png");
+    let tree = infer(d, "h.png", "h.lsys");
+    let clean = counts(&tree);
+    assert_eq!(clean, truth(24.0, 3.0));
+    // The body is the band with the columns; its top is the line.
+    let bands = tree["root"]["children"].as_array().unwrap();
+    let body = bands
+        .iter()
+        .find(|b| count(b, "column") > 0)
+        .expect("a body band");
+    let [x0, top, x1] = [0, 1, 2].map(|i| body["box"][i].as_i64().unwrap() as usize);
+    let (w, h, mut buf) = read_rgb(&d.join("h.png"));
+    for y in top - 4..top + 4 {
+        buf[y * w * 3..(y + 1) * w * 3].fill(255);
+    }
+    write_rgb(&d.join("erased.png"), w, h, &buf);
+    assert_ne!(counts(&infer(d, "erased.png", "e.lsys")), clean);
+    let mut strokes = vec![255u8; w * h * 3];
+    for y in top - 1..=top {
+        strokes[(y * w + x0) * 3..(y * w + x1) * 3].fill(0);
+    }
+    write_rgb(&d.join("strokes.png"), w, h, &strokes);
+    let tree = "s.json";
+    run(
+        d,
+        &[
+            "infer",
+            "erased.png",
+            "--strokes",
+            "strokes.png",
+            "-o",
+            "s.lsys",
+            "--tree",
+            tree,
+        ],
+    );
+    let fixed: Value = serde_json::from_slice(&std::fs::read(d.join(tree)).unwrap()).unwrap();
+    assert_eq!(counts(&fixed), clean);
+    let mut small = vec![255u8; 100 * 60 * 3];
+    small[30 * 100 * 3..31 * 100 * 3].fill(0);
+    write_rgb(&d.join("small.png"), 100, 60, &small);
+    let out = lsys_in(
+        d,
+        &["infer", "h.png", "--strokes", "small.png", "-o", "x.lsys"],
+    );
+    assert_eq!(out.status.code(), Some(65));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("separator strokes are 100 x 60 pixels, the drawing 1000 x 600"),
+        "{err}"
+    );
+    assert!(!d.join("x.lsys").exists());
+}

@@ -329,6 +329,11 @@ pub struct InferArgs {
     /// Also write the labelled shape tree as JSON.
     #[arg(long, value_name = "OUT.json")]
     pub tree: Option<PathBuf>,
+    /// Separator strokes: a PNG or SVG of the drawing's size whose lines
+    /// are added to the drawing where it is ambiguous (a missing line,
+    /// two parts drawn as one).
+    #[arg(long, value_name = "LINES")]
+    pub strokes: Option<PathBuf>,
     /// Bridge breaks in the lines up to twice this many pixels.
     #[arg(long, value_name = "PIXELS", default_value_t = 2,
           value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(0..=8))]

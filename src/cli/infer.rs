@@ -1,4 +1,4 @@
-//! `lsys infer DRAWING -o OUT.lsys [--tree OUT.json]`: an elevation line
+//! `lsys infer DRAWING -o OUT.lsys [--tree OUT.json] [--strokes LINES]`: an elevation line
 //! drawing -> a hall's shape grammar (and its labelled shape tree), with a
 //! one-line summary and the regions it could not label on standard error.
 
@@ -12,7 +12,7 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
         gap: a.gap,
         scale: a.scale,
     };
-    let inference = match driver::infer_drawing(&a.drawing, &opts) {
+    let inference = match driver::infer_drawing(&a.drawing, a.strokes.as_deref(), &opts) {
         Ok(i) => i,
         Err(e) => return failed(e, color),
     };

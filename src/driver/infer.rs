@@ -1,5 +1,5 @@
 //! A drawing as a job (`lsys infer`, the studio's drawing page): a line
-//! drawing's path -> the [`Inference`] (shape tree, grammar), the grammar
+//! drawing's path (and its separator strokes') -> the [`Inference`] (shape tree, grammar), the grammar
 //! compiled once to prove it builds, and both written atomically: the
 //! grammar and the tree appear together or not at all.
 
@@ -23,16 +23,27 @@ pub enum InferFailure {
     Write(std::io::Error),
 }
 
-/// Reads the drawing at `path` and infers its hall.
-pub fn infer_drawing(path: &Path, opts: &InferOptions) -> Result<Inference, InferFailure> {
-    let shown = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| {
-        InferFailure::Drawing(InferError::Unreadable {
+/// Reads the drawing at `path`, with the separator strokes at `strokes`
+/// drawn into it when given, and infers its hall.
+pub fn infer_drawing(
+    path: &Path,
+    strokes: Option<&Path>,
+    opts: &InferOptions,
+) -> Result<Inference, InferFailure> {
+    let read = |path: &Path| {
+        let shown = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| InferError::Unreadable {
             path: shown.clone(),
             reason: e.to_string(),
-        })
-    })?;
-    let inference = infer::infer(&bytes, &shown, opts).map_err(InferFailure::Drawing)?;
+        })?;
+        infer::read_drawing(&bytes, &shown).map(|ink| (ink, shown))
+    };
+    let (mut ink, shown) = read(path).map_err(InferFailure::Drawing)?;
+    if let Some(strokes) = strokes {
+        let (lines, strokes_shown) = read(strokes).map_err(InferFailure::Drawing)?;
+        infer::add_strokes(&mut ink, &lines, &strokes_shown).map_err(InferFailure::Drawing)?;
+    }
+    let inference = infer::infer_ink(&ink, &shown, opts).map_err(InferFailure::Drawing)?;
     crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
     Ok(inference)
 }

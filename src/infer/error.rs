@@ -1,5 +1,6 @@
 //! The inference stage's one error enum: a drawing that cannot be read,
-//! is not a line drawing, is too big, or has nothing to build from.
+//! is not a line drawing, is too big, has nothing to build from, or whose
+//! separator strokes do not fit it.
 
 use miette::Diagnostic;
 use thiserror::Error;
@@ -35,6 +36,19 @@ pub enum InferError {
         help("`lsys infer` reads elevations drawn as dark lines on a light background (a scan, an export from a drawing program, or `lsys render --style lines --view front`); photographs and filled pictures are not read")
     )]
     NotALineDrawing { path: String, reason: String },
+
+    #[error("{path}: the separator strokes are {width} x {height} pixels, the drawing {drawing_width} x {drawing_height}")]
+    #[diagnostic(
+        code(lsys::infer::strokes_size),
+        help("draw the strokes on a copy of the drawing, or on a layer of its size, and export that at the drawing's size")
+    )]
+    StrokesSize {
+        path: String,
+        width: usize,
+        height: usize,
+        drawing_width: usize,
+        drawing_height: usize,
+    },
 
     #[error("{path}: the drawing has no closed regions")]
     #[diagnostic(

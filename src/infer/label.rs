@@ -8,8 +8,9 @@
 //! the top level down (Section 3's order of a hall, bottom to top:
 //! platform, columns and walls, bracket sets, rafters, roof, ridge):
 //!
-//! - the **body** is the band with the most columns: regions at least 0.7
-//!   of the band's height and three times taller than wide;
+//! - the **body** is the tallest band with columns (regions at least 0.7
+//!   of the band's height and three times taller than wide, standing
+//!   apart);
 //! - bands under it are the **platform** (the middle piece drawn as stacked
 //!   steps is the **stairs**);
 //! - above it, from the top: a band under a third of the next one's height
@@ -46,10 +47,12 @@ pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
         return unlabelled(root, regions);
     }
     let columns = |n: &Node| spaced_columns(n, regions);
-    // The body: the band with most columns, the taller on a tie; a drawing
-    // with no columns has the tallest band as its body.
+    // The body: the tallest band with columns standing apart (two gaps
+    // at least), else the tallest band. Not the band with most columns:
+    // a row of tall rafter ends passes the column test too, and beats the
+    // body, whose door stiles and side walls stand close to its columns.
     let body_at = (0..root.children.len())
-        .max_by_key(|&i| (columns(&root.children[i]), root.children[i].h()))
+        .max_by_key(|&i| (columns(&root.children[i]) >= 2, root.children[i].h()))
         .unwrap_or(0);
     for c in &mut root.children[body_at + 1..] {
         platform(c);
@@ -175,26 +178,42 @@ fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     }
     // When the bracket sets stand from the beam to the eave, the layer's
     // back between them is cut into closed pieces too: an unbroken run of
-    // 2n + 1 drawn pieces whose first, third, ... are plain outlines is n
-    // bracket sets with the back's n + 1 pieces around them. (Rafters are
-    // left alone: their run has no back piece at its ends.)
+    // an odd number of drawn pieces alternates sets and back. Which are
+    // the sets: the run's end pieces are margins of back when they are
+    // not as wide as the others of their parity (a margin is whatever was
+    // left at the layer's end), sets otherwise (sets repeat exactly).
+    // (Rafters are left alone.)
     let drawn: Vec<usize> = (0..band.children.len())
         .filter(|&k| !band.children[k].regions.is_empty())
         .collect();
     let unbroken = drawn.windows(2).all(|w| w[1] == w[0] + 1);
-    let alternate = kind == "bracket"
-        && unbroken
-        && drawn.len() >= 5
-        && drawn.len() % 2 == 1
-        && drawn
+    let mut alternate = None;
+    if kind == "bracket" && unbroken && drawn.len() >= 5 && drawn.len() % 2 == 1 {
+        let even: Vec<i32> = drawn
             .iter()
             .step_by(2)
+            .map(|&k| band.children[k].w())
+            .collect();
+        let mut inner = even[1..even.len() - 1].to_vec();
+        inner.sort_unstable();
+        let med = inner[inner.len() / 2] as f64;
+        let off = |w: i32| (w as f64 - med).abs() > 0.2 * med + 1.0;
+        let ends_are_back = off(even[0]) || off(even[even.len() - 1]);
+        let back_parity = usize::from(!ends_are_back);
+        let backs_plain = drawn
+            .iter()
+            .skip(back_parity)
+            .step_by(2)
             .all(|&k| is_plain(&band.children[k], regions));
+        if backs_plain {
+            alternate = Some((drawn[0], back_parity));
+        }
+    }
     // Bracket sets drawn with inner lines (a block quartered by its arms)
     // are cut into several pieces, each with something drawn inside; the
     // back's pieces between them are plain: a run of adjacent detailed
     // pieces is one set.
-    if kind == "bracket" && !alternate {
+    if kind == "bracket" && alternate.is_none() {
         merge_detailed_runs(band, regions);
     }
     // A drawn sliver under a third of the sets' median width is a piece of
@@ -211,7 +230,7 @@ fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     let mut n = 0;
     for (k, c) in band.children.iter_mut().enumerate() {
         let back =
-            sliver(c) || alternate && drawn.first().is_some_and(|&f| k >= f && (k - f) % 2 == 0);
+            sliver(c) || alternate.is_some_and(|(f, parity)| k >= f && (k - f) % 2 == parity);
         if c.regions.is_empty() || back {
             collapse(c, "other");
             // The layer's back, not something left unrecognised.

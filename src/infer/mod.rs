@@ -61,12 +61,37 @@ pub struct Inference {
 /// Reads the drawing `bytes` (PNG or SVG), named `path` in messages and in
 /// the grammar's heading.
 pub fn infer(bytes: &[u8], path: &str, opts: &InferOptions) -> Result<Inference, InferError> {
-    let ink = if is_svg(bytes) {
-        read_svg(bytes, path)?
+    infer_ink(&read_drawing(bytes, path)?, path, opts)
+}
+
+/// Reads `bytes` (PNG or SVG) as an ink bitmap; `path` names it in
+/// messages.
+pub fn read_drawing(bytes: &[u8], path: &str) -> Result<Ink, InferError> {
+    if is_svg(bytes) {
+        read_svg(bytes, path)
     } else {
-        read_png(bytes, path)?
-    };
-    infer_ink(&ink, path, opts)
+        read_png(bytes, path)
+    }
+}
+
+/// Draws the separator strokes `strokes` (the seed's user strokes, a
+/// picture of the drawing's size with lines where the drawing is
+/// ambiguous: a missing line, two parts drawn as one) into `ink`.
+/// `strokes_path` names the strokes in messages.
+pub fn add_strokes(ink: &mut Ink, strokes: &Ink, strokes_path: &str) -> Result<(), InferError> {
+    if (strokes.width, strokes.height) != (ink.width, ink.height) {
+        return Err(InferError::StrokesSize {
+            path: strokes_path.to_string(),
+            width: strokes.width,
+            height: strokes.height,
+            drawing_width: ink.width,
+            drawing_height: ink.height,
+        });
+    }
+    for (a, &b) in ink.ink.iter_mut().zip(&strokes.ink) {
+        *a |= b;
+    }
+    Ok(())
 }
 
 /// As [`infer`], from an ink bitmap.

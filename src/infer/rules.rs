@@ -156,11 +156,13 @@ pub fn measure(root: &Node, scale: Option<f64>) -> Measured {
         .first()
         .map(|n| (n.w() as f64 * s, n.regions.len().clamp(1, 9)));
     let row = |label: &str| -> Option<Row> {
-        let band = root
+        // The recogniser may have nested the row in its band (margins
+        // around a narrower layer, rows re-cut into columns).
+        let (band, items) = root
             .children
             .iter()
-            .find(|b| b.children.iter().any(|c| c.label == label))?;
-        let items: Vec<&Node> = band.children.iter().filter(|c| c.label == label).collect();
+            .map(|b| (b, all(b, label)))
+            .find(|(_, items)| !items.is_empty())?;
         Some(Row {
             height: band.h() as f64 * s,
             count: items.len(),
