@@ -27,8 +27,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 use std::time::Instant;
 
+use glam::Vec3;
 use lsys::internals::export::render::{
-    render, write_png, Image, RenderOptions, Style, View, MAX_SUPERSAMPLE,
+    render, write_png, Image, PixelFrame, RenderOptions, Style, View,
 };
 use lsys::internals::infer::{infer, InferOptions, Node};
 use lsys::internals::lang::scope_commands::Axis;
@@ -289,58 +290,23 @@ fn truth_boxes(h: &Hall, t: &Truth, f: &Fixed) -> Vec<(&'static str, [f64; 4])> 
     out
 }
 
-/// Model -> drawing pixels as the renderer frames a front view.
-///
-/// The renderer's camera (`export::render::camera::Camera::frame`) is
-/// private to the renderer, so its framing is redone here with its formula
-/// and in its precision: the model's box (every vertex, as
-/// `mesh::Scene::bounds` measures it; for the front view the projected box
-/// is the x-y box) fills the picture less 5 % on each side, centred, one
-/// scale for both axes; pixel = sample / supersampling. [`draw`] checks it
-/// against the ink of every drawing.
+/// Model -> drawing pixels through the renderer's own framing
+/// ([`PixelFrame`]); [`draw`] checks it against the ink of every drawing.
 #[derive(Clone, Copy, Debug)]
-struct Frame {
-    centre: [f32; 2],
-    scale: f32,
-    half: [f32; 2],
-    ss: f64,
-}
-
-/// `camera.rs`'s MARGIN.
-const MARGIN: f32 = 0.05;
+struct Frame(PixelFrame);
 
 impl Frame {
-    fn fit(lo: [f32; 3], hi: [f32; 3], opts: &RenderOptions) -> Frame {
-        let ss = opts.supersample.clamp(1, MAX_SUPERSAMPLE);
-        let size = [(opts.width * ss) as f32, (opts.height * ss) as f32];
-        let fit = |k: usize| {
-            let extent = hi[k] - lo[k];
-            if extent > 0.0 {
-                size[k] * (1.0 - 2.0 * MARGIN) / extent
-            } else {
-                f32::INFINITY
-            }
-        };
-        let mut scale = fit(0).min(fit(1));
-        if !(scale.is_finite() && scale > 0.0) {
-            scale = 1.0;
-        }
-        Frame {
-            centre: [lo[0] * 0.5 + hi[0] * 0.5, lo[1] * 0.5 + hi[1] * 0.5],
-            scale,
-            half: [size[0] * 0.5, size[1] * 0.5],
-            ss: ss as f64,
-        }
-    }
-    fn x(&self, x: f64) -> f64 {
-        ((x as f32 - self.centre[0]) * self.scale + self.half[0]) as f64 / self.ss
-    }
-    fn y(&self, y: f64) -> f64 {
-        (self.half[1] - (y as f32 - self.centre[1]) * self.scale) as f64 / self.ss
-    }
-    /// A model box as a pixel box `[x0, y0, x1, y1]`, y down.
+    /// A model box `[x0, y0, x1, y1]` (y up, front view) as a pixel box,
+    /// y down.
     fn project(&self, b: [f64; 4]) -> [f64; 4] {
-        [self.x(b[0]), self.y(b[3]), self.x(b[2]), self.y(b[1])]
+        let at = |x: f64, y: f64| self.0.project(Vec3::new(x as f32, y as f32, 0.0));
+        let (top_left, bottom_right) = (at(b[0], b[3]), at(b[2], b[1]));
+        [
+            top_left.x as f64,
+            top_left.y as f64,
+            bottom_right.x as f64,
+            bottom_right.y as f64,
+        ]
     }
 }
 
@@ -367,7 +333,7 @@ fn draw(hall: &Hall) -> Result<(Image, Frame), String> {
     let opts = render_options();
     let image = render(scene.mesh(), &opts);
     let (lo, hi) = scene.bounds().ok_or("nothing drawn")?;
-    let frame = Frame::fit(lo, hi, &opts);
+    let frame = Frame(PixelFrame::of(scene.mesh(), &opts).ok_or("nothing drawn")?);
     // The framing must reach the ink's edges (lines are drawn on the
     // model's side of an outline): a renderer that frames differently
     // would make every IoU below wrong.
@@ -1061,17 +1027,14 @@ fn report(run: &Run) -> String {
          middle {DOOR_FRAC} of the centre bay, floor to lintel; bracket sets {} wide in the \
          middle of each `@RX({BRK_PITCH})` piece, the top {} of the layer; the roof OV beyond \
          the facade each side, ROOF high; the platform {PLAT_OV} beyond it, the stairs CENTRE \
-         wide in its middle. They are projected to pixels with the renderer's framing: its \
-         camera is private to the renderer, so the example redoes `Camera::frame` (the \
-         model's x-y box fills the picture less {:.0} % a side, centred, one scale) from the built \
-         scene's bounds in the same f32 arithmetic, and checks on every drawing that the box \
-         lands on the ink's edges within 1.5 pixels. Per label, IoU = |truth ∩ inferred| / \
+         wide in its middle. They are projected to pixels with the renderer's own framing \
+         (`export::render::PixelFrame`: the model fills the picture less 5 % a side, \
+         centred, one scale), and every drawing is checked: the model's box lands on the \
+         ink's edges within 1.5 pixels. Per label, IoU = |truth ∩ inferred| / \
          |truth ∪ inferred| over the pixels of the union of the truth boxes and the union of \
          the inferred leaves with that label, averaged over the drawings where either has any \
          (n).",
-        BRK_SET.0,
-        BRK_SET.1,
-        MARGIN * 100.0
+        BRK_SET.0, BRK_SET.1,
     );
     let _ = writeln!(
         s,

@@ -7,7 +7,8 @@
 //!              filled pictures, blank pages, oversized images)
 //! regions.rs   ink -> closed regions (specks erased, gaps bridged)
 //! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
-//! label.rs     shape tree -> labelled tree (the seed's priors as rules)
+//! label/       shape tree -> labelled tree (the seed's priors as rules;
+//!              layers.rs: the bracket and rafter layers)
 //! rules.rs     labelled tree -> measured sizes -> the grammar text
 //! ```
 //!

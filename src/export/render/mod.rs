@@ -247,6 +247,35 @@ pub enum RenderError {
     },
 }
 
+/// Where [`render`] puts model points in its picture: the same camera,
+/// in output pixels (the supersampling divided out), y down. For tools
+/// that compare a picture with the model drawn in it (the drawing round
+/// trip).
+#[derive(Clone, Copy, Debug)]
+pub struct PixelFrame {
+    camera: Camera,
+    supersample: f32,
+}
+
+impl PixelFrame {
+    /// The framing of `scene` under `opts`; `None` when nothing is drawn.
+    pub fn of(scene: &Scene, opts: &RenderOptions) -> Option<PixelFrame> {
+        let ss = opts.supersample.clamp(1, MAX_SUPERSAMPLE);
+        let size = Vec2::new((opts.width * ss) as f32, (opts.height * ss) as f32);
+        let camera = Camera::frame(scene, opts.view, size)?;
+        Some(PixelFrame {
+            camera,
+            supersample: ss as f32,
+        })
+    }
+
+    /// A world point -> (pixel x, pixel y downwards).
+    pub fn project(&self, p: Vec3) -> Vec2 {
+        let q = self.camera.project(p);
+        Vec2::new(q.x, q.y) / self.supersample
+    }
+}
+
 /// Renders `scene` as seen from `opts.view`, framed to fill the image less
 /// a 5% margin on each side, centred, aspect ratio kept. An empty scene
 /// gives a picture of the background only; a zero size an empty image;
