@@ -9,6 +9,8 @@
 //! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
 //! label/       shape tree -> labelled tree (the seed's priors as rules;
 //!              layers.rs: the bracket and rafter layers)
+//! outline.rs   labelled tree + ink -> doors and windows out to their drawn
+//!              outlines (lines that gap bridging closed up)
 //! rules.rs     labelled tree -> measured sizes -> the grammar text
 //! ```
 //!
@@ -18,6 +20,7 @@
 mod drawing;
 mod error;
 mod label;
+mod outline;
 mod regions;
 mod rules;
 mod tree;
@@ -119,6 +122,7 @@ pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference
     let tolerance = ((bbox[2] - bbox[0]).max(bbox[3] - bbox[1]) / 100).max(2 * gap as i32 + 2);
     let mut tree = tree::shape_tree(&regions, bbox, tolerance);
     let unlabelled = label::recognise(&mut tree, &regions);
+    outline::snap(&mut tree, ink);
     let measured = rules::measure(&tree, opts.scale);
     let name = std::path::Path::new(path)
         .file_name()

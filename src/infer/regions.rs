@@ -35,13 +35,17 @@ const MIN_AREA: u32 = 6;
 
 /// The regions of `ink`, lines thickened by `gap` pixels (0 to 8).
 pub fn regions(ink: &Ink, gap: usize) -> Vec<Region> {
-    let cleaned = erase_specks(ink);
+    let cleaned = erase_specks(ink, gap);
     let thick = thicken(&cleaned, gap);
     label(&thick, gap as i32)
 }
 
-/// Removes 8-connected ink components of at most [`SPECK`] pixels.
-fn erase_specks(ink: &Ink) -> Ink {
+/// Removes 8-connected ink components of at most [`SPECK`] pixels that
+/// stand alone: a piece of a line left between two breaks (a scan's gaps
+/// right beside a junction) has other ink within a bridgeable break
+/// (`2 gap + 1` pixels) and is kept, or erasing it would make one break of
+/// the two, too wide to bridge.
+fn erase_specks(ink: &Ink, gap: usize) -> Ink {
     let (w, h) = (ink.width, ink.height);
     let mut out = ink.clone();
     let mut seen = vec![false; w * h];
@@ -71,13 +75,27 @@ fn erase_specks(ink: &Ink) -> Ink {
                 }
             }
         }
-        if component.len() <= SPECK {
+        if component.len() <= SPECK && alone(ink, &component, 2 * gap as i64 + 1) {
             for &i in &component {
                 out.ink[i] = false;
             }
         }
     }
     out
+}
+
+/// Whether no ink but `component`'s lies within `r` pixels of it.
+fn alone(ink: &Ink, component: &[usize], r: i64) -> bool {
+    let (w, h) = (ink.width as i64, ink.height as i64);
+    component.iter().all(|&i| {
+        let (x, y) = ((i as i64) % w, (i as i64) / w);
+        (y - r..=y + r).all(|ny| {
+            (x - r..=x + r).all(|nx| {
+                let j = (ny * w + nx) as usize;
+                nx < 0 || ny < 0 || nx >= w || ny >= h || !ink.ink[j] || component.contains(&j)
+            })
+        })
+    })
 }
 
 /// Dilates the ink by a square of radius `r` (separably: rows, then columns).
@@ -239,6 +257,23 @@ mod tests {
         ink.ink[15 * 60 + 21] = true;
         let r = regions(&ink, 1);
         assert_eq!(r.len(), 1);
-        assert!(!thicken(&erase_specks(&ink), 0).ink[15 * 60 + 20]);
+        assert!(!thicken(&erase_specks(&ink, 1), 0).ink[15 * 60 + 20]);
+    }
+
+    #[test]
+    fn a_piece_of_line_between_two_breaks_is_not_a_speck() {
+        // The left side broken at rows 8..11 and 14..17, and the top
+        // beside the corner: the piece at rows 11..14 is three pixels.
+        let mut ink = draw(60, 40, &[[5, 5, 50, 30]]);
+        for y in (8..11).chain(14..17) {
+            ink.ink[y * 60 + 5] = false;
+        }
+        for x in 4..8 {
+            ink.ink[5 * 60 + x] = false;
+        }
+        assert!(erase_specks(&ink, 2).ink[12 * 60 + 5]);
+        assert_eq!(regions(&ink, 2).len(), 1);
+        // Erased, the break would be 9 pixels, past what gap 2 bridges.
+        assert!(!erase_specks(&ink, 0).ink[12 * 60 + 5]);
     }
 }

@@ -131,7 +131,7 @@ pub fn measure(root: &Node, scale: Option<f64>) -> Measured {
         };
         measured_bays.push(Bay {
             width: (b - a) * s,
-            fill: fill(bay, s),
+            fill: fill(bay, col_px, s),
         });
     }
     let lintel = median(all(root, "lintel").iter().map(|n| n.h() as f64).collect()) * s;
@@ -197,7 +197,10 @@ fn far(edge: Option<&f64>, x: f64, d: f64) -> bool {
 }
 
 /// What fills a bay, from its door or window and the box under its lintel.
-fn fill(bay: &Node, s: f64) -> Fill {
+/// Widths are fractions of the bay's pitch (the drawn bay between column
+/// faces plus one column, `col_px` wide), as the rebuilt facade's bays run
+/// from column centre to column centre.
+fn fill(bay: &Node, col_px: f64, s: f64) -> Fill {
     let lintel = bay.children.iter().find(|c| c.label == "lintel");
     let below = [
         bay.bbox[0],
@@ -206,7 +209,7 @@ fn fill(bay: &Node, s: f64) -> Fill {
         bay.bbox[3],
     ];
     let (bw, bh) = (
-        (below[2] - below[0]).max(1) as f64,
+        (below[2] - below[0]).max(1) as f64 + col_px,
         (below[3] - below[1]).max(1) as f64,
     );
     let door = all(bay, "door");

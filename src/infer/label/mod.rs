@@ -23,7 +23,8 @@
 //!   **lintel**; under it, what is drawn inside the wall is a **door** when
 //!   it stands on the bay's floor and is at least 0.4 of its height, a
 //!   **window** otherwise; undrawn strips and plain narrow side strips
-//!   are **wall**.
+//!   are **wall**; pieces with a door or window in them one above the
+//!   other under the lintel are one element.
 
 mod layers;
 
@@ -282,6 +283,49 @@ fn bay(node: &mut Node, regions: &[Region]) {
     for c in &mut node.children[rest_from..] {
         elements(c, regions, floor, height, false);
     }
+    // Pieces with a door or window in them, one above the other under the
+    // lintel, are one element: a shaky hand pinches a lattice's cells shut
+    // along a line, and the window comes in two rows.
+    let rest: Vec<Node> = node.children.drain(rest_from..).collect();
+    let mut run: Vec<Node> = Vec::new();
+    let flush = |run: &mut Vec<Node>, children: &mut Vec<Node>| match run.len() {
+        0 => {}
+        1 => children.append(run),
+        _ => children.push(merged(&std::mem::take(run), regions, floor, height)),
+    };
+    for c in rest {
+        let element = c
+            .leaves()
+            .iter()
+            .any(|l| matches!(l.label, "door" | "window"));
+        if !element {
+            flush(&mut run, &mut node.children);
+            node.children.push(c);
+        } else {
+            run.push(c);
+        }
+    }
+    flush(&mut run, &mut node.children);
+}
+
+/// One door or window, a leaf, of the pieces `run` (side by side or one
+/// above the other).
+fn merged(run: &[Node], regions: &[Region], floor: i32, height: i32) -> Node {
+    let mut m = run[0].clone();
+    for r in &run[1..] {
+        m.bbox = [
+            m.bbox[0].min(r.bbox[0]),
+            m.bbox[1].min(r.bbox[1]),
+            m.bbox[2].max(r.bbox[2]),
+            m.bbox[3].max(r.bbox[3]),
+        ];
+        m.regions.extend(r.regions.iter().copied());
+    }
+    m.fills.clear();
+    m.children.clear();
+    m.split = None;
+    element(&mut m, regions, floor, height);
+    m
 }
 
 pub(super) fn placeholder() -> Node {
@@ -342,25 +386,10 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested
     let mut children = Vec::new();
     let mut run: Vec<Node> = Vec::new();
     let flush = |run: &mut Vec<Node>, children: &mut Vec<Node>| {
-        if run.is_empty() {
-            return;
+        if !run.is_empty() {
+            children.push(merged(run, regions, floor, height));
+            run.clear();
         }
-        let mut merged = run[0].clone();
-        for r in run.iter().skip(1) {
-            merged.bbox = [
-                merged.bbox[0].min(r.bbox[0]),
-                merged.bbox[1].min(r.bbox[1]),
-                merged.bbox[2].max(r.bbox[2]),
-                merged.bbox[3].max(r.bbox[3]),
-            ];
-            merged.regions.extend(r.regions.iter().copied());
-        }
-        merged.fills.clear();
-        merged.children.clear();
-        merged.split = None;
-        element(&mut merged, regions, floor, height);
-        children.push(merged);
-        run.clear();
     };
     // A narrow undrawn strip between two drawn pieces (the joint between a
     // double door's leaves, its lines merged by blur) does not part them.
