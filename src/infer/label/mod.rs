@@ -40,6 +40,9 @@ const COLUMN_SLENDER: f64 = 3.0;
 /// Labels `root` in place. Returns the boxes of the regions drawn in
 /// nodes that no rule could name.
 pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
+    if root.split == Some(Axis::Y) {
+        rejoin_pinched_bands(root, regions);
+    }
     let bands: Vec<usize> = if root.split == Some(Axis::Y) {
         (0..root.children.len()).collect()
     } else {
@@ -83,6 +86,80 @@ pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
         }
     }
     unlabelled(root, regions)
+}
+
+/// Bands cut along x at the same places, one above the other, are one band
+/// cut across where a shaky hand pinched its strips shut: a roof's tile
+/// rows come in three bands, and the ridge above is then read as the roof.
+fn rejoin_pinched_bands(root: &mut Node, regions: &[Region]) {
+    let cuts = |a: &Node| -> Vec<i32> {
+        let n = a.children.len();
+        a.children
+            .iter()
+            .take(n.saturating_sub(1))
+            .map(|c| c.bbox[2])
+            .collect()
+    };
+    // Most of each band's cuts have one in the other within a shift.
+    let matched = |a: &[i32], b: &[i32]| {
+        a.iter()
+            .filter(|&&x| b.iter().any(|&y| (x - y).abs() <= PINCHED_SHIFT))
+            .count()
+            * 5
+            >= a.len() * 4
+    };
+    let same_cuts = |a: &Node, b: &Node| {
+        let (ca, cb) = (cuts(a), cuts(b));
+        a.split == Some(Axis::X)
+            && b.split == Some(Axis::X)
+            && ca.len().min(cb.len()) + 1 >= PINCHED_MIN_PIECES
+            && matched(&ca, &cb)
+            && matched(&cb, &ca)
+    };
+    let mut k = 0;
+    while k + 1 < root.children.len() {
+        if !same_cuts(&root.children[k], &root.children[k + 1]) {
+            k += 1;
+            continue;
+        }
+        // The upper band's pieces, taken down through the lower one; each
+        // region of the lower one goes to the piece over its middle.
+        let lower = root.children.remove(k + 1);
+        let upper = &mut root.children[k];
+        upper.bbox = union(upper.bbox, lower.bbox);
+        upper.regions.extend(lower.regions.iter().copied());
+        upper.fills.clear();
+        let (y0, y1) = (upper.bbox[1], upper.bbox[3]);
+        for p in &mut upper.children {
+            p.bbox[1] = y0;
+            p.bbox[3] = y1;
+            p.fills.clear();
+            p.children.clear();
+            p.split = None;
+        }
+        for r in lower.regions {
+            let mid = (regions[r].bbox[0] + regions[r].bbox[2]) / 2;
+            if let Some(p) = upper.children.iter_mut().find(|p| mid < p.bbox[2]) {
+                p.regions.push(r);
+            } else if let Some(p) = upper.children.last_mut() {
+                p.regions.push(r);
+            }
+        }
+    }
+}
+
+/// See [`rejoin_pinched_bands`]: the fewest pieces (a roof has dozens of
+/// tile rows), and how far two cuts may stand apart and still be one.
+const PINCHED_MIN_PIECES: usize = 8;
+const PINCHED_SHIFT: i32 = 2;
+
+fn union(a: [i32; 4], b: [i32; 4]) -> [i32; 4] {
+    [
+        a[0].min(b[0]),
+        a[1].min(b[1]),
+        a[2].max(b[2]),
+        a[3].max(b[3]),
+    ]
 }
 
 /// Column-like regions of `band` that stand apart: the gap to the next one
