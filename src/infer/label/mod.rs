@@ -520,3 +520,62 @@ fn unlabelled(root: &Node, regions: &[Region]) -> Vec<[i32; 4]> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A band over `y0..y1` cut along x at `cuts` (0 and 100 are its ends).
+    fn band(y0: i32, y1: i32, cuts: &[i32]) -> Node {
+        let mut xs = vec![0];
+        xs.extend_from_slice(cuts);
+        xs.push(100);
+        let mut b = placeholder();
+        b.bbox = [0, y0, 100, y1];
+        b.split = Some(Axis::X);
+        b.children = xs
+            .windows(2)
+            .map(|w| Node {
+                bbox: [w[0], y0, w[1], y1],
+                ..placeholder()
+            })
+            .collect();
+        b
+    }
+
+    fn root(bands: Vec<Node>) -> Node {
+        let mut r = placeholder();
+        r.bbox = [0, 0, 100, 60];
+        r.split = Some(Axis::Y);
+        r.children = bands;
+        r
+    }
+
+    #[test]
+    fn a_band_pinched_in_two_is_joined_and_other_bands_are_not() {
+        let tiles: Vec<i32> = (1..10).map(|k| k * 10).collect();
+        // The lower half's cuts wander by up to 2 pixels and one is lost.
+        let shaken: Vec<i32> = (1..10)
+            .filter(|&k| k != 5)
+            .map(|k| k * 10 + k % 3 - 1)
+            .collect();
+        let mut r = root(vec![
+            band(0, 10, &tiles),
+            band(10, 25, &shaken),
+            band(25, 40, &[30, 70]),
+        ]);
+        rejoin_pinched_bands(&mut r, &[]);
+        assert_eq!(r.children.len(), 2);
+        assert_eq!(r.children[0].bbox, [0, 0, 100, 25]);
+        assert_eq!(r.children[0].children.len(), 10);
+        assert!(r.children[0]
+            .children
+            .iter()
+            .all(|p| p.bbox[1] == 0 && p.bbox[3] == 25));
+        // Rafters at another pitch under the tiles stay apart.
+        let rafters: Vec<i32> = (1..13).map(|k| k * 8 - 3).collect();
+        let mut r = root(vec![band(0, 10, &tiles), band(10, 25, &rafters)]);
+        rejoin_pinched_bands(&mut r, &[]);
+        assert_eq!(r.children.len(), 2);
+    }
+}
