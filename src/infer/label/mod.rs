@@ -390,12 +390,7 @@ fn bay(node: &mut Node, regions: &[Region]) {
 fn merged(run: &[Node], regions: &[Region], floor: i32, height: i32) -> Node {
     let mut m = run[0].clone();
     for r in &run[1..] {
-        m.bbox = [
-            m.bbox[0].min(r.bbox[0]),
-            m.bbox[1].min(r.bbox[1]),
-            m.bbox[2].max(r.bbox[2]),
-            m.bbox[3].max(r.bbox[3]),
-        ];
+        m.bbox = union(m.bbox, r.bbox);
         m.regions.extend(r.regions.iter().copied());
     }
     m.fills.clear();
