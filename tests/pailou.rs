@@ -418,3 +418,62 @@ fn a_middle_toukung_without_a_roof_is_told() {
     ]);
     assert_eq!(warnings(&o), "", "{}", stderr(&o));
 }
+
+/// Boxes (min, max) of the placed parts of a build, by name (`MIB#0`):
+/// a placed component's unit box is centred on its node's origin.
+fn boxes(args: &[&str]) -> Vec<(String, Vec3, Vec3)> {
+    nodes(args)
+        .into_iter()
+        .map(|(n, m)| {
+            let size = Vec3::new(m.x_axis.length(), m.y_axis.length(), m.z_axis.length());
+            let centre = m.w_axis.truncate();
+            (n, centre - size / 2.0, centre + size / 2.0)
+        })
+        .collect()
+}
+
+/// Issue 37, defect 3: in every example the inscribed board stands on a
+/// lintel that spans it (between the big and the small lintel, in the
+/// flower board), not hung under the small lintel where it took the
+/// passage's height.
+#[test]
+fn the_inscribed_board_stands_between_the_lintels() {
+    let mut boards = 0;
+    for graph in examples() {
+        let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        let parts = boxes(&["pailou", graph.to_str().unwrap()]);
+        let lintels: Vec<&(String, Vec3, Vec3)> =
+            parts.iter().filter(|p| p.0.starts_with("ML#")).collect();
+        for (board, lo, hi) in parts.iter().filter(|p| p.0.starts_with("MIB#")) {
+            let on = lintels.iter().any(|(_, llo, lhi)| {
+                (lhi.y - lo.y).abs() < 1e-3 && llo.x <= lo.x + 1e-3 && lhi.x >= hi.x - 1e-3
+            });
+            assert!(on, "{name}: {board} ({lo} .. {hi}) stands on no lintel");
+            boards += 1;
+        }
+    }
+    assert!(boards >= 15, "{boards} inscribed boards");
+}
+
+/// Issue 37, defect 6: in 18-3 each clipped roof between two entrances
+/// above reaches from the pillar of one to the pillar of the other ("clipped
+/// roofs are those between two suspended pillars of respective entrances"),
+/// instead of sitting on one side of each and leaving bare lintel.
+#[test]
+fn clipped_roofs_of_18_3_span_between_the_entrances_above() {
+    let parts = boxes(&["pailou", "examples/pailou/fig18-3_6-5-11.toml"]);
+    let mut pillars: Vec<&(String, Vec3, Vec3)> = parts
+        .iter()
+        .filter(|p| p.0.starts_with("MP#") && p.1.y > 0.1)
+        .collect();
+    pillars.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+    assert_eq!(pillars.len(), 10, "five entrances above");
+    // Pillars 2k+1 and 2k+2 face each other across a slot.
+    for pair in pillars[1..9].chunks(2) {
+        let (a, b) = (pair[0].2.x, pair[1].1.x);
+        let covered = parts
+            .iter()
+            .any(|(n, lo, hi)| n.starts_with("RC#") && lo.x <= a + 0.02 && hi.x >= b - 0.02);
+        assert!(covered, "no clipped roof from x = {a} to {b}");
+    }
+}
