@@ -2,8 +2,9 @@
 """Measures the paper's Table 2 (Toukungs) and Table 3 (Pailous) with the
 release binary and prints the markdown tables of docs/reproduction.md, the
 paper's values beside ours; renders the front view of each Table 3 Pailou
-to docs/images/pailou/<example>.png and its iso view to <example>_iso.png. Times are the median of 5 runs of the
-sum of --stats stages (parse, derive, interpret, mesh, write)."""
+to docs/images/pailou/<example>.png and its iso view to <example>_iso.png.
+Times are the median of 5 runs of the sum of --stats stages (parse, derive,
+interpret, mesh, write)."""
 import json, statistics, subprocess, sys, tempfile, os, glob
 
 LSYS = "target/release/lsys"
@@ -52,7 +53,6 @@ for g in sorted(glob.glob("examples/pailou/*.toml")):
     roofs = i.get("RE", 0) + i.get("RC", 0)
     ne = i.get("MPB", 0) - 1
     print(f"| [{name}](images/pailou/{name}.png) | {kind} | {i.get('MPB', 0)}-{ne}-{roofs} | {poly:.3g} | {r['triangles']:,} | {r['triangles'] / poly:.2f} | {kb:,.0f} | {r['output']['bytes'] // 1024:,} | {secs} | {ms:.1f} |")
-    subprocess.run([LSYS, "pailou", g, "-o", f"docs/images/pailou/{name}.png", "--view", "front", "--size", "480x360"],
-                   check=True, capture_output=True)
-    subprocess.run([LSYS, "pailou", g, "-o", f"docs/images/pailou/{name}_iso.png", "--view", "iso", "--size", "480x360"],
-                   check=True, capture_output=True)
+    for view, suffix in [("front", ""), ("iso", "_iso")]:
+        subprocess.run([LSYS, "pailou", g, "-o", f"docs/images/pailou/{name}{suffix}.png", "--view", view,
+                        "--size", "480x360"], check=True, capture_output=True)

@@ -308,13 +308,10 @@ fn toukungs_are_scaled_alike_on_all_axes_for_their_levels() {
 fn the_main_roof_is_the_largest() {
     for graph in examples() {
         let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
-        let roofs: Vec<(String, Vec3, f32)> = nodes(&["pailou", graph.to_str().unwrap()])
+        let roofs: Vec<(String, Vec3, f32)> = boxes(&["pailou", graph.to_str().unwrap()])
             .into_iter()
-            .filter(|(n, _)| n.starts_with("RE#") || n.starts_with("RC#"))
-            .map(|(n, m)| {
-                let size = Vec3::new(m.x_axis.length(), m.y_axis.length(), m.z_axis.length());
-                (n, size, m.w_axis.y + size.y / 2.0)
-            })
+            .filter(|(n, ..)| n.starts_with("RE#") || n.starts_with("RC#"))
+            .map(|(n, lo, hi)| (n, hi - lo, hi.y))
             .collect();
         let main = roofs
             .iter()
