@@ -37,6 +37,11 @@ use lsys::internals::turtle::scope::{repeat, symmetric, Role};
 use lsys::Grammar;
 
 const HALL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/shapes/hall.lsys");
+/// Where the hall's sizes (`#define`s) are: the parts it includes.
+const HALL_SIZES: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/examples/shapes/hall_parts.lsys"
+);
 const DOC: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/drawing-roundtrip.md");
 /// The drawing size `tests/infer.rs` and `docs/drawing.md` use.
 const SIZE: (u32, u32) = (1000, 600);
@@ -72,6 +77,8 @@ const PARAMS: [(&str, f64, f64); 10] = [
 const BRK_PITCH: f64 = 1.1;
 /// `BrkSet --> @SX(flo(1), 0.6, flo(1))`, its top `rel(0.7)` drawn.
 const BRK_SET: (f64, f64) = (0.6, 0.7);
+/// `@Ext(0.35)`: how far a set stands out of its face.
+const BRK_OUT: f64 = 0.35;
 /// `RafFace --> @RX(0.4)`.
 const RAF_PITCH: f64 = 0.4;
 /// `Below --> @SY(1.0, flo(1), 0.4)` and `@SX(0.4, flo(1), 0.4)`.
@@ -150,7 +157,7 @@ fn read_fixed(text: &str) -> Fixed {
     let get = |n: &str| {
         *defines
             .get(n)
-            .unwrap_or_else(|| panic!("hall.lsys defines {n}"))
+            .unwrap_or_else(|| panic!("hall_parts.lsys defines {n}"))
     };
     Fixed {
         col: get("COL"),
@@ -197,8 +204,10 @@ fn truth(h: &Hall) -> Result<Truth, String> {
     let w = h.get("W");
     let pieces = symmetric(w, h.get("END"), h.get("BAY"), h.get("CENTRE"), Axis::X)
         .map_err(|e| e.problem)?;
-    let brackets = repeat(w, BRK_PITCH, Axis::X).map_err(|e| e.problem)?.len();
-    let rafters = repeat(w, RAF_PITCH, Axis::X).map_err(|e| e.problem)?.len();
+    // Bracket sets and rafters go round all four faces: the front view
+    // also shows, at each end, a side face's first one end-on.
+    let brackets = repeat(w, BRK_PITCH, Axis::X).map_err(|e| e.problem)?.len() + 2;
+    let rafters = repeat(w, RAF_PITCH, Axis::X).map_err(|e| e.problem)?.len() + 2;
     Ok(Truth {
         pieces,
         brackets,
@@ -265,9 +274,10 @@ fn truth_boxes(h: &Hall, t: &Truth, f: &Fixed) -> Vec<(&'static str, [f64; 4])> 
     }
     // Bracket sets: the middle BRK_SET.0 of each repeat piece, the top
     // BRK_SET.1 of the layer.
-    let pitch = w / t.brackets as f64;
+    let front = t.brackets - 2;
+    let pitch = w / front as f64;
     let top = plat + room + brk;
-    for k in 0..t.brackets {
+    for k in 0..front {
         let c = (k as f64 + 0.5) * pitch;
         out.push((
             "bracket",
@@ -278,6 +288,10 @@ fn truth_boxes(h: &Hall, t: &Truth, f: &Fixed) -> Vec<(&'static str, [f64; 4])> 
                 top,
             ],
         ));
+    }
+    // The side faces' first sets, end-on: as deep as a set stands out.
+    for (x0, x1) in [(-BRK_OUT, 0.0), (w, w + BRK_OUT)] {
+        out.push(("bracket", [x0, top - BRK_SET.1 * brk, x1, top]));
     }
     // The roof's front slope, OV beyond the facade on each side.
     let base = top + raf;
@@ -487,9 +501,20 @@ fn band(element: &'static str, n: usize) -> Tree {
     tree("other", children)
 }
 
+/// A band of `n` elements going round the corners: at each end, beyond
+/// the front's row, a side face's first element end-on between two
+/// stretches of back.
+fn cornered(element: &'static str, n: usize) -> Tree {
+    let end = || [leaf("other"), leaf(element), leaf("other")];
+    let mut children: Vec<Tree> = end().into();
+    children.push(band(element, n.saturating_sub(2)));
+    children.extend(end());
+    tree("other", children)
+}
+
 /// The truth tree in the recogniser's vocabulary, from hall.lsys's splits:
 /// the hall's `@SY` from the top (ridge, roof, rafter layer, bracket layer,
-/// room, platform); the room's front: the side wall, then columns and bays
+/// room, platform; the two layers round the corners); the room's front: the side wall, then columns and bays
 /// alternating (`Corridor`'s columns on `Facade`'s bay boundaries), the
 /// other side wall; each bay `@SY(flo(1), LINTEL)`: the lintel over the
 /// wall of an end bay, or over `@SX` wall, window, wall (`Below`'s middle;
@@ -513,8 +538,8 @@ fn truth_tree(t: &Truth) -> Tree {
         vec![
             leaf("ridge"),
             leaf("roof"),
-            band("rafter", t.rafters),
-            band("bracket", t.brackets),
+            cornered("rafter", t.rafters),
+            cornered("bracket", t.brackets),
             tree("other", body),
             tree(
                 "platform",
@@ -835,10 +860,18 @@ fn rebuilt_counts(grammar: &str, w: f64) -> Result<Counts, String> {
         };
         defines.contains_key(format!("{p}_{kind}").as_str())
     };
+    // On all four faces (`@Comp [BrkFace] [BrkFace] ...`), a side's first
+    // set shows end-on at each end.
+    let corners = if grammar.contains("@Comp [BrkFace] [BrkFace]") {
+        2
+    } else {
+        0
+    };
     let brackets = if grammar.contains("\nBrackets -->") {
         repeat(w, get("BRK_PITCH")?, Axis::X)
             .map_err(|e| e.problem)?
             .len()
+            + corners
     } else {
         0
     };
@@ -958,8 +991,8 @@ fn report(run: &Run) -> String {
         outs.len()
     );
     let _ = writeln!(s, "## How\n");
-    // hall.lsys's own `#define`s with a number for a value, in its order.
-    let text = std::fs::read_to_string(HALL).unwrap_or_default();
+    // The hall's own `#define`s with a number for a value, in their order.
+    let text = std::fs::read_to_string(HALL_SIZES).unwrap_or_default();
     let file_defines: Vec<(&str, &str)> = text
         .lines()
         .filter_map(|l| {
@@ -1432,7 +1465,8 @@ fn main() {
     );
     assert_eq!(edit_distance(&paper_a, &paper_b), 2, "Zhang–Shasha");
 
-    let fixed = read_fixed(&std::fs::read_to_string(HALL).expect("examples/shapes/hall.lsys"));
+    let fixed =
+        read_fixed(&std::fs::read_to_string(HALL_SIZES).expect("examples/shapes/hall_parts.lsys"));
     let mut rng = SplitMix(seed);
     let halls: Vec<Hall> = (0..count).map(|_| Hall::sample(&mut rng)).collect();
     let started = Instant::now();

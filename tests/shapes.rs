@@ -62,17 +62,131 @@ fn a_per_instance_value_beats_the_configure_rule() {
 /// Seed 003's hall: between the two end bays (1.8) and the centre bay
 /// (4.2), each side holds n = floor((W - 3.6 - 4.2) / 6) bays of about 3,
 /// so the facade has 2n + 1 bays besides the ends, 2n + 3 in all, and the
-/// corridor one column more than that. The roof, W + 1.8 wide, holds
-/// floor((W + 1.8) / 0.45) rows of tiles (cylinders too).
+/// corridor one column more than that (its only cylinders). One roof.
 #[test]
 fn hall_bays_stay_symmetric_at_every_width() {
-    for (w, n, tiles) in [("16", 1, 39), ("24", 2, 57), ("30", 3, 70)] {
+    for (w, n) in [("16", 1), ("24", 2), ("30", 3)] {
         // bays: (16 - 7.8) / 6 = 1.37; (24 - 7.8) / 6 = 2.7; (30 - 7.8) / 6 = 3.7
-        // tiles: 17.8 / 0.45 = 39.6; 25.8 / 0.45 = 57.3; 31.8 / 0.45 = 70.7
         let b = build("examples/shapes/hall.lsys", &[("W", w)]);
         let bays = 2 * n + 3;
-        assert_eq!(primitives(&b, "cylinder"), bays + 1 + tiles, "W={w}");
-        assert_eq!(primitives(&b, "prism"), 1, "roof at W={w}");
+        assert_eq!(primitives(&b, "cylinder"), bays + 1, "W={w}");
+        assert_eq!(primitives(&b, "roof"), 1, "roof at W={w}");
+    }
+}
+
+/// The extent of the polygons of one colour: (min, max) corners.
+fn extent(b: &Built, colour: u32) -> ([f32; 3], [f32; 3]) {
+    let mut lo = [f32::INFINITY; 3];
+    let mut hi = [f32::NEG_INFINITY; 3];
+    for p in b.drawing.polygons.iter().filter(|p| p.colour == colour) {
+        for v in &p.points {
+            for k in 0..3 {
+                lo[k] = lo[k].min(v[k]);
+                hi[k] = hi[k].max(v[k]);
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// Seed 003, Sec 7.1: the roof's height and the purlins' rises (jujia
+/// 0.5, 0.65, 0.75, 0.9, eaves 0.9 at the first) give one step's run,
+/// bujia = (ROOF - 0.9 * 0.5) / 2.8, and the hall is (9 - 1) bujia deep,
+/// so its roof 8 bujia + 2 * 0.9 from eave to eave and W + 1.8 wide. A hip
+/// roof's ends come down to the eaves; a gable's stay at the ridge.
+#[test]
+fn the_hall_is_as_deep_as_its_purlins_make_it() {
+    for (roof, hip) in [("3.4", "1"), ("2.6", "1"), ("3.4", "0")] {
+        let b = build("examples/shapes/hall.lsys", &[("ROOF", roof), ("HIP", hip)]);
+        let r: f32 = roof.parse().unwrap();
+        let bujia = (r - 0.45) / 2.8;
+        // The shell (colour 26) fills the scope's depth and width; the
+        // rows of tiles on it (27) reach the scope's top, ROOF over the
+        // shell's lowest edge.
+        let (lo, hi) = extent(&b, 26);
+        let depth = hi[2] - lo[2];
+        assert!(
+            (depth - (8.0 * bujia + 1.8)).abs() < 1e-3,
+            "ROOF={roof}: {depth}"
+        );
+        assert!(
+            (hi[0] - lo[0] - 25.8).abs() < 1e-3,
+            "width {}",
+            hi[0] - lo[0]
+        );
+        let (tlo, thi) = extent(&b, 27);
+        assert!(tlo[1] > lo[1] && thi[1] > hi[1]);
+        assert!(
+            (thi[1] - lo[1] - r).abs() < 1e-3,
+            "height {}",
+            thi[1] - lo[1]
+        );
+        // The highest point of the shell within 0.1 of the left end.
+        let end_top = b
+            .drawing
+            .polygons
+            .iter()
+            .filter(|p| p.colour == 26)
+            .flat_map(|p| p.points.iter())
+            .filter(|v| v[0] < lo[0] + 0.1)
+            .map(|v| v[1])
+            .fold(f32::NEG_INFINITY, f32::max);
+        let rises = end_top - lo[1];
+        if hip == "1" {
+            assert!(rises < 0.2 * r, "hip roof's end rises {rises}");
+        } else {
+            assert!(rises > 0.85 * r, "gable's end rises {rises}");
+        }
+    }
+}
+
+/// The hall's other examples share its parts (hall_parts.lsys): two
+/// storeys, each with its corridor of bays + 1 columns (7 bays at W = 24),
+/// under a skirt roof and the main roof; a courtyard of four halls of
+/// their own widths, each with its own bays: 28 holds 3 bays a side
+/// ((28 - 7.8) / 6 = 3.4), 9 in all; 15 holds 1 (5 in all); 11 none (3).
+#[test]
+fn the_two_storey_hall_and_the_courtyard_reuse_the_parts() {
+    let b = build("examples/shapes/hall_two_storey.lsys", &[]);
+    assert_eq!(primitives(&b, "roof"), 2);
+    assert_eq!(primitives(&b, "cylinder"), 2 * 8);
+    let b = build("examples/shapes/courtyard.lsys", &[]);
+    assert_eq!(primitives(&b, "roof"), 4);
+    assert_eq!(primitives(&b, "cylinder"), 10 + 2 * 6 + 4);
+}
+
+/// The off-centre hall (seed 003, Fig 20): an end bay (1.8), DOORAT bays
+/// of 3, the door's bay (4.2), the rest in bays, an end bay; the stairs
+/// stand under the door, from 1.8 + 3 * DOORAT to 4.2 further. The rest
+/// holds floor((24 - 3.6 - 3 * DOORAT - 4.2) / 3) bays: 4, then 3, so
+/// 8 bays and 9 columns either way.
+#[test]
+fn the_off_centre_door_has_its_stairs_under_it() {
+    for (at, from) in [("1", 4.8f32), ("2", 7.8)] {
+        let b = build("examples/shapes/hall_off_centre.lsys", &[("DOORAT", at)]);
+        assert_eq!(primitives(&b, "cylinder"), 9, "DOORAT={at}");
+        // The stairs: the stone (16) in front of the platform, which ends
+        // 0.6 in front of the hall (the roof's eaves, 26, 0.9 in front).
+        let (_, hi) = extent(&b, 26);
+        let platform_front = hi[2] - 0.9 + 0.6;
+        let xs: Vec<f32> = b
+            .drawing
+            .polygons
+            .iter()
+            .filter(|p| p.colour == 16)
+            .flat_map(|p| p.points.iter())
+            .filter(|v| v[2] > platform_front + 0.01)
+            .map(|v| v[0])
+            .collect();
+        let (x0, x1) = xs
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        assert!(
+            (x0 - from).abs() < 1e-3 && (x1 - from - 4.2).abs() < 1e-3,
+            "DOORAT={at}: {x0}..{x1}"
+        );
     }
 }
 

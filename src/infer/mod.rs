@@ -123,7 +123,7 @@ pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference
     let mut tree = tree::shape_tree(&regions, bbox, tolerance);
     let unlabelled = label::recognise(&mut tree, &regions);
     outline::snap(&mut tree, ink);
-    let measured = rules::measure(&tree, opts.scale);
+    let measured = rules::measure(&tree, opts.scale, ink);
     let name = std::path::Path::new(path)
         .file_name()
         .map_or(path.to_string(), |n| n.to_string_lossy().into_owned());

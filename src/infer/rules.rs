@@ -9,10 +9,13 @@
 //! rises of the purlins (jujia 0.5, 0.7 and 0.9 of the step, for a roof of
 //! seven purlins), the roof is six steps deep, the levels are concentric
 //! (the room is as much shallower than the roof as it is narrower), and
-//! the corridor is one step deep.
+//! the corridor is one step deep. The roof's slope is those purlins' steps
+//! (`@Roof`), hipped when the drawing's roof ends slope down (a hip line
+//! at each end, not the upright end of a gable).
 
 use std::fmt::Write;
 
+use super::drawing::Ink;
 use super::tree::Node;
 
 /// What fills a bay under its lintel.
@@ -43,9 +46,13 @@ struct Bay {
 #[derive(Clone, Copy, Debug)]
 struct Row {
     height: f64,
+    /// Elements on the front face.
     count: usize,
     /// Width of one element (metres).
     element: f64,
+    /// The row goes round the corners: at each end an element unlike the
+    /// others (the side face's first, seen end-on) stands beyond the front.
+    corners: bool,
 }
 
 /// The hall as measured from the drawing, in metres.
@@ -63,6 +70,8 @@ pub struct Measured {
     brackets: Option<Row>,
     rafters: Option<Row>,
     roof: Option<(f64, f64)>,
+    /// The roof's ends slope down: a hip roof.
+    hip: bool,
     ridge: Option<f64>,
 }
 
@@ -93,9 +102,28 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// A hip roof seen from the front: near each end of the roof's box the
+/// highest ink is in the lower half (the hip line and the end slope's
+/// short rows of tiles), where a gable's upright end reaches the top.
+fn hipped(roof: &Node, ink: &Ink) -> bool {
+    let [x0, y0, x1, y1] = roof.bbox.map(|v| v.max(0) as usize);
+    let (x1, y1) = (x1.min(ink.width), y1.min(ink.height));
+    if x1 <= x0 + 20 || y1 <= y0 + 4 {
+        return false;
+    }
+    let strip = ((x1 - x0) / 40).max(2);
+    let top = |xs: std::ops::Range<usize>| {
+        (y0..y1)
+            .find(|&y| xs.clone().any(|x| ink.at(x, y)))
+            .unwrap_or(y1)
+    };
+    let half = y0 + (y1 - y0) / 2;
+    top(x0..x0 + strip) > half && top(x1 - strip..x1) > half
+}
+
 /// Measures the labelled tree. `scale` is metres per pixel; `None` takes
 /// the columns as [`COLUMN_METRES`] high.
-pub fn measure(root: &Node, scale: Option<f64>) -> Measured {
+pub fn measure(root: &Node, scale: Option<f64>, ink: &Ink) -> Measured {
     let mut columns = all(root, "column");
     columns.sort_by_key(|c| c.bbox[0]);
     let bays = all(root, "bay");
@@ -158,15 +186,33 @@ pub fn measure(root: &Node, scale: Option<f64>) -> Measured {
     let row = |label: &str| -> Option<Row> {
         // The recogniser may have nested the row in its band (margins
         // around a narrower layer, rows re-cut into columns).
-        let (band, items) = root
+        let (band, mut items) = root
             .children
             .iter()
             .map(|b| (b, all(b, label)))
             .find(|(_, items)| !items.is_empty())?;
+        items.sort_by_key(|n| n.bbox[0]);
+        // A side face's rafters or bracket sets seen end-on: the first
+        // and the last element, both more than a quarter narrower or wider
+        // than the others.
+        let corners = items.len() >= 4 && {
+            let m = median(
+                items[1..items.len() - 1]
+                    .iter()
+                    .map(|n| n.w() as f64)
+                    .collect(),
+            );
+            let unlike = |n: &Node| (n.w() as f64 - m).abs() > 0.25 * m;
+            unlike(items[0]) && unlike(items[items.len() - 1])
+        };
+        if corners {
+            items = items[1..items.len() - 1].to_vec();
+        }
         Some(Row {
             height: band.h() as f64 * s,
             count: items.len(),
             element: median(items.iter().map(|n| n.w() as f64).collect()) * s,
+            corners,
         })
     };
     let roof = band("roof").map(|r| {
@@ -187,6 +233,7 @@ pub fn measure(root: &Node, scale: Option<f64>) -> Measured {
         brackets: row("bracket"),
         rafters: row("rafter"),
         roof,
+        hip: band("roof").is_some_and(|r| hipped(r, ink)),
         ridge: band("ridge").map(|r| r.h() as f64 * s),
     }
 }
@@ -381,6 +428,11 @@ impl Measured {
             ("ROOF", num(roof_h), "roof height"),
             ("RIDGE", num(ridge), "ridge height"),
             ("OV", num(ov), "eaves overhang beyond the facade"),
+            (
+                "HIP",
+                u8::from(self.hip).to_string(),
+                "1: hip roof (its ends slope down); 0: gable",
+            ),
             ("COL", num(col), "column diameter"),
             ("LINTEL", num(lintel), "lintel height"),
             ("END", num(end), "the two end bays"),
@@ -419,8 +471,6 @@ impl Measured {
             "#define DEPTH max(ROOF_D - 2 * OV, 3 * BUJIA) // concentric levels"
         );
         let _ = writeln!(g, "#define CORR BUJIA // corridor depth");
-        let _ = writeln!(g, "#define SLOPE sqrt(ROOF * ROOF + ROOF_D * ROOF_D / 4)");
-        let _ = writeln!(g, "#define PITCH atan2(ROOF_D / 2, ROOF)");
         for (k, (prefix, f)) in kinds.iter().enumerate() {
             let p = ["E", "B", "C"][k];
             match f {
@@ -457,7 +507,7 @@ impl Measured {
             g,
             "module BrkSet, Rafters, RafFace, Rafter, Roof, Ridge, Facade, EndBay, Bay"
         );
-        let _ = writeln!(g, "module CentreBay, EndFill, BayFill, CentreFill, Window, Lattice, Door, Leaf, Wall, Side, Tiles, Stairs");
+        let _ = writeln!(g, "module CentreBay, EndFill, BayFill, CentreFill, Window, Lattice, Door, Leaf, Wall, Side, Stairs");
         let _ = writeln!(g);
         let _ = writeln!(
             g,
@@ -505,15 +555,26 @@ impl Measured {
                 let _ = writeln!(g, "Stairs --> ;(16) @SY({pieces}) {}", blocks.join(" "));
             }
         }
-        g.push_str(FIXED_RULES);
-        if brk.is_some() {
-            g.push_str(BRACKETS);
+        let jujia: Vec<String> = JUJIA.iter().map(|&j| num(j)).collect();
+        g.push_str(&FIXED_RULES.replace("JUJIA", &jujia.join(", ")));
+        // A row seen going round the corners is on all four faces.
+        let faces = |r: Row, face: &str| {
+            if r.corners {
+                format!("@Comp [{face}] [{face}] [{face}] [{face}] [] []")
+            } else {
+                format!("@Comp [{face}]")
+            }
+        };
+        if let Some(r) = brk {
+            g.push_str(&BRACKETS.replace("@Comp [BrkFace]", &faces(r, "BrkFace")));
         }
-        if raf.is_some() {
-            g.push_str(RAFTERS);
+        if let Some(r) = raf {
+            g.push_str(&RAFTERS.replace("@Comp [RafFace]", &faces(r, "RafFace")));
         }
         if self.ridge.is_some() {
-            g.push_str("Ridge --> @Tr(-0.3, 0, 0) @Grow(0.6, 0, 0) @SZ(flo(1), 0.5, flo(1)) [] [;(20) @Block] []\n");
+            // A hip roof's ridge runs between its hips: shorter than the
+            // facade by the depth.
+            g.push_str("Ridge --> @Tr(HIP * min(DEPTH, W) / 2 - 0.3, 0, 0) @Grow(0.6 - HIP * min(DEPTH, W), 0, 0)\n          @SZ(flo(1), 0.5, flo(1)) [] [;(20) @Block] []\n");
         }
         g.push_str("\n// Each bay: the lintel on top, under it what the drawing shows.\n");
         for (k, (prefix, f)) in kinds.iter().enumerate() {
@@ -564,7 +625,8 @@ colour 18: #c9a23f   // gilded brackets
 colour 19: #5a4632   // dark wood
 colour 20: #2f5f5a   // glazed tiles
 colour 21: #d8cfc0   // plaster
-colour 26: #3f7a72   // tile ridges
+colour 26: #2f5f5a   // the roof's shell
+colour 27: #3f7a72   // its rows of tiles
 ";
 
 const FIXED_RULES: &str = "Room --> @SZ(flo(1), CORR) [Inner] [Corridor]
@@ -576,13 +638,12 @@ Corridor --> @RSX(END, BAY, CENTRE) [Pier] [Pier] [Pier]
              @SX(flo(1), COL) [] [@Grow(COL, 0, 0) Column]
 Pier --> @SX(COL, flo(1)) [@Tr(-COL, 0, 0) @Grow(COL, 0, 0) Column] []
 Column --> @SX(flo(1), COL, flo(1)) [] [@SZ(flo(1), COL, flo(1)) [] [;(17) @Cyl(16)] []] []
-Roof --> @Tr(-OV, 0, -OV) @Grow(2 * OV, 0, 2 * OV) [;(20) @Prism] @RX(0.45) [Tiles]
-Tiles --> @Tr(0, 0, ROOF_D) &(PITCH) @Grow(0, SLOPE - ROOF, 0)
-          @SX(flo(1), 0.18, flo(1)) [] [;(26) @Ext(0.12) @Cyl(6)] []
+// The roof over the eaves, its slope the purlins' steps, tiles 0.45 apart.
+Roof --> @Tr(-OV, 0, -OV) @Grow(2 * OV, 0, 2 * OV) ;(26) @Roof(HIP, 0.45, 0, JUJIA)
 ";
 
 const BRACKETS: &str =
-    "Brackets --> [;(17) @Tr(0.2, 0, 0.2) @Grow(-0.4, 0, -0.4) @Block] @Comp [BrkFace]
+    "Brackets --> [;(19) @Tr(0.2, 0, 0.2) @Grow(-0.4, 0, -0.4) @Block] @Comp [BrkFace]
 BrkFace --> @RX(BRK_PITCH) [BrkSet]
 BrkSet --> @SX(flo(1), BRK_W, flo(1)) [] [@SY(flo(1), rel(0.7)) [] [;(18) @Ext(0.35) @Block]] []
 ";

@@ -37,6 +37,8 @@ pub enum Primitive {
     Cylinder,
     /// A gable prism: ridge along x at the top, triangle in y–z.
     Prism,
+    /// A Chinese roof, hip or gable, its slope from the purlins' steps.
+    Roof,
 }
 
 /// What a shape command does to the turtle's scope.
@@ -63,7 +65,7 @@ pub enum ScopeCmd {
     Symmetric(Axis),
     /// `@Comp`: the box's faces, one branch each.
     Faces,
-    /// `@Block`, `@Cyl`, `@Prism`.
+    /// `@Block`, `@Cyl`, `@Prism`, `@Roof`.
     Solid(Primitive),
     /// `@Hole`: a box that cuts an opening through the blocks it meets.
     Hole,
@@ -208,6 +210,13 @@ pub const SCOPE_COMMANDS: &[Command] = &[
         "",
         Solid(Primitive::Prism),
         "a gable prism filling the scope (ridge along x)",
+    ),
+    row(
+        "@Roof",
+        (4, 10),
+        "",
+        Solid(Primitive::Roof),
+        "a Chinese roof filling the scope (ridge along x): hip (1) or gable (0), tile spacing, eaves run and one jujia per purlin step",
     ),
     row(
         "@Hole",

@@ -100,6 +100,12 @@ pub(super) fn never_fires(program: &Program) -> Vec<ResolveError> {
             if prods[..i].iter().any(|q| q.span == p.span) {
                 continue;
             }
+            // An included file is a library of rules (the hall's parts,
+            // shared by halls that each use some of them): only the file
+            // built, the first, is held to firing every production.
+            if p.span.file != 0 {
+                continue;
+            }
             if let Some(w) = check(program, p, occurs) {
                 if prods[i + 1..]
                     .iter()

@@ -142,6 +142,20 @@ pub enum ShapeError {
         help: String,
     },
 
+    #[error("module {index} of the string, `{text}`, cannot build its roof: {problem}")]
+    #[diagnostic(code(lsys::turtle::bad_roof))]
+    BadRoof {
+        index: usize,
+        text: String,
+        problem: String,
+        #[source_code]
+        src: NamedSource<crate::source::SourceText>,
+        #[label("this roof")]
+        written_by: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
     #[error("module {index} of the string, `{text}`, needs a scope, and none is set")]
     #[diagnostic(code(lsys::turtle::no_scope))]
     NoScope {

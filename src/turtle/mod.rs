@@ -5,6 +5,7 @@
 //! builder, and for the simulation loop the turtle's state at each query
 //! module ([`query_sites`]). The command table it reads, with resolve and
 //! `lsys commands`, is `lang/commands.rs`'s.
+mod chinese_roof;
 mod cpfg;
 mod cpfg_contour;
 mod cylinder;

@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use super::chinese_roof::RoofShape;
 use super::error::{source_of_symbol, ShapeError, TurtleError};
 use super::frame::Frame;
 use super::interp::{QueryFn, Turtle, Walk};
@@ -96,7 +97,13 @@ impl Turtle<'_> {
                         text: self.text_of(sym, args),
                     });
                 }
-                self.solids.push(self.solid(kind, args, index));
+                let mut solid = self.solid(kind, args, index);
+                if kind == Primitive::Roof {
+                    let shape = RoofShape::from_args(args)
+                        .map_err(|problem| self.bad_roof(problem, sym, args, index))?;
+                    solid.roof = Some(shape);
+                }
+                self.solids.push(solid);
                 Ok(next)
             }
             ScopeCmd::Snap => {
@@ -296,7 +303,25 @@ impl Turtle<'_> {
             module: index,
             seq: self.solids.len() + self.holes.len(),
             snap: self.state.snap,
+            roof: None,
         }
+    }
+
+    fn bad_roof(&self, problem: String, sym: SymId, args: &[f64], index: usize) -> TurtleError {
+        let (src, span) = source_of_symbol(self.program, sym);
+        ShapeError::BadRoof {
+            index: index + 1,
+            text: self.text(sym, args),
+            problem,
+            src,
+            written_by: span,
+            help: "write @Roof(hip, tile, eave, j1, ..., jn): hip 1 or 0, the spacing of the \
+                   tile rows (0 for none), the eaves' run in bujias, then one jujia (rise per \
+                   unit of run, more than 0) per step from the eaves purlin to the ridge, \
+                   e.g. @Roof(1, 0.45, 0.8, 0.5, 0.7, 0.9)"
+                .into(),
+        }
+        .into()
     }
 
     /// The module as the user wrote it: a split's `flo(w)` and `rel(f)`

@@ -1,4 +1,5 @@
-//! Primitives fitted to a scope (`@Block`, `@Cyl`, `@Prism`) and the
+//! Primitives fitted to a scope (`@Block`, `@Cyl`, `@Prism`; `@Roof` in
+//! chinese_roof.rs) and the
 //! constraint rule "a hole that intersects a block cuts an opening in it"
 //! (`@Hole`). Input: the solids and holes the turtle met, each with its
 //! scope; output: polygons for the drawing and one line per cut made.
@@ -13,6 +14,7 @@
 
 use glam::{DVec3, Vec3};
 
+use super::chinese_roof::RoofShape;
 use super::drawing::Polygon;
 use super::frame::Frame;
 use super::scope::{axes, num};
@@ -35,6 +37,8 @@ pub struct Solid {
     pub seq: usize,
     /// `@Snap(d)` in force when it was drawn.
     pub snap: f64,
+    /// What `@Roof`'s parameters ask for.
+    pub roof: Option<RoofShape>,
 }
 
 /// An opening in a block, in the block's x–y coordinates.
@@ -67,6 +71,11 @@ pub fn build(solids: &[Solid], holes: &[Solid]) -> (Vec<Polygon>, Vec<String>) {
             }
             Primitive::Cylinder => cylinder(s, &mut polys),
             Primitive::Prism => prism(s, &mut polys),
+            Primitive::Roof => {
+                if let Some(r) = &s.roof {
+                    super::chinese_roof::draw(s, r, &mut polys);
+                }
+            }
         }
     }
     (polys, report)
@@ -78,6 +87,7 @@ pub fn kind_name(k: Primitive) -> &'static str {
         Primitive::Block => "block",
         Primitive::Cylinder => "cylinder",
         Primitive::Prism => "prism",
+        Primitive::Roof => "roof",
     }
 }
 

@@ -35,6 +35,27 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         }
         band.label = "other";
     }
+    // A layer that goes round the corners: at each end of the front's
+    // row, a side face's first element seen end-on, cut off from the
+    // row by a line of its own. Those ends are elements; the row is the
+    // one drawn piece wider than half the band, read as a layer itself.
+    if band.split == Some(Axis::X) {
+        let drawn = |c: &Node| !c.regions.is_empty();
+        let wide: Vec<usize> = (0..band.children.len())
+            .filter(|&k| drawn(&band.children[k]) && band.children[k].w() * 2 > band.w())
+            .collect();
+        let ends = band.children.iter().filter(|c| drawn(c)).count() - wide.len();
+        if wide.len() == 1 && (1..=2).contains(&ends) {
+            for (k, c) in band.children.iter_mut().enumerate() {
+                if k != wide[0] {
+                    let label = if drawn(c) { kind } else { "other" };
+                    collapse(c, label);
+                }
+            }
+            row_of(&mut band.children[wide[0]], kind, regions);
+            return;
+        }
+    }
     if band.split == Some(Axis::Y) {
         // Elements drawn as stacked parts (a bracket set's arm over its
         // block) are cut into rows first: take the layer by columns.
@@ -46,6 +67,28 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         }
         return;
     }
+    // Corner sets: a side face's first set seen end-on at each end of the
+    // row, narrow, with a narrow piece of back beside it (the front row's
+    // margin). The sets are set aside (their regions hidden from the rules
+    // below) and are sets; the margins are back.
+    let (corners, margins) = if kind == "bracket" {
+        corner_sets(band)
+    } else {
+        Default::default()
+    };
+    for k in margins {
+        let c = &mut band.children[k];
+        c.regions.clear();
+        c.fills.clear();
+    }
+    // Kept by box: merging detailed runs below renumbers the pieces.
+    let hidden: Vec<([i32; 4], Vec<usize>)> = corners
+        .iter()
+        .map(|&k| {
+            let c = &mut band.children[k];
+            (c.bbox, std::mem::take(&mut c.regions))
+        })
+        .collect();
     // When the bracket sets stand from the beam to the eave, the layer's
     // back between them is cut into closed pieces too: an unbroken run of
     // an odd number of drawn pieces alternates sets and back. Which are
@@ -87,7 +130,9 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         merge_detailed_runs(band, regions);
     }
     // A drawn sliver under a third of the sets' median width is a piece of
-    // back closed off by a line drawn close beside a set.
+    // back closed off by a line drawn close beside a set; inside the row
+    // (not at its ends, where a corner set seen end-on is narrow too),
+    // under half of it.
     let mut widths: Vec<i32> = band
         .children
         .iter()
@@ -96,11 +141,18 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         .collect();
     widths.sort_unstable();
     let median = widths.get(widths.len() / 2).copied().unwrap_or(0);
-    let sliver = |c: &Node| kind == "bracket" && c.w() * 3 < median && is_plain(c, regions);
+    let drawn_at: Vec<usize> = (0..band.children.len())
+        .filter(|&k| !band.children[k].regions.is_empty())
+        .collect();
+    let inner = |k: usize| drawn_at.first() < Some(&k) && drawn_at.last() > Some(&k);
+    let sliver = |k: usize, c: &Node| {
+        let limit = if inner(k) { 2 } else { 3 };
+        kind == "bracket" && c.w() * limit < median && is_plain(c, regions)
+    };
     let mut n = 0;
     for (k, c) in band.children.iter_mut().enumerate() {
         let back =
-            sliver(c) || alternate.is_some_and(|(f, parity)| k >= f && (k - f) % 2 == parity);
+            sliver(k, c) || alternate.is_some_and(|(f, parity)| k >= f && (k - f) % 2 == parity);
         if c.regions.is_empty() || back {
             collapse(c, "other");
             // The layer's back, not something left unrecognised.
@@ -111,7 +163,40 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
             n += 1;
         }
     }
+    for (bbox, regions) in hidden {
+        if let Some(c) = band.children.iter_mut().find(|c| c.bbox == bbox) {
+            c.regions = regions;
+            collapse(c, kind);
+            n += 1;
+        }
+    }
     band.repeat = n >= 3;
+}
+
+/// The two corner sets of a bracket row and the margins of back beside
+/// them, if the row has them: at each end the first two drawn pieces are
+/// adjacent and both under 0.8 of the median width of the pieces between.
+fn corner_sets(band: &Node) -> (Vec<usize>, Vec<usize>) {
+    let drawn: Vec<usize> = (0..band.children.len())
+        .filter(|&k| !band.children[k].regions.is_empty())
+        .collect();
+    let n = drawn.len();
+    if n < 7 {
+        return Default::default();
+    }
+    let mut widths: Vec<i32> = drawn[2..n - 2]
+        .iter()
+        .map(|&k| band.children[k].w())
+        .collect();
+    widths.sort_unstable();
+    let median = widths[widths.len() / 2] as f64;
+    let narrow = |k: usize| (band.children[k].w() as f64) < 0.8 * median;
+    let (a, b, y, z) = (drawn[0], drawn[1], drawn[n - 2], drawn[n - 1]);
+    if b == a + 1 && z == y + 1 && [a, b, y, z].into_iter().all(narrow) {
+        (vec![a, z], vec![b, y])
+    } else {
+        Default::default()
+    }
 }
 
 /// In a layer with both plain and detailed drawn pieces, joins each run

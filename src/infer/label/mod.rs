@@ -13,8 +13,10 @@
 //!   apart);
 //! - bands under it are the **platform** (the middle piece drawn as stacked
 //!   steps is the **stairs**);
-//! - above it, from the top: a band under a third of the next one's height
-//!   is the **ridge**, the highest other band the **roof**, and between the
+//! - above it, from the top: a band under a third of the next one's height,
+//!   or a plain one (two regions at most) lower than the next one that
+//!   holds ten regions or more, is the **ridge**, the highest other band
+//!   the **roof**, and between the
 //!   body and the roof the first band is the **bracket** layer and the
 //!   second the **rafter** layer, each piece with something drawn in it one
 //!   bracket set or rafter;
@@ -69,7 +71,12 @@ pub fn recognise(root: &mut Node, regions: &[Region]) -> Vec<[i32; 4]> {
     if let Some((&top, rest)) = above.split_first() {
         let mut roof_at = top;
         if let Some(&next) = rest.first() {
-            if (root.children[top].h() as f64) < root.children[next].h() as f64 / 3.0 {
+            // Thin over the roof, or one plain block over the roof's many
+            // rows of tiles (a tall ridge over a low roof).
+            let (t, n) = (&root.children[top], &root.children[next]);
+            let thin = (t.h() as f64) < n.h() as f64 / 3.0;
+            let plain = t.regions.len() <= 2 && n.regions.len() >= 10 && t.h() < n.h();
+            if thin || plain {
                 collapse(&mut root.children[top], "ridge");
                 roof_at = next;
             }
