@@ -274,14 +274,15 @@ class Mesh:
 # builders; each returns one closed, outward-oriented shell
 
 
-def loft(rings, seg_groups=None, around=False, cap0=True, cap1=True):
+def loft(rings, seg_groups=None, around=False, cap0=True, cap1=True, per=None):
     """Skin a sequence of rings (lists of 3D points, all the same length n,
     or a single point for an apex). Ring k is joined to ring k+1 with quads;
     the first and last rings are closed with flat caps. seg_groups[k] is a
     label (or None for flat shading) for the band between rings k and k+1:
     bands with the same label are smoothed together along the sweep; with
     around=True they are also smooth around the ring (round sections),
-    otherwise each ring edge keeps its own crease."""
+    otherwise each ring edge keeps its own crease; with per=k, runs of k
+    ring edges (the petals of a lobed ring) are smooth, creased between."""
     m = Mesh()
     ids = [[m.vert(p) for p in ring] for ring in rings]
     n = max(len(r) for r in rings)
@@ -291,7 +292,7 @@ def loft(rings, seg_groups=None, around=False, cap0=True, cap1=True):
         lab = seg_groups[k] if seg_groups else None
         if lab is None:
             return None
-        key = (lab,) if around else (lab, j)
+        key = (lab,) if around else ((lab, j // per) if per else (lab, j))
         if key not in groups:
             groups[key] = new_group(str(key))
         return groups[key]
@@ -833,6 +834,324 @@ def make_MBP():
 
 
 # ---------------------------------------------------------------------------
+# more Pailou parts (y up unless said otherwise)
+
+
+def lobed_rings(profile, lobes, per, phase=0.0):
+    """Rings for a lobed solid of revolution about y: profile rows (r, y,
+    amp, lift) give, at each height, the radius r of the lobes' crests, how
+    deep (a fraction of r) the notches between the lobes cut in, and how
+    much higher than y the crests stand (petal tips). r == 0 makes a pole.
+    Ring point j*per (j = 0, 1, ...) sits in a notch."""
+    n = lobes * per
+    rings = []
+    for (r, y, amp, lift) in profile:
+        if r == 0:
+            rings.append([(0.0, y, 0.0)])
+            continue
+        ring = []
+        for i in range(n):
+            t = i / n
+            a = phase + 2 * math.pi * t
+            crest = abs(math.sin(math.pi * lobes * t))   # 0 in a notch, 1 on a crest
+            rr = r * (1 - amp * (1 - crest))
+            ring.append((rr * math.cos(a), y + lift * crest, -rr * math.sin(a)))
+        rings.append(ring)
+    return rings
+
+
+def ellipsoid(c, rx, ry, rz, n, nlat, label="ell"):
+    """A smooth ellipsoid centred at c: a lathe'd sphere, scaled."""
+    prof = [(0.0, -1.0)] + [(math.sin(math.pi * k / nlat), -math.cos(math.pi * k / nlat))
+                           for k in range(1, nlat)] + [(0.0, 1.0)]
+    m = lathe(prof, n, [label] * nlat)
+    m.scale((rx, ry, rz))
+    return m.translate(c)
+
+
+def round_ring(cx, y, cz, hx, hz, n, p=3.0):
+    """A horizontal superellipse (a rounded rectangle for p > 2) at height y."""
+    ring = []
+    for i in range(n):
+        a = 2 * math.pi * (i + 0.5) / n
+        c, s = math.cos(a), math.sin(a)
+        ring.append((cx + hx * math.copysign(abs(c) ** (2 / p), c), y,
+                     cz - hz * math.copysign(abs(s) ** (2 / p), s)))
+    return ring
+
+
+def make_MPC():
+    """Pillar cap ('cloud cap', yunguan) crowning a free-standing stone
+    pillar that rises above the roofs: a short square collar with a
+    bevelled top, a disc of twelve upturned lotus petals, a round drum with
+    a lip at its foot and its head, and a flame-shaped pointed jewel."""
+    m = Mesh()
+    m.merge(loft([ring_rect(0.55, 0.55, 0.0), ring_rect(0.55, 0.55, 0.19),
+                  ring_rect(0.49, 0.49, 0.25)]))
+    # lotus disc: petals widening upward, their tips standing up
+    per = 2 * min(D, 2)
+    prof = [(0.46, 0.18, 0.0, 0.0), (0.57, 0.27, 0.10, 0.0), (0.68, 0.37, 0.14, 0.0),
+            (0.75, 0.47, 0.16, 0.05), (0.0, 0.53, 0.0, 0.0)]
+    m.merge(loft(lobed_rings(prof, 12, per, -math.pi / 12), ["petal", "petal", "petal", None], per=per))
+    # drum, sunk into the lotus disc
+    n = 16 * min(D, 2)
+    prof = [(0.0, 0.51), (0.53, 0.51), (0.53, 0.58), (0.47, 0.61), (0.50, 0.73), (0.47, 0.87),
+            (0.53, 0.90), (0.53, 0.97), (0.0, 0.97)]
+    groups = [None, "lip0", None, "drum", "drum", None, "lip1", None]
+    m.merge(lathe(prof, n, groups))
+    # flame jewel: a short round neck, a bulb, a concave taper to the point
+    prof = [(0.0, 0.95), (0.29, 0.95), (0.29, 1.03), (0.37, 1.12), (0.40, 1.24), (0.34, 1.37),
+            (0.21, 1.51), (0.09, 1.66), (0.0, 1.80)]
+    groups = [None, None, None] + ["bulb"] * 5
+    m.merge(lathe(prof, n, groups))
+    return m
+
+
+def make_MCH():
+    """Chuihua ('hanging flower'): the carved pendant ending a suspended
+    pillar below the lintel it hangs from. From the top down: the pillar's
+    square end (the neck, chamfered), a round ring moulding, and a lotus
+    bud of eight petals swelling out and closing to a point at the bottom."""
+    m = Mesh()
+    H = 2.2
+    m.merge(loft([ring_rect(0.35, 0.35, 1.76, chamfer=0.04), ring_rect(0.35, 0.35, H, chamfer=0.04)]))
+    n = 16 * min(D, 2)
+    prof = [(0.0, 1.80), (0.30, 1.80), (0.40, 1.77), (0.44, 1.71), (0.40, 1.65), (0.30, 1.62),
+            (0.27, 1.55), (0.0, 1.55)]
+    groups = [None, "ring", "ring", "ring", "ring", None, None]
+    m.merge(lathe(prof, n, groups))
+    # the bud: eight petals, deepest notches round its waist, a point below
+    per = 2 + 2 * min(D, 2)
+    k = 4 + 2 * min(D, 2)
+    prof = []
+    for s in range(1, k):
+        u = s / k
+        r = math.sin(math.pi * (0.17 + 0.83 * u)) ** 0.8 * (1 - 0.25 * u * u)
+        prof.append((r, 1.56 * (1 - u), 0.13 * math.sin(math.pi * u) ** 0.5, 0.0))
+    widest = max(p[0] for p in prof)
+    prof = [(0.29, 1.60, 0.0, 0.0)] + [(0.5 * r / widest, y, a, l) for (r, y, a, l) in prof] + \
+        [(0.0, 0.0, 0.0, 0.0)]
+    rings = lobed_rings(prof, 8, per, -math.pi / 8)
+    m.merge(loft(rings, ["bud"] * (len(rings) - 1), per=per))
+    return m
+
+
+def make_MCS():
+    """Capital stone (zhudingshi): the square stone slab a pillar stands on,
+    set flush in the ground, its top edges bevelled, with a very low round
+    'ancient mirror' (guji) disc raised in its middle."""
+    m = Mesh()
+    m.merge(loft([ring_rect(1.4, 1.4, 0.0), ring_rect(1.4, 1.4, 0.28), ring_rect(1.32, 1.32, 0.35)]))
+    prof = [(0.0, 0.32), (1.0, 0.32), (1.0, 0.39), (0.98, 0.42), (0.94, 0.44), (0.88, 0.45),
+            (0.0, 0.45)]
+    groups = [None, None, "edge", "edge", "edge", None]
+    m.merge(lathe(prof, 32 * min(D, 2), groups))
+    return m
+
+
+def make_MLS():
+    """Small lintel: a slimmer beam under the big lintel (C3), square
+    chamfered section, with full-size painted end bands (gutou) and a thin
+    raised band beside each, the long middle set back slightly."""
+    L, a, c, inset = 10.0, 0.35, 0.04, 0.014
+
+    def sec(x, d):
+        s = a - d
+        return [(x, a - s + c, -s), (x, a + s - c, -s), (x, a + s, -s + c), (x, a + s, s - c),
+                (x, a + s - c, s), (x, a - s + c, s), (x, a - s, s - c), (x, a - s, -s + c)]
+
+    xs = [(-5.0, 0), (-4.6, 0), (-4.6, inset), (-4.52, inset), (-4.52, 0), (-4.44, 0), (-4.44, inset),
+          (4.44, inset), (4.44, 0), (4.52, 0), (4.52, inset), (4.6, inset), (4.6, 0), (5.0, 0)]
+    return loft([sec(x, d) for (x, d) in xs])
+
+
+def make_MLO():
+    """Single lintel (C1): the lintel of an upper entrance, carried by
+    suspended pillars. A beam along x whose section is a rectangle with
+    strongly rounded (bull-nosed) top edges and a flat bottom, a raised
+    bead moulding, set off by a small groove, along its lower front and
+    back edges."""
+    hw, rn, rb = 0.44, 0.30, 0.05     # half width of the body, nose and bead radii
+    segs_n = 4 * D
+    half = []        # the +z half of the section, (z, y), bottom to top
+    groups = []
+    # bead: from its bottom round its outer side to the groove
+    cb = (0.5 - rb, rb)
+    angles = [-90 + 90 * s / (2 * D) for s in range(2 * D)] + [160 * s / (3 * D) for s in range(3 * D + 1)]
+    for t in angles:
+        half.append((cb[0] + rb * math.cos(math.radians(t)), cb[1] + rb * math.sin(math.radians(t))))
+        groups.append("bead")
+    groups[-1] = None                  # groove edge up to the body
+    half.append((hw, 2.4 * rb))
+    groups.append(None)                # flat side
+    cn = (hw - rn, 1.0 - rn)
+    for s in range(segs_n + 1):
+        t = (math.pi / 2) * s / segs_n
+        half.append((cn[0] + rn * math.cos(t), cn[1] + rn * math.sin(t)))
+        groups.append("nose")
+    groups[-1] = None                  # flat top to the mirror point
+    # whole section, counter-clockwise in (z, y): +z half up, -z half down
+    pts = half + [(-z, y) for (z, y) in reversed(half)]
+    # labels: the +z half's edges (the last one is the flat top), then
+    # edge i of the mirrored half, the mirror of the +z half's edge m-2-i
+    # (m points in a half), then the flat bottom back to the start.
+    eg = groups + [None if g is None else g + "_b" for g in list(reversed(groups))[1:]] + [None]
+    prof = [(y, z) for (z, y) in pts]      # "yz" frame: u = y, v = z, extruded along x
+    return extrude(prof, -5.0, 5.0, "yz", eg)
+
+
+def make_MRO():
+    """Ridge-end ornament (zhengwen / chiwen), the dragon-fish that
+    swallows the end of the main ridge: a flat outline extruded in z, a wide
+    base, the open jaw at the bottom toward +x gripping the ridge, the body
+    rising with notched fins down its back (-x) and the tail curling over
+    the top toward +x into a hook; a round eye boss on both faces."""
+    T = 0.26
+    pts, groups = [], []
+
+    def put(p, g=None):
+        pts.append(p)
+        groups.append(g)
+
+    # base and lower jaw
+    put((0.0, 0.0))
+    put((1.0, 0.0))
+    put((1.0, 0.07))
+    put((0.93, 0.10))
+    put((0.89, 0.14))                   # a tooth
+    put((0.85, 0.11))
+    put((0.70, 0.13))
+    # mouth corner, round
+    c, r = (0.63, 0.20), 0.07
+    for s in range(3 * D + 1):
+        t = math.radians(-90 - 120 * s / (3 * D))
+        put((c[0] + r * math.cos(t), c[1] + r * math.sin(t)), "mouth")
+    # upper jaw: underside out to the lip, a fang, a snout curling up
+    put((0.70, 0.31))
+    put((0.84, 0.35))
+    put((0.88, 0.30))                   # fang
+    put((0.91, 0.37))
+    put((1.0, 0.39))
+    put((0.995, 0.46))
+    put((0.93, 0.49))
+    # forehead, brow, front of the body up to the curl
+    put((0.88, 0.52))
+    put((0.86, 0.62))
+    put((0.89, 0.66))
+    put((0.80, 0.70))
+    put((0.68, 0.78))
+    put((0.60, 0.86))
+    # the tail's curl round C: hollow (clockwise), hook tip, outer edge
+    C = (0.62, 1.0)
+    ri0, ri1 = 0.09, 0.10
+    ang0, ang1 = -110.0, -380.0
+    k = 8 * D
+    for s in range(k + 1):
+        a = ang0 + (ang1 - ang0) * s / k
+        rr = ri0 + (ri1 - ri0) * s / k
+        put((C[0] + rr * math.cos(math.radians(a)), C[1] + rr * math.sin(math.radians(a))), "hollow")
+    groups[-1] = "tip"
+    put((C[0] + 0.135 * math.cos(math.radians(-42)), C[1] + 0.135 * math.sin(math.radians(-42))), "tip")
+
+    def R(a):
+        return 0.175 + (0.125 / 110.0) * (a + 20.0)
+
+    a0, a1 = -20.0, 212.0
+    k = 10 * D
+    for s in range(k + 1):
+        a = a0 + (a1 - a0) * s / k
+        put((C[0] + R(a) * math.cos(math.radians(a)), C[1] + R(a) * math.sin(math.radians(a))), "curl")
+    groups[-1] = None
+    # the back, down to the base, with four notched fins
+    top = pts[-1]
+    x_at = lambda y: 0.03 + (top[0] - 0.03) * (y / top[1]) ** 1.3
+    fins = 4
+    y_hi, y_lo = top[1] - 0.06, 0.12
+    step = (y_hi - y_lo) / fins
+    for f in range(fins):
+        y0 = y_hi - f * step
+        put((x_at(y0), y0))
+        put((x_at(y0) - 0.085, y0 + 0.015))
+    put((x_at(y_lo), y_lo))
+    put((0.0, 0.05))
+    m = Mesh()
+    m.merge(extrude(pts, -T / 2, T / 2, "xy", groups))
+    # eye bosses
+    for zs in (-1, 1):
+        boss = lathe([(0.0, 0.0), (0.045, 0.0), (0.05, 0.008), (0.04, 0.019), (0.0, 0.024)], 8 * D,
+                     [None, "eye", "eye", "eye"])
+        if zs < 0:
+            boss.transform(((1, 0, 0), (0, 0, 1), (0, -1, 0)))     # y -> -z
+        else:
+            boss.transform(((1, 0, 0), (0, 0, -1), (0, 1, 0)))     # y -> +z
+        boss.translate((0.79, 0.56, zs * (T / 2 - 0.004)))
+        m.merge(boss)
+    return m
+
+
+def tube(path, radii, n, label):
+    """A round tube swept along a path in the y-z plane (x = 0), closed by
+    flat caps; radii[k] is the radius at path point k."""
+    rings = []
+    for k, p in enumerate(path):
+        q0 = path[max(k - 1, 0)]
+        q1 = path[min(k + 1, len(path) - 1)]
+        t = normalize(sub(q1, q0))
+        nrm = cross(t, (1.0, 0.0, 0.0))
+        r = radii[k]
+        rings.append([add(p, add(mul((1.0, 0.0, 0.0), r * math.cos(2 * math.pi * i / n)),
+                                 mul(nrm, r * math.sin(2 * math.pi * i / n)))) for i in range(n)])
+    return loft(rings, [label] * (len(rings) - 1), around=True)
+
+
+def make_MSA():
+    """Stone animal (zoushou), one of the small beasts sitting in a row down
+    a hip ridge: a beast seated on its haunches on a thin base plate (the
+    ridge tile), front legs straight, head up with its snout toward -z
+    (front), two ears, a short tail curling up at the back (+z). Separate
+    shells sunk into each other."""
+    m = Mesh()
+    m.merge(loft([ring_rect(0.25, 0.45, 0.0, chamfer=0.02), ring_rect(0.25, 0.45, 0.05, chamfer=0.02)]))
+    n = 8 * min(D, 2)
+    # body: haunches on the plate, the chest rising forward to the neck
+    rows = [(0.03, 0.12, 0.15, 0.20), (0.13, 0.10, 0.17, 0.23), (0.27, 0.05, 0.16, 0.20),
+            (0.42, -0.03, 0.13, 0.15), (0.54, -0.09, 0.10, 0.11)]
+    rings = [round_ring(0.0, y, cz, hx, hz, 2 * n) for (y, cz, hx, hz) in rows]
+    m.merge(loft(rings, ["body"] * (len(rings) - 1), around=True))
+    # thighs
+    for sx in (-1, 1):
+        m.merge(ellipsoid((sx * 0.14, 0.15, 0.13), 0.06, 0.11, 0.16, n, 2 + 2 * min(D, 2), "thigh"))
+    # front legs with paws
+    for sx in (-1, 1):
+        leg = lathe([(0.0, 0.03), (0.05, 0.03), (0.05, 0.07), (0.038, 0.10), (0.035, 0.40), (0.0, 0.40)],
+                    n, [None, "paw", "paw", "leg", None])
+        leg.translate((sx * 0.075, 0.0, -0.16))
+        m.merge(leg)
+    # head, snout, ears
+    m.merge(ellipsoid((0.0, 0.63, -0.12), 0.115, 0.105, 0.115, 2 * n, 2 + 2 * min(D, 2), "head"))
+    rings = []
+    for (z, yc, hx, hy) in ((-0.14, 0.60, 0.08, 0.065), (-0.28, 0.59, 0.07, 0.055), (-0.34, 0.585, 0.055, 0.04)):
+        rings.append([(hx * x, yc + hy * y, z) for (x, y) in
+                      ((-1, -0.7), (-0.7, -1), (0.7, -1), (1, -0.7), (1, 0.7), (0.7, 1), (-0.7, 1), (-1, 0.7))])
+    m.merge(loft(rings, ["snout", "snout"], around=True))
+    for sx in (-1, 1):
+        ear = lathe([(0.0, 0.0), (0.035, 0.0), (0.0, 0.12)], n // 2 + 2, [None, "ear"])
+        ear.translate((sx * 0.065, 0.68, -0.09))
+        m.merge(ear)
+    # tail: from the rump up and curling forward
+    k = 2 + 2 * D
+    path, radii = [], []
+    for s in range(k + 1):
+        u = s / k
+        a = math.radians(-70 + 250 * u)
+        rr = 0.12 * (1 - 0.45 * u)
+        path.append((0.0, 0.32 + rr * math.sin(a) + 0.02, 0.30 + rr * math.cos(a)))
+        radii.append(0.05 * (1 - 0.6 * u))
+    m.merge(tube(path, radii, 8, "tail"))
+    return m
+
+
+# ---------------------------------------------------------------------------
 # normalisation, normals and output
 
 
@@ -942,6 +1261,13 @@ MODELS = [
     ("MY", make_MY, "Yundan: cloud block, lobed outline in x-y, extruded in z"),
     ("MIB", make_MIB, "inscribed board: vertical plaque in x-y with a stepped raised border; front -z"),
     ("MBP", make_MBP, "booklet pillar: short chamfered square post with a cap; y up"),
+    ("MPC", make_MPC, "pillar cap: cloud cap, collar, lotus disc, drum and jewel; y up"),
+    ("MCH", make_MCH, "Chuihua: hanging lotus-bud pendant, square neck at the top (+y), bud at the bottom"),
+    ("MCS", make_MCS, "capital stone: square stone slab with a low round mirror on top; y up"),
+    ("MLS", make_MLS, "small lintel: slim beam spanning x, square chamfered section, end bands"),
+    ("MLO", make_MLO, "single lintel: beam spanning x, rounded top edges, beaded lower edges"),
+    ("MRO", make_MRO, "ridge-end ornament (chiwen): jaw toward +x at the bottom, tail curling at the top; extruded in z"),
+    ("MSA", make_MSA, "stone animal: small seated beast facing -z on a base plate"),
 ]
 
 

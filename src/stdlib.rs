@@ -60,7 +60,7 @@ pub fn names() -> Vec<&'static str> {
 /// one list of names for the four tables below.
 macro_rules! for_components {
     ($make:ident!($set:literal)) => {
-        $make!($set: "MAL", "MAO", "MAn", "MBP", "MCa", "MFB", "MIB", "ML", "MNo", "MP", "MPB", "MQ", "MY")
+        $make!($set: "MAL", "MAO", "MAn", "MBP", "MCa", "MCH", "MCS", "MFB", "MIB", "ML", "MLO", "MLS", "MNo", "MP", "MPB", "MPC", "MQ", "MRO", "MSA", "MY")
     };
 }
 

@@ -30,7 +30,7 @@ pub const KINDS: &[Kind] = &[
     kind("suspended_pillar", None, true),
     kind("lintel", Some("ML"), true),
     kind("pillar_base", Some("MPB"), true),
-    kind("pillar_cap", Some("MBP"), false),
+    kind("pillar_cap", Some("MPC"), false),
     kind("flower_board", Some("MFB"), true),
     kind("queti", Some("MQ"), true),
     kind("yundan", Some("MY"), true),
@@ -39,7 +39,22 @@ pub const KINDS: &[Kind] = &[
     kind("side_toukung", Some("TS"), true),
     kind("clipped_roof", Some("RC"), true),
     kind("eaves_roof", Some("RE"), true),
+    // Issue 37, defect 8: parts that come with their hosts (a graph names
+    // the host): booklet pillars with the flower board, capital stones
+    // with the pillar bases, Chuihuas with the pillars of an entrance
+    // above, ornaments and stone animals with the roofs.
+    kind("booklet_pillar", Some("MBP"), false),
+    kind("capital_stone", Some("MCS"), false),
+    kind("chuihua", Some("MCH"), false),
+    kind("ridge_ornament", Some("MRO"), false),
+    kind("stone_animal", Some("MSA"), false),
 ];
+
+/// Symbols that draw a kind another symbol draws too: the paper's three
+/// lintels (C1-C3) are one kind to the relation matrix, `ML` the big
+/// lintel, `MLS` the small one under the flower board, `MLO` the single
+/// lintel of an entrance above.
+const ALSO: &[(&str, &str)] = &[("MLS", "lintel"), ("MLO", "lintel")];
 
 /// The kinds a graph may name.
 pub fn graph_kinds() -> impl Iterator<Item = &'static str> {
@@ -53,7 +68,10 @@ pub fn is_graph_kind(kind: &str) -> bool {
 
 /// Each drawing symbol with the kind it draws.
 pub fn symbols() -> impl Iterator<Item = (&'static str, &'static str)> {
-    KINDS.iter().filter_map(|k| Some((k.symbol?, k.name)))
+    KINDS
+        .iter()
+        .filter_map(|k| Some((k.symbol?, k.name)))
+        .chain(ALSO.iter().copied())
 }
 
 #[cfg(test)]

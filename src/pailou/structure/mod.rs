@@ -89,12 +89,13 @@ impl Rules {
     }
 
     /// Joined through each other: a pillar and its base, cap, lintels and
-    /// Quetis, when the matrix relates them.
+    /// Quetis, when the matrix relates them; a stone animal and the roof
+    /// whose hip it stands on (inside the roof's box).
     fn joined(&self, a: &str, b: &str) -> bool {
         let pillar = |k: &str| matches!(k, "pillar" | "suspended_pillar");
         let through = |p: &str, o: &str| {
-            pillar(p)
-                && matches!(o, "lintel" | "pillar_base" | "pillar_cap" | "queti")
+            (pillar(p) && matches!(o, "lintel" | "pillar_base" | "pillar_cap" | "queti")
+                || p == "stone_animal")
                 && (self.accepts(p, o) || self.accepts(o, p))
         };
         through(a, b) || through(b, a)
@@ -105,7 +106,10 @@ fn mode(part: &str, support: &str) -> Mode {
     match part {
         "lintel" => Mode::Touch,
         "queti" | "clipped_roof" if support.ends_with("pillar") => Mode::Touch,
-        "queti" | "yundan" | "flower_board" | "inscribed_board" => Mode::Under,
+        "stone_animal" => Mode::Touch,
+        "queti" | "yundan" | "flower_board" | "inscribed_board" | "booklet_pillar" | "chuihua" => {
+            Mode::Under
+        }
         _ => Mode::On,
     }
 }
@@ -285,14 +289,21 @@ fn gap(p: &Part, s: &Part, mode: Mode) -> f32 {
 }
 
 fn support(p: &Part, kind: &str, parts: &[Part], rules: &Rules, out: &mut Vec<Problem>) {
-    if matches!(kind, "pillar" | "pillar_base") {
-        if p.lo.y.abs() > TOLERANCE {
+    // On the ground: pillars and bases stand on it; a capital stone is set
+    // in it, its top flush with it.
+    let ground = match kind {
+        "pillar" | "pillar_base" => Some(("stand on the ground", p.lo.y)),
+        "capital_stone" => Some(("be set in the ground, its top flush with it", p.hi.y)),
+        _ => None,
+    };
+    if let Some((wanted, gap)) = ground {
+        if gap.abs() > TOLERANCE {
             out.push(Problem::Unsupported {
                 part: p.name.clone(),
                 kind: kind.to_string(),
-                wanted: "stand on the ground".to_string(),
+                wanted: wanted.to_string(),
                 nearest: Some("the ground".to_string()),
-                gap: p.lo.y,
+                gap,
             });
         }
         return;
@@ -474,6 +485,38 @@ mod tests {
         bad[5].1.y = 4.5; // the Toukung floats
         bad[4].2.x = 3.0; // the lintel reaches one pillar... none
         bad[6].1 = Vec3::new(-1.0, 3.5, 0.0); // the Queti sinks into the lintel
+        let got = report(&check(&scene(&bad), &rules()));
+        insta::assert_snapshot!(got);
+    }
+
+    /// Issue 37, defect 8's parts: a capital stone set flush in the ground,
+    /// a booklet pillar and a Chuihua under the lintel, an ornament on the
+    /// ridge and a stone animal on the hip (inside the roof's box) stand;
+    /// raise the stone, drop the booklet pillar and lift the animal off the
+    /// roof, and each is named.
+    #[test]
+    fn the_parts_that_come_with_their_hosts_stand() {
+        let pillar = Vec3::new(0.4, 4.0, 0.4);
+        let good = [
+            ("MCS", Vec3::new(-2.0, -0.2, 0.0), Vec3::new(1.2, 0.2, 1.2)),
+            ("MPB", Vec3::new(-2.0, 0.0, 0.0), Vec3::new(0.8, 0.3, 0.8)),
+            ("MCS", Vec3::new(2.0, -0.2, 0.0), Vec3::new(1.2, 0.2, 1.2)),
+            ("MPB", Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.8, 0.3, 0.8)),
+            ("MP", Vec3::new(-2.0, 0.0, 0.0), pillar),
+            ("MP", Vec3::new(2.0, 0.0, 0.0), pillar),
+            ("ML", Vec3::new(0.0, 3.6, 0.0), Vec3::new(4.4, 0.4, 0.4)),
+            ("MBP", Vec3::new(-0.5, 3.0, 0.0), Vec3::new(0.15, 0.6, 0.2)),
+            ("MCH", Vec3::new(0.8, 3.2, -0.2), Vec3::new(0.15, 0.4, 0.15)),
+            ("TM", Vec3::new(0.0, 4.0, 0.0), Vec3::new(1.0, 0.5, 1.0)),
+            ("RE", Vec3::new(0.0, 4.5, 0.0), Vec3::new(4.0, 1.0, 2.0)),
+            ("MRO", Vec3::new(-1.0, 5.5, 0.0), Vec3::new(0.2, 0.3, 0.1)),
+            ("MSA", Vec3::new(1.5, 4.8, -0.6), Vec3::new(0.1, 0.15, 0.15)),
+        ];
+        assert_eq!(check(&scene(&good), &rules()), vec![]);
+        let mut bad = good;
+        bad[0].1.y = 0.0; // the stone is on the ground, not in it
+        bad[7].1.y = 2.8; // the booklet pillar drops from the lintel
+        bad[12].1.y = 5.6; // the animal floats over the roof
         let got = report(&check(&scene(&bad), &rules()));
         insta::assert_snapshot!(got);
     }
