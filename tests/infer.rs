@@ -121,6 +121,45 @@ fn hall_drawings_are_counted_as_the_generator_built_them() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Ridge ornaments (issue 37): a hall drawn with chiwen on its ridge is
+/// counted as the plain one, its ridge and roof keep their heights (before,
+/// the ornaments were read as the ridge and every layer moved down one),
+/// and the grammar puts ornaments of their height back on the ridge.
+#[test]
+fn ridge_ornaments_are_read_as_ornaments() {
+    let dir = tempfile::tempdir().unwrap();
+    let define = |text: &str, name: &str| -> Option<f64> {
+        text.lines()
+            .find_map(|l| l.strip_prefix(&format!("#define {name} ")))
+            .and_then(|l| l.split_whitespace().next())
+            .map(|v| v.parse().unwrap())
+    };
+    let mut texts = Vec::new();
+    for (k, orn) in ["0", "1.3"].iter().enumerate() {
+        let png = format!("o{k}.png");
+        draw(
+            dir.path(),
+            HALL,
+            &["W=24".into(), format!("ORN={orn}")],
+            &png,
+        );
+        let got = counts(&infer(dir.path(), &png, &format!("o{k}.lsys")));
+        assert_eq!(got, truth(24.0, 3.0), "ORN={orn}");
+        texts.push(std::fs::read_to_string(dir.path().join(format!("o{k}.lsys"))).unwrap());
+    }
+    assert_eq!(define(&texts[0], "ORN"), None);
+    let orn = define(&texts[1], "ORN").expect("ORN");
+    assert!((orn - 1.3).abs() < 0.2, "ORN {orn}");
+    assert!(texts[1].contains("~MRO"));
+    for name in ["ROOF", "RIDGE", "BRK"] {
+        let (a, b) = (
+            define(&texts[0], name).unwrap(),
+            define(&texts[1], name).unwrap(),
+        );
+        assert!((a - b).abs() < 0.1, "{name}: {a} plain, {b} with ornaments");
+    }
+}
+
 /// The width test (seed 003, Fig. 17): the grammar inferred from the hall
 /// at W=24, built at other widths, has the bays and bracket sets the
 /// generator has at those widths.

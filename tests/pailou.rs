@@ -741,3 +741,55 @@ fn upper_pillars_are_stout_and_toukung_rows_close_set() {
         }
     }
 }
+
+/// Issue 37, defect 4: in every example an entrance above is never taller
+/// for its width than an entrance's proportion allows: from its base (the
+/// top of the roof it stands through, or the lintel it stands on) to its
+/// lintel's top at most its pillars' spacing over αEW (Table 3's αUp = 0.8
+/// made 17-1's and 17-4's upper frame 7.2 high for 3.75 wide).
+#[test]
+fn entrances_above_are_no_towers() {
+    for graph in examples() {
+        let name = graph.file_stem().unwrap().to_string_lossy().into_owned();
+        let text = std::fs::read_to_string(&graph).unwrap();
+        let doc: toml::Table = toml::from_str(&text).unwrap();
+        let ew = doc["defines"]
+            .get("αEW")
+            .and_then(|v| v.as_str())
+            .map_or(10.0 / 12.0, |f| {
+                let (a, b) = f.split_once('/').unwrap();
+                a.parse::<f32>().unwrap() / b.parse::<f32>().unwrap()
+            });
+        let parts = boxes(&["pailou", graph.to_str().unwrap()]);
+        let pillars: Vec<_> = parts
+            .iter()
+            .filter(|p| p.0.starts_with("MP#") && p.1.y > 0.01)
+            .collect();
+        for (n, lo, hi) in parts.iter().filter(|p| p.0.starts_with("MLO#")) {
+            // The two pillars under the lintel, nearest its ends.
+            let mut under: Vec<_> = pillars
+                .iter()
+                .filter(|p| p.1.x >= lo.x - 1e-3 && p.2.x <= hi.x + 1e-3 && p.2.y >= lo.y - 1e-3)
+                .collect();
+            under.sort_by(|a, b| a.1.x.total_cmp(&b.1.x));
+            let (Some(first), Some(last)) = (under.first(), under.last()) else {
+                panic!("{name}: {n} rests on no pillars");
+            };
+            let spacing = (last.1.x + last.2.x - first.1.x - first.2.x) / 2.0;
+            // Its base: the foot of its pillars, or the top of the roof
+            // they pass through.
+            let foot = first.1.y;
+            let base = parts
+                .iter()
+                .filter(|r| (r.0.starts_with("RE#") || r.0.starts_with("RC#")) && r.2.y < lo.y)
+                .filter(|r| r.1.x <= first.1.x && r.2.x >= last.2.x && r.1.y >= foot - 1e-3)
+                .map(|r| r.2.y)
+                .fold(foot, f32::max);
+            let height = hi.y - base;
+            assert!(
+                height <= spacing / ew + 1e-3,
+                "{name}: the entrance under {n} is {height} high for pillars {spacing} apart (αEW {ew})"
+            );
+        }
+    }
+}

@@ -93,7 +93,8 @@ fn extent(b: &Built, colour: u32) -> ([f32; 3], [f32; 3]) {
 /// 0.5, 0.65, 0.75, 0.9, eaves 0.9 at the first) give one step's run,
 /// bujia = (ROOF - 0.9 * 0.5) / 2.8, and the hall is (9 - 1) bujia deep,
 /// so its roof 8 bujia + 2 * 0.9 from eave to eave and W + 1.8 wide. A hip
-/// roof's ends come down to the eaves; a gable's stay at the ridge.
+/// roof's ends come down to the eaves and its corners turn up; a gable's
+/// ends stay at the ridge.
 #[test]
 fn the_hall_is_as_deep_as_its_purlins_make_it() {
     for (roof, hip) in [("3.4", "1"), ("2.6", "1"), ("3.4", "0")] {
@@ -121,19 +122,31 @@ fn the_hall_is_as_deep_as_its_purlins_make_it() {
             "height {}",
             thi[1] - lo[1]
         );
-        // The highest point of the shell within 0.1 of the left end.
-        let end_top = b
-            .drawing
-            .polygons
-            .iter()
-            .filter(|p| p.colour == 26)
-            .flat_map(|p| p.points.iter())
-            .filter(|v| v[0] < lo[0] + 0.1)
-            .map(|v| v[1])
-            .fold(f32::NEG_INFINITY, f32::max);
-        let rises = end_top - lo[1];
+        // The highest point of the shell within 0.1 of the left end, in
+        // the middle half of the depth (away from the corners), and at the
+        // front left corner.
+        let top_near = |near: &dyn Fn(&glam::Vec3) -> bool| {
+            b.drawing
+                .polygons
+                .iter()
+                .filter(|p| p.colour == 26)
+                .flat_map(|p| p.points.iter())
+                .filter(|v| near(v))
+                .map(|v| v[1])
+                .fold(f32::NEG_INFINITY, f32::max)
+                - lo[1]
+        };
+        let mid = (lo[2] + hi[2]) / 2.0;
+        let rises = top_near(&|v| v[0] < lo[0] + 0.1 && (v[2] - mid).abs() < depth / 4.0);
+        let corner = top_near(&|v| v[0] < lo[0] + 0.1 && v[2] < lo[2] + 0.1);
         if hip == "1" {
             assert!(rises < 0.2 * r, "hip roof's end rises {rises}");
+            // The corner turns up: half the eaves' run (0.9) over the
+            // eaves, with the shell's thickness.
+            assert!(
+                corner > 0.4 && corner < 0.2 * r + 0.45,
+                "corner rises {corner}"
+            );
         } else {
             assert!(rises > 0.85 * r, "gable's end rises {rises}");
         }

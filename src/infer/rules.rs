@@ -73,6 +73,8 @@ pub struct Measured {
     /// The roof's ends slope down: a hip roof.
     hip: bool,
     ridge: Option<f64>,
+    /// Ornaments on the ridge's ends: their height.
+    ornament: Option<f64>,
 }
 
 /// Column height assumed when no scale is given: the seed's halls stand
@@ -235,6 +237,7 @@ pub fn measure(root: &Node, scale: Option<f64>, ink: &Ink) -> Measured {
         roof,
         hip: band("roof").is_some_and(|r| hipped(r, ink)),
         ridge: band("ridge").map(|r| r.h() as f64 * s),
+        ornament: band("ornament").map(|r| r.h() as f64 * s),
     }
 }
 
@@ -406,7 +409,7 @@ impl Measured {
             "   repeat as the width affords. Depth follows seed 003's Sec 7.1. */"
         );
         let _ = writeln!(g);
-        let defs: Vec<(&str, String, &str)> = vec![
+        let mut defs: Vec<(&str, String, &str)> = vec![
             (
                 "W",
                 num(self.width),
@@ -456,6 +459,9 @@ impl Measured {
                 "stairs width",
             ),
         ];
+        if let Some(h) = self.ornament {
+            defs.push(("ORN", num(h), "ornaments on the ridge's ends: their height"));
+        }
         for (name, value, why) in &defs {
             let _ = writeln!(g, "#define {name} {value} // {why}");
         }
@@ -505,7 +511,12 @@ impl Measured {
         );
         let _ = writeln!(
             g,
-            "module BrkSet, Rafters, RafFace, Rafter, Roof, Ridge, Facade, EndBay, Bay"
+            "module BrkSet, Rafters, RafFace, Rafter, Roof, Ridge, {}Facade, EndBay, Bay",
+            if self.ornament.is_some() {
+                "RidgeEnds, Wen, "
+            } else {
+                ""
+            }
         );
         let _ = writeln!(g, "module CentreBay, EndFill, BayFill, CentreFill, Window, Lattice, Door, Leaf, Wall, Side, Stairs");
         let _ = writeln!(g);
@@ -574,7 +585,21 @@ impl Measured {
         if self.ridge.is_some() {
             // A hip roof's ridge runs between its hips: shorter than the
             // facade by the depth.
-            g.push_str("Ridge --> @Tr(HIP * min(DEPTH, W) / 2 - 0.3, 0, 0) @Grow(0.6 - HIP * min(DEPTH, W), 0, 0)\n          @SZ(flo(1), 0.5, flo(1)) [] [;(20) @Block] []\n");
+            let ridge = if self.ornament.is_some() {
+                "[[;(20) @Block] RidgeEnds]"
+            } else {
+                "[;(20) @Block]"
+            };
+            let _ = writeln!(
+                g,
+                "Ridge --> @Tr(HIP * min(DEPTH, W) / 2 - 0.3, 0, 0) @Grow(0.6 - HIP * min(DEPTH, W), 0, 0)\n          @SZ(flo(1), 0.5, flo(1)) [] {ridge} []"
+            );
+            if self.ornament.is_some() {
+                // The ornaments: the built-in chiwen (its width 1/1.3 of
+                // its height), the jaw toward the ridge, the far one
+                // turned about the vertical.
+                g.push_str("RidgeEnds --> @SX(ORN / 1.3, flo(1), ORN / 1.3) [Wen] [] [@Rot(0, 180, 0) Wen]\nWen --> @Tr(0, RIDGE, 0.1) @Grow(0, ORN - RIDGE, 0) @Ext(0.3) ;(18) ~MRO\n");
+            }
         }
         g.push_str("\n// Each bay: the lintel on top, under it what the drawing shows.\n");
         for (k, (prefix, f)) in kinds.iter().enumerate() {

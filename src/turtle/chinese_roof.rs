@@ -105,6 +105,9 @@ struct Fit {
     thick: f64,
     /// Height of a row of tiles above the shell.
     rib: f64,
+    /// A hip roof's upturned corners (qiqiao): how far from a corner the
+    /// eaves start to rise, and how high the corner rises.
+    corner: Option<(f64, f64)>,
 }
 
 impl Fit {
@@ -118,17 +121,42 @@ impl Fit {
             0.0
         };
         let top = size.y - thick - rib;
-        let knots = profile
+        let knots: Vec<(f64, f64)> = profile
             .iter()
             .map(|(d, h)| (d / run * size.z / 2.0, thick + h / rise * top))
             .collect();
+        // The corners of a hip roof turn up (issue 37: the hall's eaves
+        // ran straight into its corners): the eaves rise over the last
+        // 2.5 eaves' runs (the chuyan's, or a bujia's without one) to half
+        // a run at the corner, and the lift fades up the hip over as far.
+        // A gable roof's eaves stay straight, as its ends have no corner
+        // rafters to turn up.
+        let eave = knots.get(1).map_or(0.0, |k| k.0);
+        let corner = (r.hip && eave > 0.0).then(|| {
+            let reach = (2.5 * eave).min(size.x / 2.0).min(size.z / 2.0);
+            (reach, (0.5 * eave).min(0.25 * size.y))
+        });
         Fit {
             size,
             hip: r.hip,
             knots,
             thick,
             rib,
+            corner,
         }
+    }
+
+    /// How far the corners lift the surface at (x, z): the full rise at a
+    /// corner, fading (quadratically) to nothing `reach` from it along the
+    /// eaves and up the hip.
+    fn lift(&self, x: f64, z: f64) -> f64 {
+        let Some((reach, rise)) = self.corner else {
+            return 0.0;
+        };
+        let dx = x.min(self.size.x - x).max(0.0);
+        let dz = z.min(self.size.z - z).max(0.0);
+        let t = (1.0 - dx.max(dz) / reach).max(0.0);
+        rise * t * t
     }
 
     /// Distance from the nearest eave (the ends count on a hip roof).
@@ -144,7 +172,11 @@ impl Fit {
 
     /// Height of the top surface over (x, z).
     fn top(&self, x: f64, z: f64) -> f64 {
-        let d = self.dist(x, z);
+        self.profile_at(self.dist(x, z)) + self.lift(x, z)
+    }
+
+    /// The profile's height at distance `d` from the eaves.
+    fn profile_at(&self, d: f64) -> f64 {
         let k = &self.knots;
         for w in k.windows(2) {
             let ((d0, h0), (d1, h1)) = (w[0], w[1]);
@@ -162,6 +194,15 @@ impl Fit {
         for (d, _) in &self.knots {
             if *d < len / 2.0 {
                 v.extend([*d, len - d]);
+            }
+        }
+        // Enough lines in the corners for the upturn to curve.
+        if let Some((reach, _)) = self.corner {
+            for k in 1..8 {
+                let d = reach * f64::from(k) / 8.0;
+                if d < len / 2.0 {
+                    v.extend([d, len - d]);
+                }
             }
         }
         v.sort_by(f64::total_cmp);
@@ -396,6 +437,30 @@ mod tests {
         let ridge = f.top(10.0, size.z / 2.0);
         assert!((f.top(size.z / 2.0, size.z / 2.0) - ridge).abs() < 1e-12);
         assert!(f.top(size.z / 2.0 - 0.5, size.z / 2.0) < ridge - 0.1);
+    }
+
+    /// A hip roof's corners turn up: the eaves rise toward each corner
+    /// (half an eaves' run at the corner, nothing 2.5 runs from it) and
+    /// the lift fades up the hip; the middle of an eave and the ridge do
+    /// not move. A gable roof's eaves stay straight.
+    #[test]
+    fn hip_corners_turn_up_and_gable_eaves_stay_straight() {
+        let r = shape(&[1.0, 0.0, 0.5, 0.5, 0.7, 0.9]);
+        let size = DVec3::new(20.0, 3.0, 8.0);
+        let f = Fit::new(&r, size);
+        let eave = f.knots[1].0;
+        let middle = f.top(10.0, 0.0);
+        assert!((f.top(0.0, 0.0) - middle - 0.5 * eave).abs() < 1e-9);
+        assert!((f.top(size.x, size.z) - middle - 0.5 * eave).abs() < 1e-9);
+        let along = |x: f64| f.top(x, 0.0) - middle;
+        assert!(along(0.5 * eave) > along(eave) && along(eave) > along(2.0 * eave));
+        assert!(along(2.5 * eave).abs() < 1e-9);
+        // Up the hip the lift fades: the surface still falls toward the
+        // corner, only less.
+        assert!(f.lift(eave, eave) > 0.0 && f.lift(eave, eave) < f.lift(0.0, 0.0));
+        assert!((f.top(10.0, 4.0) - 3.0).abs() < 1e-9);
+        let g = Fit::new(&shape(&[0.0, 0.0, 0.5, 0.5, 0.7, 0.9]), size);
+        assert!((g.top(0.0, 0.0) - g.top(10.0, 0.0)).abs() < 1e-12);
     }
 
     #[test]
