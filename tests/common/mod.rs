@@ -2,6 +2,8 @@
 //! and compiling small grammars given as text.
 #![allow(dead_code)]
 
+pub mod glb;
+
 use std::process::{Command, Output};
 
 /// Runs the `lsys` binary with `args` in the package's folder.
