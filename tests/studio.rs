@@ -684,3 +684,124 @@ fn a_lateral_entrance_with_its_roof_stands() {
     assert!(s["parts"].as_u64().unwrap() > 20, "{}", s["parts"]);
     h.stop();
 }
+
+/// The drawing page's API (issue 33, item 6): a drawing of the folder is
+/// read into a tree, a grammar and a hall; a separator stroke (a
+/// polyline in the drawing's pixels) restores a lost line; a label
+/// correction changes the counts and the grammar; bad edits, labels,
+/// paths and pictures are refused with a reason, and the last good
+/// reading stays.
+#[test]
+fn the_drawing_page_reads_strokes_and_corrections() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let svg = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/drawings/five-bay-hall.svg"),
+    )
+    .unwrap();
+    // The line that quarters the second bracket block, lost.
+    let lost = r#"<line x1="250.0" y1="277.5" x2="290.0" y2="277.5"/>"#;
+    assert!(svg.contains(lost));
+    std::fs::write(d.join("lost.svg"), svg.replace(lost, "")).unwrap();
+    std::fs::write(d.join("notes.txt"), "not a drawing").unwrap();
+    let h = studio(d);
+    let (code, _) = get(&h, "/api/drawing/state");
+    assert_eq!(code, 404, "no drawing before one is opened");
+    let (_, list) = get(&h, "/api/drawings");
+    assert_eq!(list["files"], json!(["lost.svg"]));
+
+    let (code, s) = post(&h, "/api/drawing/open", json!({"path": "lost.svg"}));
+    assert_eq!(code, 200, "{s}");
+    let counts = |s: &Value, l: &str| s["counts"][l].as_u64().unwrap();
+    assert_eq!(
+        ["column", "bay", "door", "window", "bracket"].map(|l| counts(&s, l)),
+        [6, 5, 1, 4, 7]
+    );
+    let (code, glb) = request(&h, "GET", "/api/drawing/model.glb", &[], b"");
+    assert_eq!((code, &glb[..4]), (200, &b"glTF"[..]));
+    let (code, png) = request(&h, "GET", "/api/drawing/image.png", &[], b"");
+    assert_eq!((code, &png[1..4]), (200, &b"PNG"[..]));
+
+    let (code, s) = post(
+        &h,
+        "/api/drawing/edit",
+        json!({"strokes": [[[250, 277.5], [270, 277.5], [290, 277.5]]]}),
+    );
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(counts(&s, "bracket"), 8, "the stroke restores the line");
+
+    // The first window's box, as the tree gives it, corrected to a wall.
+    fn leaves<'a>(n: &'a Value, out: &mut Vec<&'a Value>) {
+        match n["children"].as_array() {
+            Some(c) if !c.is_empty() => c.iter().for_each(|c| leaves(c, out)),
+            _ => out.push(n),
+        }
+    }
+    let mut all = Vec::new();
+    leaves(&s["tree"], &mut all);
+    let window = all.iter().find(|n| n["label"] == "window").unwrap()["box"].clone();
+    let before = s["grammar"].as_str().unwrap().to_string();
+    let (code, s) = post(
+        &h,
+        "/api/drawing/edit",
+        json!({"corrections": [{"box": window, "label": "wall"}]}),
+    );
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(counts(&s, "window"), 3);
+    assert_eq!(counts(&s, "bracket"), 8, "the stroke is kept");
+    assert_ne!(s["grammar"].as_str().unwrap(), before);
+    assert_eq!(s["missed"], json!([]));
+
+    // A box that is no node's is reported, not applied elsewhere.
+    let (_, s) = post(
+        &h,
+        "/api/drawing/edit",
+        json!({"corrections": [{"box": [1, 2, 3, 4], "label": "door"}]}),
+    );
+    assert_eq!((s["missed"].clone(), counts(&s, "door")), (json!([0]), 1));
+
+    for (bad, says) in [
+        (
+            json!({"corrections": [{"box": window, "label": "Door"}]}),
+            "not a label",
+        ),
+        (json!({"strokes": [[[1, "x"]]]}), "strokes:"),
+        (json!({"gap": 40}), "gap:"),
+    ] {
+        let (code, r) = post(&h, "/api/drawing/edit", bad.clone());
+        assert_eq!(code, 422, "{bad}: {r}");
+        assert!(
+            r["refused"]["message"].as_str().unwrap().contains(says),
+            "{r}"
+        );
+        assert_eq!(counts(&r["state"], "bracket"), 8, "the reading stays");
+    }
+
+    let (code, r) = post(&h, "/api/drawing/open", json!({"path": "../x.svg"}));
+    assert_eq!(code, 403, "{r}");
+    let (code, r) = post(&h, "/api/drawing/open", json!({"path": "notes.txt"}));
+    assert_eq!(code, 403, "{r}");
+    let (code, r) = request(
+        &h,
+        "POST",
+        "/api/drawing/upload?name=photo.png",
+        &[],
+        b"\x89PNG\r\n\x1a\nnot really",
+    );
+    let r: Value = serde_json::from_slice(&r).unwrap();
+    assert_eq!(code, 422, "{r}");
+    assert_eq!(
+        r["problem"]["diagnostics"][0]["code"],
+        "lsys::infer::unreadable"
+    );
+    let (_, s) = get(&h, "/api/drawing/state");
+    assert_eq!(s["name"], "lost.svg", "the drawing before stays open");
+
+    let (code, body) = request(&h, "GET", "/api/drawing/grammar.lsys", &[], b"");
+    assert_eq!(code, 200);
+    assert_eq!(
+        String::from_utf8(body).unwrap(),
+        s["grammar"].as_str().unwrap()
+    );
+    h.stop();
+}

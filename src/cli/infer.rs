@@ -19,17 +19,11 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
     if let Err(e) = driver::write_inference(&inference, &a.output, a.tree.as_deref()) {
         return failed(e, color);
     }
-    let counts: Vec<String> = [
-        ("column", "columns"),
-        ("bay", "bays"),
-        ("door", "doors"),
-        ("window", "windows"),
-        ("bracket", "bracket sets"),
-        ("rafter", "rafters"),
-    ]
-    .iter()
-    .map(|(label, plural)| format!("{} {plural}", count_nodes(&inference.tree, label)))
-    .collect();
+    let counts: Vec<String> = inference
+        .counts()
+        .iter()
+        .map(|(_, plural, n)| format!("{n} {plural}"))
+        .collect();
     eprintln!(
         "lsys: {}: {}; wrote {}{}",
         a.drawing.display(),
@@ -46,15 +40,6 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
         );
     }
     EX_OK
-}
-
-/// Nodes labelled `label` anywhere in the tree (bays are inner nodes).
-fn count_nodes(n: &driver::InferNode, label: &str) -> usize {
-    usize::from(n.label == label)
-        + n.children
-            .iter()
-            .map(|c| count_nodes(c, label))
-            .sum::<usize>()
 }
 
 fn failed(e: InferFailure, color: bool) -> i32 {

@@ -9,7 +9,9 @@ use crate::export::atomic::AtomicFiles;
 use crate::infer;
 use crate::Diagnostics;
 
-pub use crate::infer::{InferError, InferOptions, Inference, Node as InferNode};
+pub use crate::infer::{
+    Correction, InferError, InferOptions, Inference, Ink, Node as InferNode, LABELS as INFER_LABELS,
+};
 
 /// Why a drawing gave no grammar.
 #[derive(Debug)]
@@ -44,6 +46,34 @@ pub fn infer_drawing(
         infer::add_strokes(&mut ink, &lines, &strokes_shown).map_err(InferFailure::Drawing)?;
     }
     let inference = infer::infer_ink(&ink, &shown, opts).map_err(InferFailure::Drawing)?;
+    crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
+    Ok(inference)
+}
+
+/// Reads a drawing's `bytes` (PNG or SVG), named `shown` in messages: an
+/// upload to the studio, or a file of its folder.
+pub fn read_drawing(bytes: &[u8], shown: &str) -> Result<Ink, InferFailure> {
+    infer::read_drawing(bytes, shown).map_err(InferFailure::Drawing)
+}
+
+/// Infers the hall of `ink` (named `shown`) with separator strokes drawn
+/// by hand (`lines`: polylines in its pixels) and the user's label
+/// `corrections` (the studio's drawing page); the grammar is compiled once
+/// to prove it builds, as [`infer_drawing`]'s.
+pub fn infer_edited(
+    ink: &Ink,
+    shown: &str,
+    lines: &[Vec<[f32; 2]>],
+    corrections: &[Correction],
+    opts: &InferOptions,
+) -> Result<Inference, InferFailure> {
+    let mut ink = ink.clone();
+    if !lines.is_empty() {
+        let strokes = infer::stroke_lines(ink.width, ink.height, lines);
+        infer::add_strokes(&mut ink, &strokes, "the strokes").map_err(InferFailure::Drawing)?;
+    }
+    let inference =
+        infer::infer_corrected(&ink, shown, opts, corrections).map_err(InferFailure::Drawing)?;
     crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
     Ok(inference)
 }

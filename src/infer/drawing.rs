@@ -126,6 +126,58 @@ pub fn read_svg(bytes: &[u8], path: &str) -> Result<Ink, InferError> {
     binarize(&grey, w as usize, h as usize, path)
 }
 
+/// Width of a separator stroke drawn by hand, in pixels: a drawn line's,
+/// closing a region as a line of the drawing would.
+pub const STROKE_WIDTH: f32 = 3.0;
+
+/// Separator strokes drawn as polylines in the drawing's pixels (the
+/// studio's drawing page) -> an ink picture `width` x `height` holding
+/// them, for [`super::add_strokes`]. Points outside the picture are
+/// clipped; a polyline of one point is a dot.
+pub fn stroke_lines(width: usize, height: usize, lines: &[Vec<[f32; 2]>]) -> Ink {
+    use resvg::tiny_skia::{LineCap, Paint, PathBuilder, Pixmap, Stroke, Transform};
+    let mut ink = Ink {
+        width,
+        height,
+        ink: vec![false; width * height],
+    };
+    let Some(mut pixmap) = Pixmap::new(width as u32, height as u32) else {
+        return ink;
+    };
+    let paint = Paint {
+        anti_alias: false,
+        ..Paint::default()
+    };
+    let stroke = Stroke {
+        width: STROKE_WIDTH,
+        line_cap: LineCap::Round,
+        ..Stroke::default()
+    };
+    for line in lines.iter().filter(|l| !l.is_empty()) {
+        let finite = |p: &[f32; 2]| p[0].is_finite() && p[1].is_finite();
+        let mut pb = PathBuilder::new();
+        let mut points = line.iter().filter(|p| finite(p));
+        let Some(first) = points.next() else { continue };
+        pb.move_to(first[0], first[1]);
+        let mut drawn = false;
+        for p in points {
+            pb.line_to(p[0], p[1]);
+            drawn = true;
+        }
+        if !drawn {
+            // A dot: a segment of no length draws nothing.
+            pb.line_to(first[0] + 0.01, first[1]);
+        }
+        if let Some(path) = pb.finish() {
+            pixmap.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+        }
+    }
+    for (i, p) in pixmap.pixels().iter().enumerate() {
+        ink.ink[i] = p.alpha() > 0;
+    }
+    ink
+}
+
 fn luma(p: &[u8]) -> f32 {
     0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32
 }

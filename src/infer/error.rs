@@ -56,4 +56,8 @@ pub enum InferError {
         help("the lines must close around areas (a column's outline, a window's frame); if they almost do, raise --gap to bridge wider breaks")
     )]
     NoRegions { path: String },
+
+    #[error("\"{label}\" is not a label of the shape tree")]
+    #[diagnostic(code(lsys::infer::unknown_label), help("a node is one of: {known}"))]
+    UnknownLabel { label: String, known: String },
 }

@@ -11,12 +11,14 @@
 //!              layers.rs: the bracket and rafter layers)
 //! outline.rs   labelled tree + ink -> doors and windows out to their drawn
 //!              outlines (lines that gap bridging closed up)
+//! correct.rs   labelled tree + the user's labels -> corrected tree
 //! rules.rs     labelled tree -> measured sizes -> the grammar text
 //! ```
 //!
 //! `docs/drawing.md` describes the method, its choices and the round trip
 //! that measures it.
 
+mod correct;
 mod drawing;
 mod error;
 mod label;
@@ -27,7 +29,8 @@ mod tree;
 
 use serde_json::{json, Value};
 
-pub use drawing::{binarize, is_svg, read_png, read_svg, Ink};
+pub use correct::{Correction, LABELS};
+pub use drawing::{binarize, is_svg, read_png, read_svg, stroke_lines, Ink, STROKE_WIDTH};
 pub use error::InferError;
 pub use regions::Region;
 pub use tree::{Axis, Node};
@@ -59,6 +62,8 @@ pub struct Inference {
     pub tree: Node,
     /// Boxes of drawn regions no rule could label (not rebuilt).
     pub unlabelled: Vec<[i32; 4]>,
+    /// Indices of the corrections whose box is no node's (not applied).
+    pub missed: Vec<usize>,
     pub grammar: String,
 }
 
@@ -100,6 +105,18 @@ pub fn add_strokes(ink: &mut Ink, strokes: &Ink, strokes_path: &str) -> Result<(
 
 /// As [`infer`], from an ink bitmap.
 pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference, InferError> {
+    infer_corrected(ink, path, opts, &[])
+}
+
+/// As [`infer_ink`], with the user's `corrections` applied to the
+/// recognised tree before the sizes are measured (the studio's drawing
+/// page; see [`correct`]).
+pub fn infer_corrected(
+    ink: &Ink,
+    path: &str,
+    opts: &InferOptions,
+    corrections: &[Correction],
+) -> Result<Inference, InferError> {
     let gap = opts.gap.min(8);
     let regions = regions::regions(ink, gap);
     if regions.is_empty() {
@@ -121,8 +138,13 @@ pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference
     // line widths, and at least a hundredth of the drawing.
     let tolerance = ((bbox[2] - bbox[0]).max(bbox[3] - bbox[1]) / 100).max(2 * gap as i32 + 2);
     let mut tree = tree::shape_tree(&regions, bbox, tolerance);
-    let unlabelled = label::recognise(&mut tree, &regions);
+    let mut unlabelled = label::recognise(&mut tree, &regions);
     outline::snap(&mut tree, ink);
+    // After the snap: the boxes are those the user saw in the tree.
+    let missed = correct::apply(&mut tree, corrections)?;
+    if !corrections.is_empty() {
+        unlabelled = label::unlabelled(&tree, &regions);
+    }
     let measured = rules::measure(&tree, opts.scale, ink);
     let name = std::path::Path::new(path)
         .file_name()
@@ -134,6 +156,7 @@ pub fn infer_ink(ink: &Ink, path: &str, opts: &InferOptions) -> Result<Inference
         regions,
         tree,
         unlabelled,
+        missed,
         grammar,
     })
 }
@@ -143,6 +166,27 @@ impl Inference {
     /// "repeat", "children"}` in drawing pixels with y down.
     pub fn tree_json(&self) -> Value {
         json!({"width": self.width, "height": self.height, "root": node_json(&self.tree)})
+    }
+
+    /// What `lsys infer` reports and the studio shows: for columns, bays,
+    /// doors, windows, bracket sets and rafters, (label, plural, nodes so
+    /// labelled anywhere in the tree: bays are inner nodes).
+    pub fn counts(&self) -> Vec<(&'static str, &'static str, usize)> {
+        fn nodes(n: &Node, label: &str) -> usize {
+            usize::from(n.label == label)
+                + n.children.iter().map(|c| nodes(c, label)).sum::<usize>()
+        }
+        [
+            ("column", "columns"),
+            ("bay", "bays"),
+            ("door", "doors"),
+            ("window", "windows"),
+            ("bracket", "bracket sets"),
+            ("rafter", "rafters"),
+        ]
+        .into_iter()
+        .map(|(l, p)| (l, p, nodes(&self.tree, l)))
+        .collect()
     }
 
     /// Leaves labelled `label`.

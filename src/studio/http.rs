@@ -14,7 +14,7 @@ use tiny_http::{Header, Method, Request, Response, Server};
 use super::safety::{self, confine, host_ok, origin_ok};
 use super::{lock, open_file, Session, Shared};
 
-type Reply = Response<Cursor<Vec<u8>>>;
+pub(super) type Reply = Response<Cursor<Vec<u8>>>;
 
 /// Requests handled at once (each on a thread of its own); more wait
 /// for an answer 503.
@@ -157,7 +157,8 @@ fn route(
     let q = |k: &str| query.iter().find(|(n, _)| n == k).map(|(_, v)| v.as_str());
     let json_body = || serde_json::from_slice::<Value>(body).ok();
     match (method, path) {
-        (Method::Get, "/") | (Method::Get, "/index.html") => page(sh),
+        (Method::Get, "/") | (Method::Get, "/index.html") => page(sh, "index.html"),
+        (Method::Get, "/drawing") | (Method::Get, "/drawing.html") => page(sh, "drawing.html"),
         (Method::Get, p) if p.starts_with("/assets/") => asset(sh, &p[1..]),
         (Method::Get, "/api/state") => json_reply(200, state(sh)),
         (Method::Get, "/api/model.glb") => match model_bytes(sh) {
@@ -228,6 +229,9 @@ fn route(
             }
         }
         (Method::Post, "/api/save") => save(sh, json_body()),
+        (_, p) if p.starts_with("/api/drawing") => {
+            super::drawing_routes::route(method, p, query, body, sh)
+        }
         _ => text(404, "no such page or API route (see docs/studio.md)"),
     }
 }
@@ -366,8 +370,14 @@ fn export(sh: &Shared, format: &str) -> Reply {
 /// Graphs and grammars in the opened folder and its subfolders (paths
 /// relative to it, `/`-separated), to open.
 fn files(sh: &Shared) -> Vec<String> {
+    files_ending(sh, &[".toml", ".lsys", ".l"])
+}
+
+/// The folder's files (to [`LIST_DEPTH`]) whose names end in one of
+/// `endings`, by path.
+pub(super) fn files_ending(sh: &Shared, endings: &[&str]) -> Vec<String> {
     let mut out = Vec::new();
-    list(&sh.root, "", 0, &mut out);
+    list(&sh.root, "", 0, endings, &mut out);
     out.sort();
     out
 }
@@ -377,7 +387,7 @@ const LIST_DEPTH: usize = 4;
 /// Files listed at most (a folder opened by mistake, such as `~`).
 const LIST_MAX: usize = 2000;
 
-fn list(dir: &Path, prefix: &str, depth: usize, out: &mut Vec<String>) {
+fn list(dir: &Path, prefix: &str, depth: usize, endings: &[&str], out: &mut Vec<String>) {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;
     };
@@ -395,9 +405,15 @@ fn list(dir: &Path, prefix: &str, depth: usize, out: &mut Vec<String>) {
             let skipped =
                 name.starts_with('.') || ["target", "node_modules"].contains(&name.as_str());
             if depth < LIST_DEPTH && !skipped {
-                list(&e.path(), &format!("{prefix}{name}/"), depth + 1, out);
+                list(
+                    &e.path(),
+                    &format!("{prefix}{name}/"),
+                    depth + 1,
+                    endings,
+                    out,
+                );
             }
-        } else if kind.is_file() && [".toml", ".lsys", ".l"].iter().any(|x| name.ends_with(x)) {
+        } else if kind.is_file() && endings.iter().any(|x| name.ends_with(x)) {
             out.push(format!("{prefix}{name}"));
         }
     }
@@ -460,12 +476,13 @@ pub fn has_embedded_page() -> bool {
     embedded_file("index.html").is_some()
 }
 
-fn page(sh: &Shared) -> Reply {
+/// One of the front end's pages (`index.html`, `drawing.html`).
+fn page(sh: &Shared, name: &str) -> Reply {
     if let Some(dir) = &sh.assets {
-        if let Ok(b) = std::fs::read(dir.join("index.html")) {
+        if let Ok(b) = std::fs::read(dir.join(name)) {
             return bytes(b, "text/html; charset=utf-8");
         }
-    } else if let Some(b) = embedded_file("index.html") {
+    } else if let Some(b) = embedded_file(name) {
         return bytes(b.to_vec(), "text/html; charset=utf-8");
     }
     bytes(
@@ -506,7 +523,7 @@ fn asset(sh: &Shared, rel: &str) -> Reply {
 /// The page served when the front end has not been built.
 const FALLBACK_PAGE: &str = "<!doctype html><html><head><meta charset=\"utf-8\"><title>lsys studio</title></head><body style=\"font-family:sans-serif;max-width:40em;margin:3em auto\"><h1>lsys studio</h1><p>The server is running, but its front end (three.js, from npm) has not been built. Build it once with</p><pre>cd web/studio &amp;&amp; npm ci &amp;&amp; npm run build</pre><p>then restart <code>lsys studio</code> (or pass <code>--assets web/studio/dist</code>). See docs/studio.md. The JSON API works without it: <a href=\"/api/state\">/api/state</a>.</p></body></html>";
 
-fn hdr(k: &str, v: &str) -> Header {
+pub(super) fn hdr(k: &str, v: &str) -> Header {
     Header::from_bytes(k.as_bytes(), v.as_bytes()).expect("ASCII header")
 }
 
@@ -515,14 +532,14 @@ fn common(r: Reply) -> Reply {
         .with_header(hdr("X-Content-Type-Options", "nosniff"))
 }
 
-fn bytes(b: Vec<u8>, mime: &str) -> Reply {
+pub(super) fn bytes(b: Vec<u8>, mime: &str) -> Reply {
     common(Response::from_data(b).with_header(hdr("Content-Type", mime)))
 }
 
-fn text(code: u16, msg: &str) -> Reply {
+pub(super) fn text(code: u16, msg: &str) -> Reply {
     bytes(format!("{msg}\n").into_bytes(), "text/plain; charset=utf-8").with_status_code(code)
 }
 
-fn json_reply(code: u16, v: Value) -> Reply {
+pub(super) fn json_reply(code: u16, v: Value) -> Reply {
     bytes(v.to_string().into_bytes(), "application/json").with_status_code(code)
 }

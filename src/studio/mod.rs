@@ -10,8 +10,12 @@
 //! rest of the crate. It binds to loopback unless told otherwise, answers
 //! only requests whose `Host`/`Origin` is its own, reads and writes only
 //! inside the opened folder, limits request bodies, and never lets a bad
-//! graph or grammar take it down (docs/studio.md).
+//! graph or grammar take it down (docs/studio.md). The drawing page
+//! (`drawing.rs`, its routes in `drawing_routes.rs`) reads elevation
+//! drawings into shape grammars beside whichever session is open.
 
+mod drawing;
+mod drawing_routes;
 mod grammar;
 mod http;
 mod model;
@@ -106,6 +110,9 @@ pub(crate) struct Shared {
     /// `host:port` values the server answers to.
     pub hosts: Vec<String>,
     pub session: Mutex<Session>,
+    /// The drawing page's drawing (`None` until one is opened); apart from
+    /// `session`, so that both pages work at once.
+    pub drawing: Mutex<Option<drawing::DrawingSession>>,
     /// Bumped on every change of the model; waited on by event streams.
     pub version: Mutex<u64>,
     pub changed: Condvar,
@@ -176,6 +183,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
         assets,
         hosts,
         session: Mutex::new(session),
+        drawing: Mutex::new(None),
         max_triangles: budget,
         version: Mutex::new(1),
         changed: Condvar::new(),

@@ -522,7 +522,7 @@ fn element(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
 
 /// Boxes of drawn regions in leaves still labelled `other`, where the
 /// drawing had something the rules could not name.
-fn unlabelled(root: &Node, regions: &[Region]) -> Vec<[i32; 4]> {
+pub fn unlabelled(root: &Node, regions: &[Region]) -> Vec<[i32; 4]> {
     let mut out = Vec::new();
     for leaf in root.leaves() {
         if leaf.label == "other" && leaf.content().next().is_some() {

@@ -2,9 +2,7 @@
 // parameters from the server's state, and a three.js view of the GLB the
 // server builds. Every change goes to the server; the server's state is
 // drawn again (docs/studio.md).
-import * as THREE from "three";
-import { GLTFLoader } from "three/examples/jsm/loaders/GLTFLoader.js";
-import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+import { Viewer } from "./viewer.js";
 import { icon } from "./icons.js";
 
 const $ = (id) => document.getElementById(id);
@@ -24,86 +22,16 @@ async function api(path, body) {
 }
 
 // ---- 3D view ------------------------------------------------------------
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-$("canvas").appendChild(renderer.domElement);
-const scene3 = new THREE.Scene();
-scene3.background = new THREE.Color(0xe9eef2);
-scene3.add(new THREE.HemisphereLight(0xffffff, 0x8a7f70, 1.6));
-const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-sun.position.set(3, 6, 4);
-scene3.add(sun);
-const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 10000);
-camera.position.set(8, 6, 12);
-const controls = new OrbitControls(camera, renderer.domElement);
-let model = null;
-let fitted = false;
-let bounds = new THREE.Box3(new THREE.Vector3(-1, 0, -1), new THREE.Vector3(1, 2, 1));
+const viewer = new Viewer($("canvas"));
+document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => viewer.view(b.dataset.view)));
 
-function resize() {
-  const el = $("canvas");
-  const w = el.clientWidth || 400, h = el.clientHeight || 300;
-  renderer.setSize(w, h);
-  camera.aspect = w / h;
-  camera.updateProjectionMatrix();
-}
-window.addEventListener("resize", () => { resize(); render(); });
-// Drawn on demand (a camera move, a new model), not every frame: a big
-// Pailou is hundreds of thousands of triangles, and a browser without a
-// GPU would spend all its time redrawing an unchanged picture.
-let queued = false;
-function render() {
-  if (queued) return;
-  queued = true;
-  requestAnimationFrame(() => { queued = false; renderer.render(scene3, camera); });
-}
-controls.addEventListener("change", render);
-
-function view(name) {
-  const c = bounds.getCenter(new THREE.Vector3());
-  const r = bounds.getSize(new THREE.Vector3()).length() * 0.5 || 1;
-  const d = r / Math.sin((camera.fov * Math.PI) / 360) * 1.05;
-  const dir = { front: [0, 0, 1], side: [1, 0, 0], top: [0, 1, 0.0001], iso: [1, 0.8, 1] }[name];
-  const v = new THREE.Vector3(...dir).normalize().multiplyScalar(d);
-  camera.position.copy(c).add(v);
-  camera.near = d / 100; camera.far = d * 100;
-  camera.updateProjectionMatrix();
-  controls.target.copy(c);
-  controls.update();
-  render();
-}
-document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => view(b.dataset.view)));
-
-const loader = new GLTFLoader();
 async function loadModel(problemParts) {
-  const r = await fetch("/api/model.glb?v=" + studio.version);
-  if (!r.ok) return;
-  const buf = await r.arrayBuffer();
-  const gltf = await loader.parseAsync(buf, "");
-  if (model) scene3.remove(model);
-  model = gltf.scene;
-  let meshes = 0;
-  const warn = new Set(problemParts);
-  model.traverse((o) => {
-    if (!o.isMesh) return;
-    meshes++;
-    let p = o, hit = false;
-    while (p) { if (warn.has(p.name)) hit = true; p = p.parent; }
-    if (hit) {
-      o.material = o.material.clone();
-      o.material.color = new THREE.Color(0xff2020);
-      o.material.emissive = new THREE.Color(0x660000);
-    }
-  });
-  scene3.add(model);
-  bounds = new THREE.Box3().setFromObject(model);
+  const meshes = await viewer.load("/api/model.glb?v=" + studio.version, problemParts);
+  if (meshes === null) return;
   studio.parts = meshes;
   studio.loads++;
   $("parts").textContent = `${meshes} drawn parts`;
   $("parts").dataset.parts = meshes;
-  resize();
-  if (!fitted) { view("iso"); fitted = true; }  // later loads keep the camera
-  render();
 }
 
 // ---- Pailou mode ----------------------------------------------------------
@@ -338,7 +266,7 @@ $("open").addEventListener("change", async () => {
   const f = $("open").value;
   if (!f) return;
   const r = await api("/api/open", { path: f });
-  fitted = false;
+  viewer.fitted = false;
   if (r.status === 200) await show(r.data, true);
   else $("status").textContent = r.data.error || r.data;
 });
@@ -351,6 +279,6 @@ events.addEventListener("update", async (e) => {
   await show(r.data, true);
 });
 
-resize();
+viewer.resize();
 api("/api/state").then((r) => show(r.data, true));
 refreshFiles();

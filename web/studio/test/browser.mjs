@@ -4,44 +4,16 @@
 // Screenshots go to docs/images/studio-*.png. Prints "N passed, N failed".
 //
 //   LSYS=path/to/lsys node test/browser.mjs     (default: target/debug/lsys)
-import { spawn } from "node:child_process";
-import { mkdtempSync, writeFileSync, existsSync, readFileSync, rmSync } from "node:fs";
+import { mkdtempSync, writeFileSync, existsSync, readFileSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, resolve, dirname } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { check, images, startStudio, launchBrowser, finish } from "./harness.mjs";
 
-const here = dirname(fileURLToPath(import.meta.url));
-const repo = resolve(here, "../../..");
-const lsys = process.env.LSYS || join(repo, "target/debug/lsys");
-const images = process.env.STUDIO_SHOTS || join(repo, "docs/images");
 const dir = mkdtempSync(join(tmpdir(), "lsys-studio-"));
-let passed = 0, failed = 0;
-function check(name, ok, detail = "") {
-  if (ok) { passed++; console.log(`ok - ${name}`); }
-  else { failed++; console.log(`FAILED - ${name} ${detail}`); }
-}
-
-const server = spawn(lsys, ["studio", dir, "--port", "0", "--assets", join(repo, "web/studio/dist")], { stdio: ["ignore", "pipe", "inherit"] });
-const url = await new Promise((res, rej) => {
-  let out = "";
-  server.stdout.on("data", (d) => { out += d; const m = out.match(/http:\/\/\S+\//); if (m) res(m[0]); });
-  server.on("exit", (c) => rej(new Error(`lsys studio exited with ${c}`)));
-  setTimeout(() => rej(new Error("lsys studio printed no URL in 20 s")), 20000);
-});
-const profile = mkdtempSync(join(tmpdir(), "lsys-studio-chromium-"));
-let browser;
+const { server, url } = await startStudio(dir);
+let browser, profile;
 try {
-  // A fresh profile each run (the persistent context is how Playwright
-  // takes --user-data-dir).
-  browser = await chromium.launchPersistentContext(profile, {
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    headless: true,
-    viewport: { width: 1400, height: 800 },
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-      "--disable-background-networking", "--disable-component-update", "--disable-sync",
-      "--use-angle=swiftshader", "--enable-unsafe-swiftshader"],
-  });
+  ({ browser, profile } = await launchBrowser());
   const page = await browser.newPage();
   page.on("pageerror", (e) => console.log("page error:", e.message));
   let saveAs = "fig6.toml";
@@ -212,10 +184,5 @@ try {
 } catch (e) {
   check("the scenario ran to its end", false, e.stack);
 } finally {
-  if (browser) await browser.close();
-  server.kill();
-  rmSync(profile, { recursive: true, force: true });
-  rmSync(dir, { recursive: true, force: true });
+  await finish({ browser, profile, server, dirs: [dir] });
 }
-console.log(`${passed} passed, ${failed} failed`);
-process.exit(failed ? 1 : 0);
