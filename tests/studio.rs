@@ -143,6 +143,36 @@ fn clicks_build_a_2_1_1_pailou_and_save_it() {
     assert_eq!(s["unplaced"], json!([]));
     insta::assert_snapshot!("studio_2_1_1_graph", s["toml"].as_str().unwrap());
     insta::assert_snapshot!("studio_2_1_1_chart", s["chart"].as_str().unwrap());
+    // What the page's coloured chart draws: the one entrance, G11, its
+    // eaves roof and Toukungs, the same as the text chart.
+    assert_eq!(s["entrances"].as_array().unwrap().len(), 1);
+    let g = &s["entrances"][0];
+    assert_eq!(
+        (
+            g["name"].as_str(),
+            g["side"].as_i64(),
+            g["roof"].as_str(),
+            g["toukungs"].as_bool()
+        ),
+        (Some("G11"), Some(0), Some("eaves"), Some(true))
+    );
+    // The relation matrix over every graph kind, its rows the library's.
+    let kinds: std::collections::BTreeSet<&str> = s["matrix"]["kinds"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        kinds,
+        lsys::internals::pailou::kinds::graph_kinds().collect()
+    );
+    let lintel = &s["matrix"]["accepts"]["lintel"];
+    assert!(lintel.as_array().unwrap().contains(&json!("flower_board")));
+    assert!(!s["matrix"]["accepts"]["pillar"]
+        .as_array()
+        .unwrap()
+        .contains(&json!("inscribed_board")));
     // The saved graph is one `lsys pailou` reads, and it reopens alike.
     let (code, r) = post(&h, "/api/save", json!({"path": "fig6.toml"}));
     assert_eq!(code, 200, "{r}");

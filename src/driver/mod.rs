@@ -55,7 +55,7 @@ pub use crate::export::render::{RenderOptions as Picture, Style, View};
 pub use crate::load::Input;
 pub use crate::pailou::kinds::is_graph_kind;
 pub use crate::pailou::structure::Problem;
-pub use crate::pailou::GraphDocument;
+pub use crate::pailou::{Entrance, GraphDocument, Roof};
 
 // What a front end needs of the stages besides running jobs: the worker
 // thread's stack, rendering a diagnostic, atomic writes of its own

@@ -135,6 +135,11 @@ impl Pailou {
         self.layout.chart()
     }
 
+    /// The entrances of the layout chart, as the studio draws them.
+    pub fn entrances(&self) -> Vec<crate::pailou::Entrance> {
+        self.layout.entrances()
+    }
+
     /// The component graph of this Pailou (`lsys pailou --emit-graph`).
     pub fn graph_toml(&self) -> String {
         graph::emit(&self.layout, self.kind, &self.title)

@@ -15,7 +15,7 @@ pub mod structure;
 pub mod style;
 
 pub use document::GraphDocument;
-pub use style::{layout, parse_style, Layout, PailouType, StyleError};
+pub use style::{layout, parse_style, Entrance, Layout, PailouType, Roof, StyleError};
 
 use crate::load::Input;
 

@@ -231,40 +231,75 @@ impl Layout {
         out
     }
 
-    /// The layout chart (paper, Sec. 4.2): one line per level from the top,
-    /// the entrances of both halves from left to right.
-    pub fn chart(&self) -> String {
-        let mut out = String::new();
+    /// The entrances of the layout chart (paper, Sec. 4.2, Fig. 9a), from
+    /// the top level down and, in each, from the left end to the right:
+    /// what the chart and the studio's coloured chart draw.
+    pub fn entrances(&self) -> Vec<Entrance> {
+        let half = self.exists.iter().filter(|e| e[0]).count();
+        let mut out = Vec::new();
         for j in (0..=MAX_LEVELS).rev() {
-            let cells: Vec<usize> = (0..=MAX_HALF).filter(|&i| self.exists[i][j]).collect();
-            if cells.is_empty() {
+            for k in 0..(2 * half).saturating_sub(1) {
+                // From the left end: the left half mirrored, the centre, the right half.
+                let (i, side) = if k + 1 >= half {
+                    (k + 1 - half, if k + 1 == half { 0 } else { 1 })
+                } else {
+                    (half - 1 - k, -1)
+                };
+                if !self.exists[i][j] {
+                    continue;
+                }
+                let d = &self.dec[i][j];
+                out.push(Entrance {
+                    i: i + 1,
+                    j: j + 1,
+                    side,
+                    roof: if d[EAVES_ROOF] {
+                        Roof::Eaves
+                    } else if d[CLIPPED_ROOF] {
+                        Roof::Clipped
+                    } else {
+                        Roof::None
+                    },
+                    side_clipped: d[SIDE_CLIPPED_ROOFS],
+                    pillar_roof: d[PILLAR_ROOF],
+                    toukungs: d[MIDDLE_TOUKUNGS] || d[SIDE_TOUKUNGS],
+                    flower_board: d[FLOWER_BOARD],
+                    inscribed_board: d[INSCRIBED_BOARD],
+                });
+            }
+        }
+        out
+    }
+
+    /// The layout chart (paper, Sec. 4.2) as text: one line per level from
+    /// the top, the entrances of both halves from left to right.
+    pub fn chart(&self) -> String {
+        let half = self.exists.iter().filter(|e| e[0]).count();
+        let entrances = self.entrances();
+        let mut out = String::new();
+        for j in (1..=MAX_LEVELS + 1).rev() {
+            let level: Vec<&Entrance> = entrances.iter().filter(|e| e.j == j).collect();
+            if level.is_empty() {
                 continue;
             }
-            let half = self.exists.iter().filter(|e| e[0]).count();
-            let mut line = format!("level {}  ", j + 1);
-            for k in 0..(2 * half - 1) {
-                let i = if k + 1 >= half {
-                    k + 1 - half
-                } else {
-                    half - 1 - k
-                };
-                let cell = if self.exists[i][j] {
-                    let d = &self.dec[i][j];
-                    let roof = if d[EAVES_ROOF] {
-                        "^"
-                    } else if d[CLIPPED_ROOF] {
-                        "-"
-                    } else {
-                        " "
-                    };
-                    let extra = match (d[SIDE_CLIPPED_ROOFS], d[PILLAR_ROOF]) {
-                        (true, _) => "c",
-                        (_, true) => "p",
-                        _ => "",
-                    };
-                    format!("[G{}{}{roof}{extra}]", i + 1, j + 1)
-                } else {
-                    "      ".to_string()
+            let mut line = format!("level {j}  ");
+            for k in 0..(2 * half).saturating_sub(1) {
+                let at = |e: &&&Entrance| e.column(half) == k;
+                let cell = match level.iter().find(at) {
+                    Some(e) => {
+                        let roof = match e.roof {
+                            Roof::Eaves => "^",
+                            Roof::Clipped => "-",
+                            Roof::None => " ",
+                        };
+                        let extra = match (e.side_clipped, e.pillar_roof) {
+                            (true, _) => "c",
+                            (_, true) => "p",
+                            _ => "",
+                        };
+                        format!("[G{}{}{roof}{extra}]", e.i, e.j)
+                    }
+                    None => "      ".to_string(),
                 };
                 line.push_str(&cell);
             }
@@ -273,6 +308,44 @@ impl Layout {
         }
         out.push_str("G<i><j>: entrance i from the centre, level j; ^ eaves roof, - clipped roof,\nc clipped roofs beside the entrance above, p a clipped roof over the outer pillar\n");
         out
+    }
+}
+
+/// The roof an entrance carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Roof {
+    None,
+    Eaves,
+    Clipped,
+}
+
+/// One entrance of a layout.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Entrance {
+    /// From the centre: 1 is the central entrance (the paper's G1j).
+    pub i: usize,
+    /// The level: 1 is the ground.
+    pub j: usize,
+    /// -1 left of the centre, 0 the centre, 1 right.
+    pub side: i32,
+    pub roof: Roof,
+    /// Clipped roofs beside the entrance above.
+    pub side_clipped: bool,
+    /// A clipped roof over the outer pillar.
+    pub pillar_roof: bool,
+    pub toukungs: bool,
+    pub flower_board: bool,
+    pub inscribed_board: bool,
+}
+
+impl Entrance {
+    /// Its column in a chart of `half` entrances a side, from the left end.
+    pub fn column(&self, half: usize) -> usize {
+        let i = self.i - 1;
+        match self.side {
+            -1 => half - 1 - i,
+            _ => half - 1 + i,
+        }
     }
 }
 

@@ -10,7 +10,9 @@ use std::collections::BTreeMap;
 use serde_json::{json, Value};
 
 use super::model::{self, Model};
-use crate::driver::{is_graph_kind, GraphDocument, Pailou, PailouError, PailouType};
+use crate::driver::{
+    is_graph_kind, Entrance, GraphDocument, Pailou, PailouError, PailouType, Roof,
+};
 use crate::Grammar;
 
 pub struct PailouSession {
@@ -24,6 +26,8 @@ pub struct PailouSession {
     pub error: Option<Value>,
     pub unplaced: Vec<String>,
     pub chart: String,
+    /// The chart's entrances, as the page draws them (Fig. 9a).
+    pub entrances: Vec<Value>,
     /// The emitted grammar of the last good graph.
     pub lsys: String,
     /// The build's defines (the graph's, with the Toukung levels passed on).
@@ -53,6 +57,7 @@ impl PailouSession {
             error: None,
             unplaced: Vec::new(),
             chart: String::new(),
+            entrances: Vec::new(),
             lsys: String::new(),
             defines: Vec::new(),
             active: String::new(),
@@ -78,6 +83,7 @@ impl PailouSession {
         self.model = Some(built);
         self.unplaced = p.unplaced().to_vec();
         self.chart = p.chart();
+        self.entrances = p.entrances().iter().map(entrance_json).collect();
         self.lsys = p.grammar_text();
         self.defines = defines;
         self.error = None;
@@ -211,6 +217,8 @@ impl PailouSession {
             "defines": serde_json::to_value(defines).unwrap_or_default(),
             "build_defines": self.defines,
             "chart": self.chart,
+            "entrances": self.entrances,
+            "matrix": matrix(),
             "unplaced": self.unplaced,
             "error": self.error,
             "problems": self.model.as_ref().map(|m| m.problems.clone()).unwrap_or_default(),
@@ -236,6 +244,59 @@ pub fn palette(g: &GraphDocument, id: &str) -> Vec<String> {
         .get(kind)
         .map(|v| v.iter().filter(|k| is_graph_kind(k)).cloned().collect())
         .unwrap_or_default()
+}
+
+fn entrance_json(e: &Entrance) -> Value {
+    let roof = match e.roof {
+        Roof::Eaves => "eaves",
+        Roof::Clipped => "clipped",
+        Roof::None => "none",
+    };
+    json!({
+        "name": format!("G{}{}", e.i, e.j), "i": e.i, "j": e.j, "side": e.side, "roof": roof,
+        "side_clipped": e.side_clipped, "pillar_roof": e.pillar_roof, "toukungs": e.toukungs,
+        "flower_board": e.flower_board, "inscribed_board": e.inscribed_board,
+    })
+}
+
+/// The relation matrix (paper, Sec. 4.1, Figs. 5C and 8) over the kinds a
+/// graph may name: `{"kinds": [...], "accepts": {kind: [kinds that may
+/// attach to it]}}`, the rows and columns in the paper's order (roofs,
+/// Toukungs, lintel, pillars, Queti, flower board, Yundan) with ours after.
+fn matrix() -> Value {
+    const ORDER: [&str; 12] = [
+        "clipped_roof",
+        "eaves_roof",
+        "middle_toukung",
+        "side_toukung",
+        "lintel",
+        "pillar",
+        "queti",
+        "flower_board",
+        "yundan",
+        "inscribed_board",
+        "suspended_pillar",
+        "pillar_base",
+    ];
+    debug_assert!(ORDER.iter().all(|k| is_graph_kind(k)));
+    let rules = crate::driver::library_rules();
+    let accepts: serde_json::Map<String, Value> = ORDER
+        .iter()
+        .map(|k| {
+            let row: Vec<&str> = rules
+                .accepts
+                .get(*k)
+                .map(|v| {
+                    v.iter()
+                        .map(String::as_str)
+                        .filter(|a| ORDER.contains(a))
+                        .collect()
+                })
+                .unwrap_or_default();
+            (k.to_string(), json!(row))
+        })
+        .collect();
+    json!({"kinds": ORDER, "accepts": accepts})
 }
 
 /// Where each icon is drawn: dragged ones where they were left; ground

@@ -4,6 +4,7 @@
 // drawn again (docs/studio.md).
 import { Viewer } from "./viewer.js";
 import { icon } from "./icons.js";
+import { drawChart, drawMatrix } from "./chart.js";
 
 const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
@@ -128,13 +129,30 @@ function showPailou(s) {
     b.dataset.kind = k;
     b.innerHTML = `<svg viewBox="-24 -24 48 48" width="22" height="22">${icon(k)}</svg> add ${k.replace("_", " ")}`;
     b.addEventListener("click", () => edit({ op: "add", id: s.active, kind: k }));
+    b.addEventListener("pointerenter", () => matrixOf(s, k));
+    b.addEventListener("pointerleave", () => matrixOf(s, null));
     return b;
   }));
+  matrixOf(s, null);
+  drawChart($("layout-chart"), s.entrances);
   $("type").value = s.type;
   $("chart").textContent = s.chart;
   $("unplaced").replaceChildren(...s.unplaced.map((u) => Object.assign(document.createElement("li"), { textContent: u })));
   if (s.error) showRefused(s.error); else if (!studio.refused) $("refused").hidden = true;
   drawParams(s);
+}
+
+// The relation matrix: the active component's row; outlined, the cell of
+// each host it attaches to and its kind (the pair that made it legal),
+// and the palette kind under the pointer.
+function matrixOf(s, hovered) {
+  const active = s.components.find((c) => c.id === s.active);
+  const kind = active && active.kind;
+  const attached = new Set(s.components.filter((c) => c.on.includes(s.active)).map((c) => c.kind));
+  const kindOf = Object.fromEntries(s.components.map((c) => [c.id, c.kind]));
+  const pairs = (active ? active.on : []).map((h) => [kindOf[h], kind]);
+  if (hovered) pairs.push([kind, hovered]);
+  drawMatrix($("matrix"), s.matrix, kind, attached, pairs);
 }
 
 function showRefused(e) {

@@ -32,6 +32,21 @@ try {
   await waitLoads(n + 1);
   const parts1 = await page.evaluate(() => window.studio.parts);
   check("adding a flower board adds drawn parts", parts1 > parts0, `${parts0} -> ${parts1}`);
+  // The relation matrix (Fig. 8): the new flower board is active, its
+  // row marked and the (lintel, flower board) cell that made it legal
+  // outlined; made active again, the lintel's row has the board coloured.
+  const cell = (r, c) => page.getAttribute(`#matrix td[data-row="${r}"][data-col="${c}"]`, "class");
+  const row = () => page.textContent("#matrix tr.active-row th");
+  check("the relation matrix marks the active flower board's row and the pair that made it legal",
+    (await row()) === "FB" && (await cell("lintel", "flower_board")).includes("pair"), `${await row()} ${await cell("lintel", "flower_board")}`);
+  await page.click('#graph g.node[data-id="L11"]');
+  await page.waitForFunction(() => window.studio.state.active === "L11");
+  const ones = await page.evaluate(() => [document.querySelector('#matrix td[data-row="lintel"][data-col="middle_toukung"]').textContent,
+    document.querySelector('#matrix td[data-row="pillar"][data-col="inscribed_board"]').textContent].join(""));
+  check("the lintel's row has the attached board coloured, 1 where the matrix allows, 0 where not",
+    (await row()) === "L" && (await cell("lintel", "flower_board")).includes("attached") && ones === "10", `${await row()} ${ones}`);
+  await page.hover('#palette button[data-kind="queti"]');
+  check("the palette kind under the pointer is outlined in the active row", (await cell("lintel", "queti")).includes("pair"));
   const colours = await page.evaluate(() => {
     const src = document.querySelector("#canvas canvas");
     const c = document.createElement("canvas");
@@ -129,6 +144,15 @@ try {
   await page.fill("#style", "4-3-7");
   await page.click("#apply-style");
   await waitLoads(n + 1);
+  // The coloured layout chart (Fig. 9a): 4-3-7 is three ground entrances
+  // and three above them, seven roofs (three eaves, four clipped).
+  const chart = await page.evaluate(() => ({
+    names: [...document.querySelectorAll("#layout-chart g.entrance")].map((g) => g.dataset.name).sort().join(" "),
+    eaves: document.querySelectorAll("#layout-chart .roof.eaves").length,
+    clipped: document.querySelectorAll("#layout-chart .roof.clipped").length,
+    colours: new Set([...document.querySelectorAll("#layout-chart g.entrance line")].map((l) => l.getAttribute("stroke"))).size,
+  }));
+  check("the layout chart draws 4-3-7's entrances in colour with their roofs", chart.names === "G11 G12 G21 G21 G22 G22" && chart.eaves + chart.clipped === 7 && chart.colours === 2, JSON.stringify(chart));
   n = await loads();
   await page.$eval('#params input[data-name="αSide"]', (i) => { i.value = "0.4"; i.dispatchEvent(new Event("change")); });
   await page.waitForFunction((n) => window.studio.state.defines["αSide"] === 0.4 && window.studio.loads > n, n, { timeout: 60000 });
