@@ -123,8 +123,16 @@ impl Hall {
         self.0[k]
     }
     fn with_width(&self, w: f64) -> Hall {
+        self.with("W", w)
+    }
+    /// The same hall with parameter `name` set to `v`.
+    fn with(&self, name: &str, v: f64) -> Hall {
+        let k = PARAMS
+            .iter()
+            .position(|p| p.0 == name)
+            .expect("a parameter");
         let mut h = *self;
-        h.0[0] = w;
+        h.0[k] = v;
         h
     }
     /// `W=24.37 BAY=3.1 ...`: also the `-D`s that redraw it.
@@ -201,12 +209,17 @@ struct Truth {
 }
 
 fn truth(h: &Hall) -> Result<Truth, String> {
+    truth_pitched(h, BRK_PITCH)
+}
+
+/// [`truth`] with bracket sets `@RX(pitch)` for `@RX(1.1)`.
+fn truth_pitched(h: &Hall, pitch: f64) -> Result<Truth, String> {
     let w = h.get("W");
     let pieces = symmetric(w, h.get("END"), h.get("BAY"), h.get("CENTRE"), Axis::X)
         .map_err(|e| e.problem)?;
     // Bracket sets and rafters go round all four faces: the front view
     // also shows, at each end, a side face's first one end-on.
-    let brackets = repeat(w, BRK_PITCH, Axis::X).map_err(|e| e.problem)?.len() + 2;
+    let brackets = repeat(w, pitch, Axis::X).map_err(|e| e.problem)?.len() + 2;
     let rafters = repeat(w, RAF_PITCH, Axis::X).map_err(|e| e.problem)?.len() + 2;
     Ok(Truth {
         pieces,
@@ -891,6 +904,79 @@ struct WidthCase {
     inferred_w: f64,
     got: Result<Counts, String>,
     want: Counts,
+    /// The least and the most of each count that halls drawing the same
+    /// picture build at this factor ([`picture_range`]).
+    lo: Counts,
+    hi: Counts,
+}
+
+/// Nominal sizes tried inside each interval of [`picture_range`].
+const RANGE_SAMPLES: usize = 4000;
+
+/// `RANGE_SAMPLES` values strictly inside `(lo, hi)`, and `hi`.
+fn inside(lo: f64, hi: f64) -> impl Iterator<Item = f64> {
+    let step = (hi - lo) / (RANGE_SAMPLES + 1) as f64;
+    (1..=RANGE_SAMPLES)
+        .map(move |k| lo + step * k as f64)
+        .chain([hi])
+}
+
+/// The counts that halls drawing the same picture as `h` build at `h`'s
+/// width × `factor`, least and most. A drawing shows the bays stretched
+/// to inner/(2n) (inner = W - 2 END - CENTRE), which every nominal BAY'
+/// in (inner/(2n+2), inner/(2n)] lays out alike (any BAY' above inner/2
+/// for n = 0), and the bracket sets stretched to W/m, which every pitch
+/// in (W/(m+1), W/m] lays out alike; each such hall, `h` but for BAY'
+/// (or the pitch), is built by the generator's own [`truth`] at the
+/// factor. Every value tried is checked to draw `h`'s picture.
+fn picture_range(h: &Hall, factor: f64) -> Result<(Counts, Counts), String> {
+    let w = h.get("W");
+    let t = truth(h)?;
+    let n = t.pieces.iter().filter(|p| p.0 == Role::Bay).count() / 2;
+    let inner = w - 2.0 * h.get("END") - h.get("CENTRE");
+    let bays = if n == 0 {
+        // Past the widest factor's inner/2 every BAY' lays out none.
+        let widest = FACTORS.iter().copied().fold(1.0, f64::max);
+        (inner / 2.0, w * widest)
+    } else {
+        (inner / (2 * n + 2) as f64, inner / (2 * n) as f64)
+    };
+    let m = t.brackets - 2;
+    let pitches = (w / (m + 1) as f64, w / m as f64);
+    let at = h.with_width(w * factor);
+    let mut built = Vec::new();
+    for bay in inside(bays.0, bays.1) {
+        if truth(&h.with("BAY", bay))?.pieces != t.pieces {
+            return Err(format!("BAY {bay} draws another picture"));
+        }
+        built.push(truth(&at.with("BAY", bay))?.counts());
+    }
+    let mut sets = Vec::new();
+    for pitch in inside(pitches.0, pitches.1) {
+        if truth_pitched(h, pitch)?.brackets != t.brackets {
+            return Err(format!("bracket pitch {pitch} draws another picture"));
+        }
+        sets.push(truth_pitched(&at, pitch)?.brackets);
+    }
+    let least = |f: fn(&Counts) -> usize| built.iter().map(f).min().unwrap_or(0);
+    let most = |f: fn(&Counts) -> usize| built.iter().map(f).max().unwrap_or(0);
+    let lo = Counts {
+        bays: least(|c| c.bays),
+        columns: least(|c| c.columns),
+        doors: least(|c| c.doors),
+        windows: least(|c| c.windows),
+        brackets: sets.iter().copied().min().unwrap_or(0),
+        rafters: 0,
+    };
+    let hi = Counts {
+        bays: most(|c| c.bays),
+        columns: most(|c| c.columns),
+        doors: most(|c| c.doors),
+        windows: most(|c| c.windows),
+        brackets: sets.iter().copied().max().unwrap_or(0),
+        rafters: 0,
+    };
+    Ok((lo, hi))
 }
 
 fn width_test(outcomes: &[(usize, Outcome)]) -> Vec<WidthCase> {
@@ -913,12 +999,20 @@ fn width_test(outcomes: &[(usize, Outcome)]) -> Vec<WidthCase> {
             let want = truth(&o.hall.with_width(o.hall.get("W") * f))
                 .expect("checked above")
                 .counts();
+            let (lo, hi) =
+                picture_range(&o.hall, f).unwrap_or_else(|e| panic!("drawing {k} at {f}: {e}"));
+            assert!(
+                (0..5).all(|i| (lo.five()[i]..=hi.five()[i]).contains(&want.five()[i])),
+                "drawing {k} at {f}: the generator's own count outside its range"
+            );
             cases.push(WidthCase {
                 drawing: *k,
                 factor: f,
                 inferred_w,
                 got: rebuilt_counts(grammar, inferred_w * f),
                 want,
+                lo,
+                hi,
             });
         }
     }
@@ -964,6 +1058,42 @@ fn differences(got: &Counts, want: &Counts) -> String {
         .zip(got.five().iter().zip(want.five()))
         .filter(|(_, (g, w))| **g != *w)
         .map(|(n, (g, w))| format!("{n} {g}/{w}"))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// A width case's five ranges, `lo–hi` or one number.
+fn ranges(c: &WidthCase) -> String {
+    c.lo.five()
+        .iter()
+        .zip(c.hi.five())
+        .map(|(lo, hi)| span(*lo, hi))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// `lo–hi`, or one number when they are equal.
+fn span(lo: usize, hi: usize) -> String {
+    if lo == hi {
+        lo.to_string()
+    } else {
+        format!("{lo}–{hi}")
+    }
+}
+
+/// Which of the five counts lie outside their range, `name got ∉ lo–hi`.
+fn out_of_range(got: &Counts, c: &WidthCase) -> String {
+    COUNT_NAMES
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !(c.lo.five()[*i]..=c.hi.five()[*i]).contains(&got.five()[*i]))
+        .map(|(i, n)| {
+            format!(
+                "{n} {} ∉ {}",
+                got.five()[i],
+                span(c.lo.five()[i], c.hi.five()[i])
+            )
+        })
         .collect::<Vec<_>>()
         .join("; ")
 }
@@ -1089,7 +1219,17 @@ fn report(run: &Run) -> String {
          inferred grammar builds is counted by the same `symmetric` and `repeat` applied to \
          its `#define`s (W, END, BAY, CENTRE, BRK_PITCH; each bay kind's fill from its `E_`, \
          `B_`, `C_` `DOOR` or `WIN`), which is what its `@RSX` and `@RX` splits compute when \
-         built; a grammar without a `Brackets` rule builds 0 bracket sets.\n"
+         built; a grammar without a `Brackets` rule builds 0 bracket sets. A drawing shows \
+         the bays stretched to inner/(2n) (inner = W − 2 END − CENTRE, n bays a side), and \
+         every hall that differs from the sampled one only in a nominal BAY' in \
+         (inner/(2n+2), inner/(2n)] (above inner/2 when n = 0) draws the same picture; so \
+         does every bracket pitch in (W/(m+1), W/m] for m sets on the front. The *range* \
+         [lo, hi] of a count is the least and most the generator builds at W × factor over \
+         those halls (its own `symmetric` and `repeat` on {RANGE_SAMPLES} values strictly \
+         inside each interval and its closed end, each checked to draw the same picture). A \
+         rebuild is *consistent* when its count lies in the range; a count is *determined* \
+         when lo = hi, and only there must a reader that reads the drawing right match the \
+         generator.\n"
     );
 
     // Counts.
@@ -1288,6 +1428,59 @@ fn report(run: &Run) -> String {
         );
     }
 
+    let _ = writeln!(
+        s,
+        "\nThe same rebuilds against the range of counts that halls drawing the same picture \
+         give at that factor (How, *Width test*): consistent, the count within [lo, hi]; \
+         determined, lo = hi (the drawing fixes the count); exact when determined, the count \
+         right among those (k of n). \"All four\": bays, columns, windows and bracket sets at \
+         once (exact ±0; determined: the bays' and the bracket sets' ranges both one count).\n"
+    );
+    let _ = writeln!(
+        s,
+        "| factor | count | exact | consistent | determined | exact when determined |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
+    // Bays, columns, windows, bracket sets: their places in `five()`.
+    let ranged: [(&str, &[usize]); 5] = [
+        ("bays", &[0]),
+        ("columns", &[1]),
+        ("windows", &[3]),
+        ("bracket sets", &[4]),
+        ("all four", &[0, 1, 3, 4]),
+    ];
+    for f in FACTORS {
+        let cases: Vec<&WidthCase> = run.width.iter().filter(|c| c.factor == f).collect();
+        for (name, idx) in ranged {
+            let exact = |c: &WidthCase| {
+                c.got
+                    .as_ref()
+                    .is_ok_and(|g| idx.iter().all(|&i| g.five()[i] == c.want.five()[i]))
+            };
+            let within = |c: &&&WidthCase| {
+                c.got.as_ref().is_ok_and(|g| {
+                    idx.iter()
+                        .all(|&i| (c.lo.five()[i]..=c.hi.five()[i]).contains(&g.five()[i]))
+                })
+            };
+            let determined: Vec<&&WidthCase> = cases
+                .iter()
+                .filter(|c| idx.iter().all(|&i| c.lo.five()[i] == c.hi.five()[i]))
+                .collect();
+            let right = determined.iter().filter(|c| exact(c)).count();
+            let _ = writeln!(
+                s,
+                "| {f} | {name} | {} | {} | {} ({}) | {} ({right} of {}) |",
+                pct(cases.iter().filter(|c| exact(c)).count(), cases.len()),
+                pct(cases.iter().filter(within).count(), cases.len()),
+                pct(determined.len(), cases.len()),
+                determined.len(),
+                pct(right, determined.len()),
+                determined.len()
+            );
+        }
+    }
+
     // Failures.
     let _ = writeln!(s, "\n## Failures\n");
     if !run.skipped.is_empty() {
@@ -1381,7 +1574,9 @@ fn report(run: &Run) -> String {
         .iter()
         .filter(|c| match &c.got {
             Ok(g) => {
-                g.five()[..4] != c.want.five()[..4] || g.brackets.abs_diff(c.want.brackets) > 1
+                g.five()[..4] != c.want.five()[..4]
+                    || g.brackets.abs_diff(c.want.brackets) > 1
+                    || !out_of_range(g, c).is_empty()
             }
             Err(_) => true,
         })
@@ -1390,28 +1585,36 @@ fn report(run: &Run) -> String {
     if !failed.is_empty() {
         let _ = writeln!(
             s,
-            "| drawing | factor | sampled W | inferred W | parameters | rebuilt | generator | differs |"
+            "Rebuilds with a count other than the generator's (bracket sets: off by more than \
+             one) or outside its range. Range: each count's [lo, hi] over the halls that draw \
+             the same picture (lo–hi, or one number when determined). Outside range: the \
+             counts the reader got wrong beyond what the drawing leaves open.\n"
         );
-        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(
+            s,
+            "| drawing | factor | sampled W | inferred W | parameters | rebuilt | generator | differs | range | outside range |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
         for c in failed {
             let o = &outs
                 .iter()
                 .find(|(k, _)| *k == c.drawing)
                 .expect("a drawing")
                 .1;
-            let (got, diff) = match &c.got {
-                Ok(g) => (five(g), differences(g, &c.want)),
-                Err(e) => (format!("does not build: {e}"), String::new()),
+            let (got, diff, outside) = match &c.got {
+                Ok(g) => (five(g), differences(g, &c.want), out_of_range(g, c)),
+                Err(e) => (format!("does not build: {e}"), String::new(), String::new()),
             };
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {got} | {} | {diff} |",
+                "| {} | {} | {} | {} | {} | {got} | {} | {diff} | {} | {outside} |",
                 c.drawing,
                 c.factor,
                 o.hall.get("W"),
                 c.inferred_w,
                 o.hall.shown(),
-                five(&c.want)
+                five(&c.want),
+                ranges(c)
             );
         }
     }
