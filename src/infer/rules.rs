@@ -196,16 +196,18 @@ pub fn measure(root: &Node, scale: Option<f64>, ink: &Ink) -> Measured {
         items.sort_by_key(|n| n.bbox[0]);
         // A side face's rafters or bracket sets seen end-on: the first
         // and the last element, both more than a quarter narrower or wider
-        // than the others.
+        // than the others, or both closer to their neighbour than three
+        // quarters of the pitch (an end-on set stands at the corner, half
+        // a pitch from the front's first: the widths can be alike).
         let corners = items.len() >= 4 && {
-            let m = median(
-                items[1..items.len() - 1]
-                    .iter()
-                    .map(|n| n.w() as f64)
-                    .collect(),
-            );
+            let k = items.len();
+            let m = median(items[1..k - 1].iter().map(|n| n.w() as f64).collect());
             let unlike = |n: &Node| (n.w() as f64 - m).abs() > 0.25 * m;
-            unlike(items[0]) && unlike(items[items.len() - 1])
+            let centre = |n: &Node| (n.bbox[0] + n.bbox[2]) as f64 / 2.0;
+            let gap = |i: usize| centre(items[i + 1]) - centre(items[i]);
+            let pitch = median((1..k - 2).map(gap).collect());
+            let close = |i: usize| gap(i) < 0.75 * pitch;
+            (unlike(items[0]) && unlike(items[k - 1])) || (k >= 5 && close(0) && close(k - 2))
         };
         if corners {
             items = items[1..items.len() - 1].to_vec();
