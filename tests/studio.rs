@@ -715,6 +715,50 @@ fn a_lateral_entrance_with_its_roof_stands() {
     h.stop();
 }
 
+/// A placement that would collide is refused (issue 34): a clipped roof
+/// on a lintel that has an eaves roof interpenetrates it; the edit answers
+/// 422 with `lsys::studio::collision`, the problems it would make and the
+/// component to mark, and the graph, model and active component stay.
+#[test]
+fn a_colliding_placement_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    let (code, r) = post(
+        &h,
+        "/api/edit",
+        json!({"op": "add", "id": "L11", "kind": "eaves_roof"}),
+    );
+    assert_eq!(code, 200, "{r}");
+    let before = r["state"].clone();
+    assert_eq!(before["problems"], json!([]));
+    let (code, r) = post(&h, "/api/edit", json!({"op": "select", "id": "L11"}));
+    assert_eq!(code, 200, "{r}");
+    let (code, r) = post(
+        &h,
+        "/api/edit",
+        json!({"op": "add", "id": "L11", "kind": "clipped_roof"}),
+    );
+    assert_eq!(code, 422, "{r}");
+    let refused = &r["refused"];
+    assert_eq!(refused["code"], "lsys::studio::collision");
+    assert_eq!(refused["at"], "L11");
+    let message = refused["message"].as_str().unwrap();
+    assert!(
+        message.contains("a clipped roof on L11 would collide")
+            && message.contains("interpenetrate"),
+        "{message}"
+    );
+    assert!(!refused["parts"].as_array().unwrap().is_empty());
+    let after = &r["state"];
+    assert_eq!(after["toml"], before["toml"], "the graph is unchanged");
+    assert_eq!(
+        (after["problems"].clone(), after["active"].clone()),
+        (json!([]), json!("L11"))
+    );
+    assert_eq!(after["triangles"], before["triangles"]);
+    h.stop();
+}
+
 /// The drawing page's API (issue 33, item 6): a drawing of the folder is
 /// read into a tree, a grammar and a hall; a separator stroke (a
 /// polyline in the drawing's pixels) restores a lost line; a label

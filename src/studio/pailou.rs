@@ -71,6 +71,13 @@ impl PailouSession {
 
     /// Reads and builds `text`; on success it becomes the current graph.
     fn rebuild_from(&mut self, name: &str, text: &str) -> Result<(), Value> {
+        let built = self.build(name, text)?;
+        self.commit(built);
+        Ok(())
+    }
+
+    /// Reads and builds `text`, leaving the session as it is.
+    fn build(&self, name: &str, text: &str) -> Result<Built, Value> {
         let p = Pailou::graph(name, text, None)
             .map_err(|e| match e {
                 PailouError::Graph(e) => model::one_json(e.as_ref()),
@@ -79,15 +86,30 @@ impl PailouSession {
             .named("pailou-graph.lsys");
         let job = model::for_page(p.job(Grammar::options()), self.max_triangles);
         let defines = job.options.defines().to_vec();
-        let (built, _) = model::build(&job).map_err(|d| first_diagnostic(&d))?;
-        self.model = Some(built);
-        self.unplaced = p.unplaced().to_vec();
-        self.chart = p.chart();
-        self.entrances = p.entrances().iter().map(entrance_json).collect();
-        self.lsys = p.grammar_text();
-        self.defines = defines;
+        let (model, _) = model::build(&job).map_err(|d| first_diagnostic(&d))?;
+        Ok(Built {
+            model,
+            unplaced: p.unplaced().to_vec(),
+            chart: p.chart(),
+            entrances: p.entrances().iter().map(entrance_json).collect(),
+            lsys: p.grammar_text(),
+            defines,
+        })
+    }
+
+    fn commit(&mut self, b: Built) {
+        self.model = Some(b.model);
+        self.unplaced = b.unplaced;
+        self.chart = b.chart;
+        self.entrances = b.entrances;
+        self.lsys = b.lsys;
+        self.defines = b.defines;
         self.error = None;
-        Ok(())
+    }
+
+    /// The structural problems of the current model.
+    fn problems(&self) -> &[Value] {
+        self.model.as_ref().map_or(&[], |m| m.problems.as_slice())
     }
 
     /// Applies one edit from the page. `Err` carries the diagnostic of a
@@ -96,6 +118,8 @@ impl PailouSession {
         let op = edit["op"].as_str().unwrap_or("");
         let id = edit["id"].as_str().unwrap_or("").to_string();
         let mut g = self.graph.clone();
+        // The added part becomes active once its graph is taken.
+        let mut active = None;
         let refuse = |m: String| json!({"severity": "error", "message": m, "rendered": m, "code": "lsys::studio::edit"});
         match op {
             "select" => {
@@ -124,9 +148,7 @@ impl PailouSession {
                     g.attach.push(("NEW".into(), vec![id.clone()]));
                 } else {
                     let added = g.add(&id, kind).map_err(refuse)?;
-                    if let Some(newest) = added.last() {
-                        self.active = newest.clone();
-                    }
+                    active = added.last().cloned();
                 }
             }
             "remove" => {
@@ -180,7 +202,27 @@ impl PailouSession {
         }
         let text = g.to_toml();
         let name = self.file.clone().unwrap_or_else(|| "graph.toml".into());
-        self.rebuild_from(&name, &text)?;
+        let built = self.build(&name, &text)?;
+        // A placement that would collide is refused (the paper's editor
+        // only offers legal placements): an added part or a duplicated
+        // entrance whose model has structural problems the last one did
+        // not. Parameters, types and styles may still make some: those are
+        // listed and drawn red, as the user asked for them.
+        if matches!(op, "add" | "duplicate") {
+            let new: Vec<&Value> = built
+                .model
+                .problems
+                .iter()
+                .filter(|p| !self.problems().contains(p))
+                .collect();
+            if !new.is_empty() {
+                return Err(collision(op, edit, &id, &new));
+            }
+        }
+        self.commit(built);
+        if let Some(a) = active {
+            self.active = a;
+        }
         if g.kind_of(&self.active).is_none() {
             self.active = g.centre.clone();
         }
@@ -244,6 +286,50 @@ pub fn palette(g: &GraphDocument, id: &str) -> Vec<String> {
         .get(kind)
         .map(|v| v.iter().filter(|k| is_graph_kind(k)).cloned().collect())
         .unwrap_or_default()
+}
+
+/// What a build gives the session.
+struct Built {
+    model: Model,
+    unplaced: Vec<String>,
+    chart: String,
+    entrances: Vec<Value>,
+    lsys: String,
+    defines: Vec<(String, String)>,
+}
+
+/// The refusal of an edit whose model collides: the first problems, the
+/// parts they name, and the component the page marks (`at`).
+fn collision(op: &str, edit: &Value, id: &str, new: &[&Value]) -> Value {
+    let what = match op {
+        "add" => format!(
+            "a {} on {id}",
+            edit["kind"].as_str().unwrap_or("part").replace('_', " ")
+        ),
+        _ => format!("the copy of {id}'s entrance"),
+    };
+    let shown: Vec<String> = new
+        .iter()
+        .take(3)
+        .filter_map(|p| p["message"].as_str().map(str::to_string))
+        .collect();
+    let more = new.len().saturating_sub(shown.len());
+    let mut message = format!("refused: {what} would collide: {}", shown.join("; "));
+    if more > 0 {
+        message += &format!(" (and {more} more)");
+    }
+    let parts: Vec<Value> = new
+        .iter()
+        .flat_map(|p| p["parts"].as_array().cloned().unwrap_or_default())
+        .collect();
+    json!({
+        "severity": "error",
+        "code": "lsys::studio::collision",
+        "message": message,
+        "rendered": format!("{message}\nhelp: the graph is unchanged; attach the part elsewhere or remove what is in its place first"),
+        "at": id,
+        "parts": parts,
+    })
 }
 
 fn entrance_json(e: &Entrance) -> Value {

@@ -37,6 +37,13 @@ async function loadModel(problemParts) {
 
 // ---- Pailou mode ----------------------------------------------------------
 let dragging = null;
+// The grammar's drawing symbols and the graph kinds they draw
+// (src/pailou/kinds.rs).
+const SYMBOL_KIND = {
+  MP: "pillar", ML: "lintel", MLS: "lintel", MLO: "lintel", MPB: "pillar_base", MFB: "flower_board",
+  MQ: "queti", MY: "yundan", MIB: "inscribed_board", TM: "middle_toukung", TS: "side_toukung",
+  RC: "clipped_roof", RE: "eaves_roof",
+};
 // Edits in flight: their own answer redraws, so pushed updates wait.
 let pending = 0;
 function drawGraph(s) {
@@ -48,7 +55,10 @@ function drawGraph(s) {
   const minx = Math.min(...xs, -200) - pad, maxx = Math.max(...xs, 200) + pad;
   const miny = Math.min(...ys, 200) - pad, maxy = Math.max(...ys, 460) + pad;
   svg.setAttribute("viewBox", `${minx} ${miny} ${maxx - minx} ${maxy - miny}`);
-  const warned = new Set(s.problems.flatMap((p) => p.parts.map((n) => n.split("#")[0])));
+  // Kinds named by the structural problems (their GLB parts are
+  // `SYMBOL#n`), and the component where a placement was refused.
+  const warned = new Set(s.problems.flatMap((p) => p.parts.map((n) => SYMBOL_KIND[n.split("#")[0]])));
+  const refusedAt = studio.refused && studio.refused.at;
   for (const c of s.components)
     for (const t of c.on) {
       if (!at[t]) continue;
@@ -61,7 +71,7 @@ function drawGraph(s) {
     }
   for (const c of s.components) {
     const g = document.createElementNS(NS, "g");
-    g.setAttribute("class", "node" + (c.id === s.active ? " active" : ""));
+    g.setAttribute("class", "node" + (c.id === s.active ? " active" : "") + (warned.has(c.kind) || c.id === refusedAt ? " warn" : ""));
     g.setAttribute("transform", `translate(${c.x},${c.y})`);
     g.dataset.id = c.id;
     g.dataset.kind = c.kind;

@@ -96,6 +96,17 @@ try {
   await add("inscribed_board");
   await select("P1R");
   await add("pillar_base");          // mirrored onto P1L
+  // A clipped roof on the lintel would go through the eaves roof: refused,
+  // the reason shown, the lintel's icon marked, the graph unchanged.
+  await select("L11");
+  const count0 = await page.evaluate(() => window.studio.state.components.length);
+  await page.click('#palette button[data-kind="clipped_roof"]');
+  await page.waitForFunction(() => window.studio.refused && window.studio.refused.code === "lsys::studio::collision", null, { timeout: 30000 });
+  await page.waitForFunction(() => document.querySelector('#graph g.node[data-id="L11"]').classList.contains("warn"));
+  const why = await page.textContent("#refused");
+  check("a colliding placement is refused with the reason and the icon marked",
+    why.includes("would collide") && why.includes("interpenetrate") && (await page.evaluate(() => window.studio.state.components.length)) === count0,
+    why.slice(0, 200));
   const s = await page.evaluate(() => window.studio.state);
   check("a 2-1-1 Pailou built by clicks has its roof and no structural warning",
     s.chart.includes("^") && s.problems.length === 0 && s.components.length === 12,
