@@ -50,18 +50,33 @@ function drawGraph(s) {
   const svg = $("graph");
   svg.replaceChildren();
   const at = Object.fromEntries(s.components.map((c) => [c.id, c]));
-  const xs = s.components.map((c) => c.x), ys = s.components.map((c) => c.y);
+  // Collapsed entrances hide what rests on their lintel (all the way up).
+  const hidden = new Set();
+  const under = (id) => s.components.filter((c) => c.on.includes(id)).map((c) => c.id);
+  const countUnder = (id) => {
+    const seen = new Set(), stack = under(id);
+    while (stack.length) { const u = stack.pop(); if (!seen.has(u)) { seen.add(u); stack.push(...under(u)); } }
+    return seen.size;
+  };
+  for (const id of collapsed) {
+    if (!at[id]) continue;
+    const stack = under(id);
+    while (stack.length) { const u = stack.pop(); if (!hidden.has(u)) { hidden.add(u); stack.push(...under(u)); } }
+  }
+  const shown = s.components.filter((c) => !hidden.has(c.id));
+  const xs = shown.map((c) => c.x), ys = shown.map((c) => c.y);
   const pad = 50;
   const minx = Math.min(...xs, -200) - pad, maxx = Math.max(...xs, 200) + pad;
   const miny = Math.min(...ys, 200) - pad, maxy = Math.max(...ys, 460) + pad;
-  svg.setAttribute("viewBox", `${minx} ${miny} ${maxx - minx} ${maxy - miny}`);
+  fit = { x: minx, y: miny, w: maxx - minx, h: maxy - miny };
+  setViewBox(svg);
   // Kinds named by the structural problems (their GLB parts are
   // `SYMBOL#n`), and the component where a placement was refused.
   const warned = new Set(s.problems.flatMap((p) => p.parts.map((n) => SYMBOL_KIND[n.split("#")[0]])));
   const refusedAt = studio.refused && studio.refused.at;
-  for (const c of s.components)
+  for (const c of shown)
     for (const t of c.on) {
-      if (!at[t]) continue;
+      if (!at[t] || hidden.has(t)) continue;
       const l = document.createElementNS(NS, "line");
       l.setAttribute("class", "edge");
       l.setAttribute("x1", c.x); l.setAttribute("y1", c.y);
@@ -69,13 +84,16 @@ function drawGraph(s) {
       l.dataset.from = c.id; l.dataset.to = t;
       svg.appendChild(l);
     }
-  for (const c of s.components) {
+  for (const c of shown) {
     const g = document.createElementNS(NS, "g");
     g.setAttribute("class", "node" + (c.id === s.active ? " active" : "") + (warned.has(c.kind) || c.id === refusedAt ? " warn" : ""));
     g.setAttribute("transform", `translate(${c.x},${c.y})`);
     g.dataset.id = c.id;
     g.dataset.kind = c.kind;
-    g.innerHTML = `<rect class="box" x="-24" y="-24" width="48" height="48" rx="6"></rect>${icon(c.kind)}<text y="36">${c.id}</text><title>${c.id}: ${c.kind.replace("_", " ")}</title>`;
+    const folded = collapsed.has(c.id) ? under(c.id).length && countUnder(c.id) : 0;
+    g.innerHTML = `<rect class="box" x="-24" y="-24" width="48" height="48" rx="6"></rect>${icon(c.kind)}<text y="36">${c.id}</text><title>${c.id}: ${c.kind.replace("_", " ")}${c.kind === "lintel" ? " (double-click: collapse or open what rests on it)" : ""}</title>` +
+      (folded ? `<g class="badge"><circle cx="22" cy="-22" r="11"></circle><text x="22" y="-18">+${folded}</text></g>` : "");
+
     g.addEventListener("pointerdown", (e) => {
       dragging = { id: c.id, g, x0: e.clientX, y0: e.clientY, cx: c.x, cy: c.y, moved: false };
       svg.setPointerCapture(e.pointerId);
@@ -84,7 +102,53 @@ function drawGraph(s) {
   }
   svg.dataset.warned = [...warned].join(" ");
 }
+// Zoom (the wheel, about the pointer) and pan (drag the background) of the
+// graph, so that a Pailou of 200 components stays readable; "fit" shows
+// it all again.
+let fit = { x: -250, y: 150, w: 500, h: 360 };
+let zoom = { k: 1, x: 0, y: 0 };  // scale, and the view's centre offset from the fit's
+let collapsed = new Set();
+function setViewBox(svg) {
+  const w = fit.w / zoom.k, h = fit.h / zoom.k;
+  const cx = fit.x + fit.w / 2 + zoom.x, cy = fit.y + fit.h / 2 + zoom.y;
+  svg.setAttribute("viewBox", `${cx - w / 2} ${cy - h / 2} ${w} ${h}`);
+  svg.dataset.zoom = zoom.k.toFixed(3);
+}
+$("graph").addEventListener("wheel", (e) => {
+  e.preventDefault();
+  const svg = $("graph"), vb = svg.viewBox.baseVal, r = svg.getBoundingClientRect();
+  // The point under the pointer stays put.
+  const px = vb.x + ((e.clientX - r.left) / r.width) * vb.width, py = vb.y + ((e.clientY - r.top) / r.height) * vb.height;
+  const k = Math.min(20, Math.max(0.5, zoom.k * Math.pow(1.2, -Math.sign(e.deltaY))));
+  const f = zoom.k / k;
+  const cx = fit.x + fit.w / 2 + zoom.x, cy = fit.y + fit.h / 2 + zoom.y;
+  zoom = { k, x: zoom.x + (px - cx) * (1 - f), y: zoom.y + (py - cy) * (1 - f) };
+  setViewBox(svg);
+}, { passive: false });
+let panning = null;
+$("graph").addEventListener("pointerdown", (e) => {
+  if (e.target.closest("g.node")) return;
+  panning = { x0: e.clientX, y0: e.clientY, zx: zoom.x, zy: zoom.y };
+  $("graph").setPointerCapture(e.pointerId);
+});
+$("graph").addEventListener("dblclick", (e) => {
+  // The pointer is captured by the graph while a click runs: the node is
+  // the one under it.
+  const g = document.elementsFromPoint(e.clientX, e.clientY).map((el) => el.closest("g.node")).find(Boolean);
+  if (!g || g.dataset.kind !== "lintel") return;
+  const id = g.dataset.id;
+  if (collapsed.has(id)) collapsed.delete(id); else collapsed.add(id);
+  drawGraph(studio.state);
+});
+$("graph-fit").addEventListener("click", () => { zoom = { k: 1, x: 0, y: 0 }; collapsed.clear(); drawGraph(studio.state); });
 $("graph").addEventListener("pointermove", (e) => {
+  if (panning) {
+    const svg = $("graph"), k = svg.viewBox.baseVal.width / svg.clientWidth;
+    zoom.x = panning.zx - (e.clientX - panning.x0) * k;
+    zoom.y = panning.zy - (e.clientY - panning.y0) * k;
+    setViewBox(svg);
+    return;
+  }
   if (!dragging) return;
   const svg = $("graph");
   const k = svg.viewBox.baseVal.width / svg.clientWidth;
@@ -96,6 +160,7 @@ $("graph").addEventListener("pointermove", (e) => {
   svg.querySelectorAll(`line[data-to="${dragging.id}"]`).forEach((l) => { l.setAttribute("x2", dragging.x); l.setAttribute("y2", dragging.y); });
 });
 $("graph").addEventListener("pointerup", async () => {
+  panning = null;
   const d = dragging;
   dragging = null;
   if (!d) return;

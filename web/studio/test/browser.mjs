@@ -173,6 +173,43 @@ try {
   await page.waitForTimeout(500);
   await page.screenshot({ path: join(images, "studio-warnings.png") });
 
+  // A big graph stays readable: 8-7-22 (116 components). Fitted, an
+  // icon's label is a few pixels high; the wheel zooms about the pointer
+  // until it reads, the paper pans, a double-clicked lintel collapses
+  // what rests on it, and "fit" shows it all again.
+  n = await loads();
+  await page.fill("#style", "8-7-22");
+  await page.click("#apply-style");
+  await waitLoads(n + 1);
+  const labelPx = () => page.evaluate(() => {
+    const svg = document.querySelector("#graph");
+    return (10 * svg.clientWidth) / svg.viewBox.baseVal.width;
+  });
+  const nodes = () => page.$$eval("#graph g.node", (g) => g.length);
+  const all = await nodes(), fitted = await labelPx();
+  const components = await page.evaluate(() => window.studio.state.components.length);
+  const gb = await page.locator("#graph").boundingBox();
+  await page.mouse.move(gb.x + gb.width / 2, gb.y + gb.height * 0.6);
+  for (let i = 0; i < 9; i++) await page.mouse.wheel(0, -100);
+  await page.waitForFunction(() => Number(document.querySelector("#graph").dataset.zoom) > 5);
+  const zoomed = await labelPx();
+  check("a 116-component graph zooms until its labels read", all === components && components >= 100 && fitted < 6 && zoomed >= 10, `${all} nodes, label ${fitted.toFixed(1)} px fitted, ${zoomed.toFixed(1)} px zoomed`);
+  const vx0 = await page.evaluate(() => document.querySelector("#graph").viewBox.baseVal.x);
+  await page.mouse.move(gb.x + 5, gb.y + 5);
+  await page.mouse.down();
+  await page.mouse.move(gb.x + 105, gb.y + 25, { steps: 4 });
+  await page.mouse.up();
+  const vx1 = await page.evaluate(() => document.querySelector("#graph").viewBox.baseVal.x);
+  check("dragging the paper pans the graph", vx1 < vx0 - 10, `${vx0} -> ${vx1}`);
+  await page.click("#graph-fit");
+  await page.dblclick('#graph g.node[data-id="L11"]');
+  await page.waitForFunction((all) => document.querySelectorAll("#graph g.node").length < all, all);
+  const folded = await nodes(), badge = await page.textContent('#graph g.node[data-id="L11"] .badge text');
+  await page.screenshot({ path: join(images, "studio-graph-collapsed.png") });
+  check("a double-clicked lintel collapses what rests on it, with a count", folded < all && badge === `+${all - folded}`, `${all} -> ${folded}, badge ${badge}`);
+  await page.click("#graph-fit");
+  check("fit opens every entrance again", (await nodes()) === all);
+
   // Grammar mode: edit the file on disk, the view follows; a mistake is shown.
   const g = join(dir, "bush.lsys");
   const grammar = (n) => `// a bush\n#define ANGLE 25.7, W 3/4\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
