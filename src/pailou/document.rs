@@ -349,6 +349,67 @@ impl GraphDocument {
         Ok(gone.into_iter().collect())
     }
 
+    /// Upward group duplication: an entrance above the one whose lintel is
+    /// `lintel` (a pair of suspended pillars on it and a lintel on them,
+    /// as the palette adds them), carrying a copy of everything the lintel
+    /// carries but its pillars (Toukungs with their roofs, boards, Quetis
+    /// with their Yundans, roofs); on both halves when the lintel has a
+    /// mirror twin. Returns the new ids.
+    pub fn duplicate_upward(&mut self, lintel: &str) -> Result<Vec<String>, String> {
+        if self.kind_of(lintel) != Some("lintel") {
+            return Err(format!(
+                "`{lintel}` is not a lintel: pick the lintel of the entrance to copy upward"
+            ));
+        }
+        let has_above = self.under(lintel).iter().any(|u| {
+            self.kind_of(u) == Some("suspended_pillar")
+                && self
+                    .under(u)
+                    .iter()
+                    .any(|v| self.kind_of(v) == Some("lintel"))
+        });
+        if has_above {
+            return Err(format!(
+                "`{lintel}` already carries an entrance above: copy that one upward instead"
+            ));
+        }
+        let side = |g: &GraphDocument, id: &str| -> String {
+            match g.mirror(id) {
+                Some(_) => id[id.len() - 1..].to_string(),
+                None => String::new(),
+            }
+        };
+        let same_side = |g: &GraphDocument, ids: &[String], as_of: &str| -> Option<String> {
+            let s = side(g, as_of);
+            ids.iter().find(|i| side(g, i) == s).cloned()
+        };
+        let decorations: Vec<String> = self
+            .under(lintel)
+            .into_iter()
+            .filter(|u| {
+                !matches!(
+                    self.kind_of(u),
+                    Some("suspended_pillar" | "pillar" | "lintel")
+                )
+            })
+            .collect();
+        let mut added = self.add(lintel, "suspended_pillar")?;
+        let first = same_side(self, &added, lintel).ok_or("no suspended pillar was added")?;
+        let lintels = self.add(&first, "lintel")?;
+        added.extend(lintels.iter().cloned());
+        let top = same_side(self, &lintels, lintel).ok_or("no lintel was added")?;
+        let mut queue: Vec<(String, String)> =
+            decorations.into_iter().map(|d| (d, top.clone())).collect();
+        while let Some((source, parent)) = queue.pop() {
+            let kind = self.kind_of(&source).unwrap_or("").to_string();
+            let made = self.add(&parent, &kind)?;
+            let copy = same_side(self, &made, &parent).ok_or("a copy was not added")?;
+            added.extend(made);
+            queue.extend(self.under(&source).into_iter().map(|u| (u, copy.clone())));
+        }
+        Ok(added)
+    }
+
     /// Group duplication (the paper's entrance sets): a copy of the
     /// entrance whose lintel is `lintel`, with everything on the lintel
     /// and on its outer pillar, added outside the outermost entrance on
@@ -555,6 +616,50 @@ mod tests {
         let again = doc.to_toml();
         assert_eq!(GraphDocument::parse(&again).unwrap(), doc, "{again}");
         assert!(GraphDocument::parse("centre = 1").is_err());
+    }
+
+    /// Upward duplication: the entrance above carries the same kinds as
+    /// the one it copies, on both halves; a lintel with an entrance above,
+    /// or no lintel, is refused.
+    #[test]
+    fn duplicating_upward_copies_the_set_above() {
+        let style = |s: &str| {
+            let (np, ne, nr) = parse_style(s).unwrap();
+            emit::document(
+                &layout(np, ne, nr, PailouType::Ridge).unwrap(),
+                PailouType::Ridge,
+            )
+        };
+        let mut doc = style("4-3-3");
+        let kinds_on = |d: &GraphDocument, l: &str| {
+            let mut k: Vec<String> = d
+                .under(l)
+                .iter()
+                .filter_map(|u| d.kind_of(u).map(str::to_string))
+                .filter(|k| k != "suspended_pillar")
+                .collect();
+            k.sort();
+            k
+        };
+        let below = kinds_on(&doc, "L21R");
+        let added = doc.duplicate_upward("L21R").unwrap();
+        let g = read("g.toml", &doc.to_toml(), RELATIONS).unwrap();
+        assert!(
+            g.layout.chart().starts_with("level 2  [G22^]      [G22^]"),
+            "{}",
+            g.layout.chart()
+        );
+        let tops: Vec<&String> = added
+            .iter()
+            .filter(|a| doc.kind_of(a) == Some("lintel"))
+            .collect();
+        assert_eq!(tops.len(), 2, "{added:?}");
+        for t in tops {
+            assert_eq!(kinds_on(&doc, t), below, "{t}");
+        }
+        let e = doc.duplicate_upward("L21R").unwrap_err();
+        assert!(e.contains("already carries an entrance above"), "{e}");
+        assert!(doc.duplicate_upward("P1R").is_err());
     }
 
     /// Edits keep the two halves alike: an entrance added beside on one

@@ -157,6 +157,9 @@ impl PailouSession {
             "duplicate" => {
                 g.duplicate_entrance(&id).map_err(refuse)?;
             }
+            "duplicate_up" => {
+                g.duplicate_upward(&id).map_err(refuse)?;
+            }
             "define" => {
                 let name = edit["name"].as_str().unwrap_or("");
                 if name.is_empty() {
@@ -208,7 +211,7 @@ impl PailouSession {
         // entrance whose model has structural problems the last one did
         // not. Parameters, types and styles may still make some: those are
         // listed and drawn red, as the user asked for them.
-        if matches!(op, "add" | "duplicate") {
+        if matches!(op, "add" | "duplicate" | "duplicate_up") {
             let new: Vec<&Value> = built
                 .model
                 .problems
@@ -306,6 +309,7 @@ fn collision(op: &str, edit: &Value, id: &str, new: &[&Value]) -> Value {
             "a {} on {id}",
             edit["kind"].as_str().unwrap_or("part").replace('_', " ")
         ),
+        "duplicate_up" => format!("the copy of {id}'s entrance above it"),
         _ => format!("the copy of {id}'s entrance"),
     };
     let shown: Vec<String> = new

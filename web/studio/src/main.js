@@ -251,6 +251,7 @@ async function edit(body) {
 }
 $("remove").addEventListener("click", () => edit({ op: "remove", id: studio.state.active }));
 $("duplicate").addEventListener("click", () => edit({ op: "duplicate", id: studio.state.active }));
+$("duplicate-up").addEventListener("click", () => edit({ op: "duplicate_up", id: studio.state.active }));
 $("type").addEventListener("change", () => edit({ op: "type", value: $("type").value }));
 $("apply-style").addEventListener("click", () => edit({ op: "style", style: $("style").value.trim(), type: $("type").value }));
 

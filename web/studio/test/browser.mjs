@@ -173,6 +173,23 @@ try {
   await page.waitForTimeout(500);
   await page.screenshot({ path: join(images, "studio-warnings.png") });
 
+  // Upward group duplication: 4-3-3's side entrance copied above itself,
+  // on both halves, with its Toukungs and roof; no structural warning
+  // (αSide back to its default first).
+  await page.evaluate(() => fetch("/api/edit", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ op: "define", name: "αSide", value: null }) }));
+  n = await loads();
+  await page.fill("#style", "4-3-3");
+  await page.click("#apply-style");
+  await waitLoads(n + 1);
+  await select("L21R");
+  n = await loads();
+  await page.click("#duplicate-up");
+  await waitLoads(n + 1);
+  const up = await page.evaluate(() => window.studio.state);
+  check("duplicate upward puts a copy of the side entrance above it on both halves",
+    up.chart.startsWith("level 2  [G22^]      [G22^]") && up.problems.length === 0 && (await page.$$("#layout-chart g.entrance")).length === 5,
+    up.chart + JSON.stringify(up.problems.slice(0, 2)));
+
   // A big graph stays readable: 8-7-22 (116 components). Fitted, an
   // icon's label is a few pixels high; the wheel zooms about the pointer
   // until it reads, the paper pans, a double-clicked lintel collapses
