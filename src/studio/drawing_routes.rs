@@ -17,7 +17,8 @@ use serde_json::{json, Value};
 use tiny_http::Method;
 
 use super::drawing::DrawingSession;
-use super::http::{bytes, files_ending, hdr, json_reply, text, Reply};
+use super::listing::files_ending;
+use super::reply::{bytes, hdr, json_reply, text, Reply};
 use super::{confine, lock, Shared};
 
 /// Drawings listed and opened.
@@ -41,9 +42,10 @@ pub fn route(
         )
     };
     match (method, path) {
-        (Method::Get, "/api/drawings") => {
-            json_reply(200, json!({"files": files_ending(sh, &DRAWING_ENDINGS)}))
-        }
+        (Method::Get, "/api/drawings") => json_reply(
+            200,
+            json!({"files": files_ending(&sh.root, &DRAWING_ENDINGS)}),
+        ),
         (Method::Post, "/api/drawing/open") => {
             let rel = serde_json::from_slice::<Value>(body)
                 .ok()

@@ -2,19 +2,19 @@
 //! the JSON API, the page, or an event stream. Every handler runs under
 //! `catch_unwind`: a bug answers 500 and the server stays up.
 
-use std::io::{Cursor, Write};
+use std::io::Write;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering::SeqCst};
 use std::sync::Arc;
 use std::time::Duration;
 
 use serde_json::{json, Value};
-use tiny_http::{Header, Method, Request, Response, Server};
+use tiny_http::{Method, Request, Server};
 
+use super::listing::files_ending;
+use super::reply::{bytes, hdr, json_reply, text, Reply};
 use super::safety::{self, confine, host_ok, origin_ok};
 use super::{lock, open_file, Session, Shared};
-
-pub(super) type Reply = Response<Cursor<Vec<u8>>>;
 
 /// Requests handled at once (each on a thread of its own); more wait
 /// for an answer 503.
@@ -370,53 +370,7 @@ fn export(sh: &Shared, format: &str) -> Reply {
 /// Graphs and grammars in the opened folder and its subfolders (paths
 /// relative to it, `/`-separated), to open.
 fn files(sh: &Shared) -> Vec<String> {
-    files_ending(sh, &[".toml", ".lsys", ".l"])
-}
-
-/// The folder's files (to [`LIST_DEPTH`]) whose names end in one of
-/// `endings`, by path.
-pub(super) fn files_ending(sh: &Shared, endings: &[&str]) -> Vec<String> {
-    let mut out = Vec::new();
-    list(&sh.root, "", 0, endings, &mut out);
-    out.sort();
-    out
-}
-
-/// Folders below the opened one that are listed.
-const LIST_DEPTH: usize = 4;
-/// Files listed at most (a folder opened by mistake, such as `~`).
-const LIST_MAX: usize = 2000;
-
-fn list(dir: &Path, prefix: &str, depth: usize, endings: &[&str], out: &mut Vec<String>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    let mut entries: Vec<_> = entries.flatten().collect();
-    entries.sort_by_key(|e| e.file_name());
-    for e in entries {
-        if out.len() >= LIST_MAX {
-            return;
-        }
-        let name = e.file_name().to_string_lossy().into_owned();
-        // Links are not followed (the folder's confinement), nor hidden
-        // folders and build output.
-        let Ok(kind) = e.file_type() else { continue };
-        if kind.is_dir() {
-            let skipped =
-                name.starts_with('.') || ["target", "node_modules"].contains(&name.as_str());
-            if depth < LIST_DEPTH && !skipped {
-                list(
-                    &e.path(),
-                    &format!("{prefix}{name}/"),
-                    depth + 1,
-                    endings,
-                    out,
-                );
-            }
-        } else if kind.is_file() && endings.iter().any(|x| name.ends_with(x)) {
-            out.push(format!("{prefix}{name}"));
-        }
-    }
+    files_ending(&sh.root, &[".toml", ".lsys", ".l"])
 }
 
 /// Server-sent events: `update` with the version whenever the model
@@ -522,24 +476,3 @@ fn asset(sh: &Shared, rel: &str) -> Reply {
 
 /// The page served when the front end has not been built.
 const FALLBACK_PAGE: &str = "<!doctype html><html><head><meta charset=\"utf-8\"><title>lsys studio</title></head><body style=\"font-family:sans-serif;max-width:40em;margin:3em auto\"><h1>lsys studio</h1><p>The server is running, but its front end (three.js, from npm) has not been built. Build it once with</p><pre>cd web/studio &amp;&amp; npm ci &amp;&amp; npm run build</pre><p>then restart <code>lsys studio</code> (or pass <code>--assets web/studio/dist</code>). See docs/studio.md. The JSON API works without it: <a href=\"/api/state\">/api/state</a>.</p></body></html>";
-
-pub(super) fn hdr(k: &str, v: &str) -> Header {
-    Header::from_bytes(k.as_bytes(), v.as_bytes()).expect("ASCII header")
-}
-
-fn common(r: Reply) -> Reply {
-    r.with_header(hdr("Cache-Control", "no-store"))
-        .with_header(hdr("X-Content-Type-Options", "nosniff"))
-}
-
-pub(super) fn bytes(b: Vec<u8>, mime: &str) -> Reply {
-    common(Response::from_data(b).with_header(hdr("Content-Type", mime)))
-}
-
-pub(super) fn text(code: u16, msg: &str) -> Reply {
-    bytes(format!("{msg}\n").into_bytes(), "text/plain; charset=utf-8").with_status_code(code)
-}
-
-pub(super) fn json_reply(code: u16, v: Value) -> Reply {
-    bytes(v.to_string().into_bytes(), "application/json").with_status_code(code)
-}

@@ -18,8 +18,10 @@ mod drawing;
 mod drawing_routes;
 mod grammar;
 mod http;
+mod listing;
 mod model;
 mod pailou;
+mod reply;
 mod safety;
 
 use std::net::SocketAddr;
