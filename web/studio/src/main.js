@@ -370,6 +370,8 @@ const events = new EventSource("/api/events");
 events.addEventListener("update", async (e) => {
   if (Number(e.data) === studio.version || pending > 0) return;
   const r = await api("/api/state");
+  // An edit's own answer may have drawn a newer state meanwhile.
+  if (pending > 0 || r.data.version < studio.version) return;
   await show(r.data, true);
 });
 
