@@ -459,3 +459,64 @@ fn separator_strokes_restore_a_missing_line() {
     );
     assert!(!d.join("x.lsys").exists());
 }
+
+/// `--label X0,Y0,X1,Y1=LABEL` corrects the node with that box, as the
+/// studio's drawing page does: a window read as a wall leaves one window
+/// fewer and the grammar follows; a box that is no node's is a warning;
+/// a label outside the vocabulary is refused before anything is read.
+#[test]
+fn labels_given_on_the_command_line_correct_the_tree() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    draw(d, HALL, &["W=24".into()], "h.png");
+    let tree = infer(d, "h.png", "h.lsys");
+    fn first<'a>(n: &'a Value, label: &str) -> Option<&'a Value> {
+        if n["label"] == label && n["children"].as_array().is_none_or(|c| c.is_empty()) {
+            return Some(n);
+        }
+        n["children"]
+            .as_array()?
+            .iter()
+            .find_map(|c| first(c, label))
+    }
+    let b: Vec<String> = first(&tree["root"], "window").unwrap()["box"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.to_string())
+        .collect();
+    let corrected = format!("{}=wall", b.join(","));
+    let out = lsys_in(
+        d,
+        &[
+            "infer",
+            "h.png",
+            "-o",
+            "c.lsys",
+            "--tree",
+            "c.json",
+            "--label",
+            &corrected,
+            "--label",
+            "1,2,3,4=door",
+        ],
+    );
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--label 1,2,3,4=door: no node of the tree has that box"),
+        "{err}"
+    );
+    let fixed: Value = serde_json::from_slice(&std::fs::read(d.join("c.json")).unwrap()).unwrap();
+    assert_eq!(counts(&fixed).windows + 1, counts(&tree).windows);
+    let before = std::fs::read_to_string(d.join("h.lsys")).unwrap();
+    let after = std::fs::read_to_string(d.join("c.lsys")).unwrap();
+    assert_ne!(before, after);
+    let out = lsys_in(
+        d,
+        &["infer", "h.png", "-o", "x.lsys", "--label", "1,2,3,4=Door"],
+    );
+    assert_eq!(out.status.code(), Some(64));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("\"Door\" is not a label"));
+    assert!(!d.join("x.lsys").exists());
+}

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 use crate::driver::limits::*;
-use crate::driver::{Style, View};
+use crate::driver::{Correction, Style, View};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -341,6 +341,37 @@ pub struct InferArgs {
     /// Metres per pixel of the drawing (default: the columns are 4.2 m high).
     #[arg(long, value_name = "METRES", value_parser = positive)]
     pub scale: Option<f64>,
+    /// Correct a label: the node whose box (as `--tree` gives it) is
+    /// X0,Y0,X1,Y1 is a LABEL (door, window, wall, bracket, ...); its parts
+    /// with its old label follow. Repeatable.
+    #[arg(long = "label", value_name = "X0,Y0,X1,Y1=LABEL", value_parser = correction)]
+    pub labels: Vec<Correction>,
+}
+
+/// `X0,Y0,X1,Y1=LABEL` for `--label`.
+fn correction(s: &str) -> Result<Correction, String> {
+    let (b, label) = s
+        .split_once('=')
+        .ok_or("write the node's box and its label: X0,Y0,X1,Y1=door")?;
+    let nums: Vec<i32> = b
+        .split(',')
+        .map(|n| n.trim().parse::<i32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{b}`: the box is four whole numbers of pixels, X0,Y0,X1,Y1"))?;
+    let bbox: [i32; 4] = nums
+        .try_into()
+        .map_err(|_| format!("`{b}`: the box is four whole numbers of pixels, X0,Y0,X1,Y1"))?;
+    let label = crate::driver::infer_label(label.trim()).map_err(|e| {
+        use miette::Diagnostic;
+        format!(
+            "{e}; {}",
+            e.help().map(|h| h.to_string()).unwrap_or_default()
+        )
+    })?;
+    Ok(Correction {
+        bbox,
+        label: label.to_string(),
+    })
 }
 
 /// A finite number above zero.

@@ -12,7 +12,8 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
         gap: a.gap,
         scale: a.scale,
     };
-    let inference = match driver::infer_drawing(&a.drawing, a.strokes.as_deref(), &opts) {
+    let inference = match driver::infer_drawing(&a.drawing, a.strokes.as_deref(), &a.labels, &opts)
+    {
         Ok(i) => i,
         Err(e) => return failed(e, color),
     };
@@ -33,6 +34,14 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
             .as_ref()
             .map_or(String::new(), |t| format!(" and {}", t.display()))
     );
+    for &i in &inference.missed {
+        let c = &a.labels[i];
+        let [x0, y0, x1, y1] = c.bbox;
+        eprintln!(
+            "lsys: warning: --label {x0},{y0},{x1},{y1}={}: no node of the tree has that box (see --tree); it was not applied",
+            c.label
+        );
+    }
     for b in &inference.unlabelled {
         eprintln!(
             "lsys: warning: the region at x {}..{}, y {}..{} could not be labelled; the grammar leaves it out",

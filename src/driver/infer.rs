@@ -25,11 +25,18 @@ pub enum InferFailure {
     Write(std::io::Error),
 }
 
+/// The vocabulary's spelling of a label the user gave, or why not.
+pub fn infer_label(label: &str) -> Result<&'static str, InferError> {
+    infer::known_label(label)
+}
+
 /// Reads the drawing at `path`, with the separator strokes at `strokes`
-/// drawn into it when given, and infers its hall.
+/// drawn into it when given, and infers its hall with the user's label
+/// `corrections`.
 pub fn infer_drawing(
     path: &Path,
     strokes: Option<&Path>,
+    corrections: &[Correction],
     opts: &InferOptions,
 ) -> Result<Inference, InferFailure> {
     let read = |path: &Path| {
@@ -45,7 +52,8 @@ pub fn infer_drawing(
         let (lines, strokes_shown) = read(strokes).map_err(InferFailure::Drawing)?;
         infer::add_strokes(&mut ink, &lines, &strokes_shown).map_err(InferFailure::Drawing)?;
     }
-    let inference = infer::infer_ink(&ink, &shown, opts).map_err(InferFailure::Drawing)?;
+    let inference =
+        infer::infer_corrected(&ink, &shown, opts, corrections).map_err(InferFailure::Drawing)?;
     crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
     Ok(inference)
 }

@@ -37,8 +37,8 @@ mod watch;
 
 pub use guided::{run_guided, GuidedDone, GuidedJob};
 pub use infer::{
-    infer_drawing, infer_edited, read_drawing, write_inference, Correction, InferError,
-    InferFailure, InferNode, InferOptions, Inference, Ink, INFER_LABELS,
+    infer_drawing, infer_edited, infer_label, read_drawing, write_inference, Correction,
+    InferError, InferFailure, InferNode, InferOptions, Inference, Ink, INFER_LABELS,
 };
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};

@@ -29,7 +29,7 @@ mod tree;
 
 use serde_json::{json, Value};
 
-pub use correct::{Correction, LABELS};
+pub use correct::{known_label, Correction, LABELS};
 pub use drawing::{binarize, is_svg, read_png, read_svg, stroke_lines, Ink, STROKE_WIDTH};
 pub use error::InferError;
 pub use regions::Region;
