@@ -66,8 +66,9 @@ pub fn read_drawing(bytes: &[u8], shown: &str) -> Result<Ink, InferFailure> {
 
 /// Infers the hall of `ink` (named `shown`) with separator strokes drawn
 /// by hand (`lines`: polylines in its pixels) and the user's label
-/// `corrections` (the studio's drawing page); the grammar is compiled once
-/// to prove it builds, as [`infer_drawing`]'s.
+/// `corrections` (the studio's drawing page). Unlike [`infer_drawing`] it
+/// does not compile the grammar: the caller builds it, and that build is
+/// the proof (one compile, not two, at every edit).
 pub fn infer_edited(
     ink: &Ink,
     shown: &str,
@@ -80,10 +81,7 @@ pub fn infer_edited(
         let strokes = infer::stroke_lines(ink.width, ink.height, lines);
         infer::add_strokes(&mut ink, &strokes, "the strokes").map_err(InferFailure::Drawing)?;
     }
-    let inference =
-        infer::infer_corrected(&ink, shown, opts, corrections).map_err(InferFailure::Drawing)?;
-    crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
-    Ok(inference)
+    infer::infer_corrected(&ink, shown, opts, corrections).map_err(InferFailure::Drawing)
 }
 
 /// Writes the grammar to `grammar` and, when asked, the tree to `tree`.

@@ -86,6 +86,8 @@ impl DrawingSession {
             gap: self.gap,
             ..InferOptions::default()
         };
+        // The build below compiles the grammar: a grammar that does not
+        // compile is its diagnostic on the page.
         match driver::infer_edited(&self.ink, &self.name, &self.lines, &self.corrections, &opts) {
             Ok(inference) => {
                 let input = driver::Input::Text {
@@ -193,12 +195,8 @@ fn corrections(v: &Value) -> Result<Vec<Correction>, String> {
     list.iter()
         .map(|c| {
             let label = c["label"].as_str().ok_or_else(bad)?;
-            if !INFER_LABELS.contains(&label) {
-                return Err(format!(
-                    "corrections: \"{label}\" is not a label; one of {}",
-                    INFER_LABELS.join(", ")
-                ));
-            }
+            let label = driver::infer_label(label)
+                .map_err(|e| format!("corrections: {e}; one of {}", INFER_LABELS.join(", ")))?;
             let b = c["box"]
                 .as_array()
                 .filter(|b| b.len() == 4)

@@ -354,6 +354,11 @@ fn entrance_json(e: &Entrance) -> Value {
 /// attach to it]}}`, the rows and columns in the paper's order (roofs,
 /// Toukungs, lintel, pillars, Queti, flower board, Yundan) with ours after.
 fn matrix() -> Value {
+    static MATRIX: std::sync::OnceLock<Value> = std::sync::OnceLock::new();
+    MATRIX.get_or_init(library_matrix).clone()
+}
+
+fn library_matrix() -> Value {
     const ORDER: [&str; 12] = [
         "clipped_roof",
         "eaves_roof",
