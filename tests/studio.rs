@@ -879,3 +879,154 @@ fn the_drawing_page_reads_strokes_and_corrections() {
     );
     h.stop();
 }
+
+#[test]
+fn the_guides_page_edits_runs_and_saves_scenes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let guided = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/guided");
+    for f in [
+        "palm.toml",
+        "palm_trunk.lsys",
+        "palm_crown.lsys",
+        "palm_leaf.lsys",
+    ] {
+        std::fs::copy(guided.join(f), d.join(f)).unwrap();
+    }
+    std::fs::write(d.join("Cargo.toml"), "[package]\nname = \"x\"\n").unwrap();
+    std::fs::write(d.join("graph.toml"), "not = \"a scene\"\n").unwrap();
+    let h = studio(d);
+    let (code, _) = get(&h, "/api/guides/state");
+    assert_eq!(code, 404, "no scene before one is opened");
+    let (_, list) = get(&h, "/api/scenes");
+    assert_eq!(list["files"], json!(["palm.toml"]), "only guided scenes");
+
+    let (code, s) = post(&h, "/api/guides/open", json!({"path": "palm.toml"}));
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(
+        (s["seeds_run"].as_u64(), s["messages"].as_u64()),
+        (Some(6), Some(5))
+    );
+    assert_eq!(s["regrown"].as_array().unwrap().len(), 7);
+    let (code, glb) = request(&h, "GET", "/api/guides/model.glb", &[], b"");
+    assert_eq!((code, &glb[..4]), (200, &b"glTF"[..]));
+
+    // One leaf stretched: only it derives again, and the result is the
+    // full run's (checked against `lsys build` of the saved file below).
+    let mut scene = s["scene"].clone();
+    let leaf = scene["guide"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|g| g["name"] == "leaf_right")
+        .unwrap();
+    scene["guide"][leaf]["points"][3] = json!([7.5, 7.2]);
+    let (code, s) = post(&h, "/api/guides/edit", json!({ "scene": scene }));
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(s["regrown"], json!([leaf]));
+    assert!(s["text"].as_str().unwrap().contains("[7.5, 7.2]"));
+
+    // The springs: the trunk's foot held, the crown's corner dragged; the
+    // foot stays, the trunk's top and the leaves follow, nothing runs.
+    let (code, r) = post(
+        &h,
+        "/api/guides/springs",
+        json!({"scene": scene, "vertex": [1, 5], "to": [0.6, 10.9], "held": [[0, 0], [0, 1]]}),
+    );
+    assert_eq!(code, 200, "{r}");
+    assert_eq!(r["points"][0][0], scene["guide"][0]["points"][0]);
+    assert_ne!(r["points"][0][2], scene["guide"][0]["points"][2]);
+    assert_eq!(r["points"][1][5], json!([0.6, 10.9]));
+    assert_eq!(r["seeds"].as_array().unwrap().len(), 1);
+    for bad in [
+        json!({"scene": scene, "vertex": [1, 99], "to": [0, 0]}),
+        json!({"scene": scene, "vertex": [1, 0], "to": ["x", 0]}),
+        json!({"scene": {"steps": 1, "guides": []}, "vertex": [0, 0], "to": [0, 0]}),
+    ] {
+        let (code, r) = post(&h, "/api/guides/springs", bad);
+        assert_eq!(code, 422, "{r}");
+    }
+
+    // A scene that reads but does not check keeps the last good run, with
+    // the located diagnostic; one that is not a scene is refused whole.
+    let mut outside = scene.clone();
+    outside["seeds"][0]["position"] = json!([50, 50]);
+    let (code, s) = post(&h, "/api/guides/edit", json!({ "scene": outside }));
+    assert_eq!(code, 200);
+    assert_eq!(s["current"], json!(false));
+    let d0 = &s["problem"]["diagnostics"][0];
+    assert_eq!(d0["code"], "lsys::guided::scene", "{s}");
+    assert!(d0["line"].as_u64().unwrap() > 1);
+    assert_eq!(s["seeds_run"].as_u64(), Some(6), "the last good run stays");
+    let mut many = scene.clone();
+    many["steps"] = json!(100_000);
+    let (code, r) = post(&h, "/api/guides/edit", json!({ "scene": many }));
+    assert_eq!(code, 422);
+    assert!(r["refused"]["message"].as_str().unwrap().contains("steps"));
+    let (code, _) = post(&h, "/api/guides/edit", json!({"scene": {"steps": "x"}}));
+    assert_eq!(code, 422);
+
+    // Back to the stretched leaf; saved where it was opened, then built
+    // from the command line to the page's seeds and messages.
+    let (code, s) = post(&h, "/api/guides/edit", json!({ "scene": scene }));
+    assert_eq!(code, 200, "{s}");
+    let (code, r) = post(&h, "/api/guides/save", json!({}));
+    assert_eq!(code, 200, "{r}");
+    let spec = lsys::internals::guided::scene::read(
+        "palm.toml",
+        &std::fs::read_to_string(d.join("palm.toml")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(spec.guides[leaf].points[3], glam::DVec2::new(7.5, 7.2));
+    let loaded =
+        lsys::internals::guided::load_file(&d.join("palm.toml"), &Default::default(), &[]).unwrap();
+    let run = lsys::internals::guided::run(&loaded).unwrap();
+    assert_eq!(
+        (run.seeds.len() as u64, run.messages.len() as u64),
+        (
+            s["seeds_run"].as_u64().unwrap(),
+            s["messages"].as_u64().unwrap()
+        )
+    );
+
+    // Save never replaces a file that is not a scene, nor writes outside
+    // the scene's folder.
+    for (path, want) in [
+        ("Cargo.toml", 409),
+        ("graph.toml", 409),
+        ("../palm.toml", 403),
+        ("notes.txt", 403),
+    ] {
+        let (code, r) = post(&h, "/api/guides/save", json!({ "path": path }));
+        assert_eq!(code, want, "{path}: {r}");
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join("Cargo.toml")).unwrap(),
+        "[package]\nname = \"x\"\n"
+    );
+    std::fs::create_dir(d.join("sub")).unwrap();
+    let (code, _) = post(&h, "/api/guides/save", json!({"path": "sub/palm.toml"}));
+    assert_eq!(code, 403, "another folder: the grammars are named relative");
+    let (code, r) = post(&h, "/api/guides/save", json!({"path": "palm2.toml"}));
+    assert_eq!(code, 200, "{r}");
+
+    // A new scene; one that exists is not overwritten by "new".
+    let (code, r) = post(
+        &h,
+        "/api/guides/open",
+        json!({"path": "palm.toml", "new": true}),
+    );
+    assert_eq!(code, 422, "{r}");
+    let (code, s) = post(
+        &h,
+        "/api/guides/open",
+        json!({"path": "fresh.toml", "new": true}),
+    );
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(s["scene"]["guide"], json!([]));
+    assert_eq!(s["current"], json!(true), "an empty scene is no error: {s}");
+    let (code, r) = post(&h, "/api/guides/open", json!({"path": "graph.toml"}));
+    assert_eq!(code, 422, "{r}");
+    let (code, _) = post(&h, "/api/guides/open", json!({"path": "../x.toml"}));
+    assert_eq!(code, 403);
+}

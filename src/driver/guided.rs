@@ -3,7 +3,7 @@
 //! links drawn, if asked) and written -> [`GuidedDone`] with its figures,
 //! or a [`Failure`].
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use super::job::Output;
@@ -67,18 +67,13 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
     let t1 = Instant::now();
     let outcome = guided::run(&loaded).map_err(|e| fail(Box::new(e)))?;
     let t2 = Instant::now();
-    let mut search = opts.components.clone();
-    search.grammar_dir = job.path.parent().map(PathBuf::from);
-    let mut grammars = crate::build::grammar_components(opts);
-    let scene = guided::build::scene(
+    let scene = mesh_guided(
         &loaded,
         &outcome,
         job.guides,
-        &search,
-        &opts.mesh,
-        &mut grammars,
-    )
-    .map_err(|e| fail(Box::new(e)))?;
+        &job.options,
+        job.path.parent(),
+    )?;
     let (written, bytes) = write_output(&scene, &job.output, &sources)?;
     Ok(GuidedDone {
         seeds: outcome.seeds.len(),
@@ -94,6 +89,107 @@ pub fn run_guided(job: &GuidedJob) -> Result<GuidedDone, Failure> {
         load: t1 - t0,
         run: t2 - t1,
     })
+}
+
+/// Meshes a run (with the guides and links drawn when `overlay`); the
+/// components its grammars place are looked for beside `folder` (the
+/// scene's) and in the options' component folders.
+pub fn mesh_guided(
+    loaded: &guided::Loaded,
+    outcome: &guided::Outcome,
+    overlay: bool,
+    options: &GrammarOptions,
+    folder: Option<&Path>,
+) -> Result<crate::mesh::Scene, Failure> {
+    let opts = &options.build;
+    let mut search = opts.components.clone();
+    search.grammar_dir = folder.map(PathBuf::from);
+    let mut grammars = crate::build::grammar_components(opts);
+    guided::build::scene(loaded, outcome, overlay, &search, &opts.mesh, &mut grammars)
+        .map_err(|e| guided_failure(Box::new(e)))
+}
+
+fn guided_failure(e: Box<dyn miette::Diagnostic + Send + Sync>) -> Failure {
+    Failure {
+        reason: Reason::Guided(e),
+        sources: Vec::new(),
+    }
+}
+
+/// A scene's text (the studio's guides page) named `name`, its grammars
+/// relative to `base` and required inside one of `allowed`, read and its
+/// grammars compiled with `options`' defines and include folders.
+pub fn load_scene_text(
+    name: &str,
+    text: &str,
+    base: &Path,
+    allowed: &[PathBuf],
+    options: &GrammarOptions,
+) -> Result<guided::Loaded, Failure> {
+    guided::load_text_within(name, text, base, &options.build.source, allowed)
+        .map_err(|e| guided_failure(e))
+}
+
+/// Runs `now`. When `before` is a run of the same scene but for the
+/// points of one guide (and its grammars read the same text), only
+/// that guide and those downstream of it derive again, the others
+/// replaying what they did (`guided::update`, equal to a full run). The
+/// outcome, and the guides derived again.
+pub fn grow_scene(
+    now: &guided::Loaded,
+    before: Option<(&guided::Loaded, &guided::Outcome)>,
+) -> Result<(guided::Outcome, Vec<usize>), Failure> {
+    let fail = |e: crate::derive::DeriveError| guided_failure(Box::new(e));
+    let moved = before
+        .filter(|(l, _)| same_grammars(l, now))
+        .and_then(|(l, _)| one_guide_moved(&l.spec, &now.spec));
+    if let Some(g) = moved {
+        let (_, outcome) = before.unwrap_or_else(|| unreachable!());
+        let out = guided::update(now, outcome, g).map_err(fail)?;
+        return Ok((out, guided::run::downstream(now, g).into_iter().collect()));
+    }
+    let out = guided::run(now).map_err(fail)?;
+    Ok((out, (0..now.spec.guides.len()).collect()))
+}
+
+/// Whether `a` and `b` compiled the same grammars from the same text
+/// (a grammar edited on disk between two runs derives anew).
+fn same_grammars(a: &guided::Loaded, b: &guided::Loaded) -> bool {
+    let texts = |l: &guided::Loaded| -> Vec<std::sync::Arc<String>> {
+        l.grammars
+            .iter()
+            .flat_map(|c| c.program.sources.files().iter().map(|f| f.text.clone()))
+            .collect()
+    };
+    a.grammar_names == b.grammar_names && texts(a) == texts(b)
+}
+
+/// The guide whose points alone differ between `a` and `b`, if exactly
+/// one does and nothing else does.
+fn one_guide_moved(a: &guided::SceneSpec, b: &guided::SceneSpec) -> Option<usize> {
+    if (a.steps, a.seed, &a.links, a.guides.len()) != (b.steps, b.seed, &b.links, b.guides.len())
+        || a.seeds.len() != b.seeds.len()
+        || a.seeds.iter().zip(&b.seeds).any(|(x, y)| {
+            (x.guide, x.position, x.heading, &x.parameters)
+                != (y.guide, y.position, y.heading, &y.parameters)
+                || x.grammar.as_ref().map(|g| &g.0) != y.grammar.as_ref().map(|g| &g.0)
+        })
+    {
+        return None;
+    }
+    let mut moved = None;
+    for (i, (x, y)) in a.guides.iter().zip(&b.guides).enumerate() {
+        if (&x.name, &x.grammar, x.height, x.id) != (&y.name, &y.grammar, y.height, y.id) {
+            return None;
+        }
+        if x.points != y.points {
+            if moved.is_some() {
+                return None;
+            }
+            moved = Some(i);
+        }
+    }
+    moved
 }
 
 impl GuidedDone {

@@ -35,14 +35,14 @@ mod toml_file;
 #[cfg(feature = "cli")]
 mod watch;
 
-pub use guided::{run_guided, GuidedDone, GuidedJob};
+pub use guided::{grow_scene, load_scene_text, mesh_guided, run_guided, GuidedDone, GuidedJob};
 pub use infer::{
     infer_drawing, infer_edited, infer_label, read_drawing, write_inference, Correction,
     InferError, InferFailure, InferNode, InferOptions, Inference, Ink, INFER_LABELS,
 };
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
-pub use run::{run, Done, Event, Failure, Reason};
+pub use run::{model_bytes, run, Done, Event, Failure, Reason};
 pub use stats::ms;
 pub use structure::library_rules;
 pub use toml_file::{toml_file, NeitherFormat, TomlFile};

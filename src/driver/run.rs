@@ -225,6 +225,16 @@ pub(super) fn refuse_inputs(output: &Output, sources: &[PathBuf]) -> Result<(), 
     Ok(())
 }
 
+/// `scene` as the bytes of a `format` file, in memory (a picture with
+/// the default camera).
+pub fn model_bytes(scene: &crate::mesh::Scene, format: Format) -> Result<Vec<u8>, Failure> {
+    let out = Output::Bytes {
+        format,
+        picture: Default::default(),
+    };
+    Ok(write_output(scene, &out, &[])?.1.unwrap_or_default())
+}
+
 /// Writes `scene` as `output` says: the bytes written and, for
 /// [`Output::Bytes`], the bytes.
 pub(super) fn write_output(

@@ -24,7 +24,10 @@ pub fn scene(
     opts: &MeshOptions,
     grammars: &mut dyn mesh::GrammarComponents,
 ) -> Result<Scene, MeshError> {
-    let first = l.guide_grammar.first().copied().unwrap_or(0);
+    // A scene without guides (the studio's new scene) draws nothing.
+    let Some(&first) = l.guide_grammar.first() else {
+        return Ok(Scene::default());
+    };
     let mut d = o.drawing();
     // Placements by grammar, in the order the grammars are first used.
     let mut by_grammar: Vec<(usize, Drawing)> = Vec::new();

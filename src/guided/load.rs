@@ -67,6 +67,18 @@ pub fn load_text(
     load_confined(name, text, base, opts, None)
 }
 
+/// [`load_text`] with every grammar file required to resolve (links
+/// followed) inside one of `allowed` (the studio's folder).
+pub fn load_text_within(
+    name: &str,
+    text: &str,
+    base: &Path,
+    opts: &crate::load::Options,
+    allowed: &[PathBuf],
+) -> Result<Loaded, Box<SceneError>> {
+    load_confined(name, text, base, opts, Some(allowed))
+}
+
 /// [`load_text`], with every grammar file required to resolve (links
 /// followed) inside one of `allowed`, when given: a scene from someone
 /// else cannot have `../../etc/passwd` compiled and its lines shown.

@@ -13,12 +13,15 @@
 //! run.rs      all seeds in lockstep, messages -> new seeds; local update
 //! build.rs    an Outcome -> one Scene (the clipped drawings, the overlay)
 //! draw.rs     placing, clipping, the guide/link overlay
+//! document.rs a scene as the studio edits it: JSON <-> TOML text
+//! springs.rs  mass-spring editing: a dragged vertex -> every guide relaxed
 //! ```
 //!
 //! See docs/guided.md for the file format, the query layout and the token
 //! rules.
 
 pub mod build;
+pub mod document;
 pub mod draw;
 pub mod geometry;
 pub mod grid;
@@ -26,8 +29,9 @@ pub mod load;
 pub mod queries;
 pub mod run;
 pub mod scene;
+pub mod springs;
 pub mod tokens;
 
-pub use load::{load_file, load_text, Loaded};
+pub use load::{load_file, load_text, load_text_within, Loaded};
 pub use run::{run, update, Origin, Outcome, SeedRun};
 pub use scene::{SceneError, SceneSpec};

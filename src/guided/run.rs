@@ -128,12 +128,14 @@ pub fn update(l: &Loaded, before: &Outcome, changed: usize) -> Result<Outcome, D
     execute(l, Some((before, downstream(l, changed))))
 }
 
-/// `g` and every guide a chain of links from it reaches.
+/// `g` and every guide a chain of links from it reaches. A link without
+/// tokens never sends a message (it only guides growth in its source), so
+/// it reaches nothing.
 pub fn downstream(l: &Loaded, g: usize) -> BTreeSet<usize> {
     let mut set = BTreeSet::from([g]);
     let mut todo = vec![g];
     while let Some(x) = todo.pop() {
-        for link in l.spec.links.iter().filter(|k| k.from == x) {
+        for link in l.spec.links.iter().filter(|k| k.from == x && k.tokens > 0) {
             if set.insert(link.to) {
                 todo.push(link.to);
             }

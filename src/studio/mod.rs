@@ -12,11 +12,14 @@
 //! inside the opened folder, limits request bodies, and never lets a bad
 //! graph or grammar take it down (docs/studio.md). The drawing page
 //! (`drawing.rs`, its routes in `drawing_routes.rs`) reads elevation
-//! drawings into shape grammars beside whichever session is open.
+//! drawings into shape grammars beside whichever session is open; the
+//! guides page (`guides.rs`, `guides_routes.rs`) edits guided scenes.
 
 mod drawing;
 mod drawing_routes;
 mod grammar;
+mod guides;
+mod guides_routes;
 mod http;
 mod listing;
 mod model;
@@ -115,6 +118,8 @@ pub(crate) struct Shared {
     /// The drawing page's drawing (`None` until one is opened); apart from
     /// `session`, so that both pages work at once.
     pub drawing: Mutex<Option<drawing::DrawingSession>>,
+    /// The guides page's scene (`None` until one is opened).
+    pub guides: Mutex<Option<guides::GuideSession>>,
     /// Bumped on every change of the model; waited on by event streams.
     pub version: Mutex<u64>,
     pub changed: Condvar,
@@ -186,6 +191,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
         hosts,
         session: Mutex::new(session),
         drawing: Mutex::new(None),
+        guides: Mutex::new(None),
         max_triangles: budget,
         version: Mutex::new(1),
         changed: Condvar::new(),

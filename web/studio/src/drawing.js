@@ -5,6 +5,7 @@
 // emitted grammar. The page keeps the strokes and corrections (and their
 // undo history) and sends them whole with every change (docs/studio.md).
 import { Viewer } from "./viewer.js";
+import { api } from "./api.js";
 
 const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
@@ -21,15 +22,6 @@ let edits = { strokes: [], corrections: [] };
 const undo = [], redo = [];
 let selected = null;   // a node of the tree (with .parent)
 let version = 0;
-
-async function api(path, body, raw) {
-  const init = body === undefined ? {} : raw
-    ? { method: "POST", body }
-    : { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) };
-  const r = await fetch(path, init);
-  const type = r.headers.get("Content-Type") || "";
-  return { status: r.status, data: type.includes("json") ? await r.json() : await r.text() };
-}
 
 const viewer = new Viewer($("canvas"));
 document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => viewer.view(b.dataset.view)));

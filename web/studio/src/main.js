@@ -5,22 +5,12 @@
 import { Viewer } from "./viewer.js";
 import { icon } from "./icons.js";
 import { drawChart, drawMatrix } from "./chart.js";
+import { api } from "./api.js";
 
 const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
 // What the browser tests read.
 const studio = (window.studio = { parts: 0, version: 0, loads: 0, state: null, refused: null });
-
-async function api(path, body) {
-  const r = await fetch(path, body === undefined ? {} : {
-    method: "POST",
-    headers: { "Content-Type": "application/json" },
-    body: JSON.stringify(body),
-  });
-  const type = r.headers.get("Content-Type") || "";
-  const data = type.includes("json") ? await r.json() : await r.text();
-  return { status: r.status, data };
-}
 
 // ---- 3D view ------------------------------------------------------------
 const viewer = new Viewer($("canvas"));

@@ -7,20 +7,22 @@
 import { mkdtempSync, writeFileSync, existsSync, readFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, startStudio, launchBrowser, finish } from "./harness.mjs";
+import { check, images, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-studio-"));
 const { server, url } = await startStudio(dir);
 let browser, profile;
 try {
   ({ browser, profile } = await launchBrowser());
-  const page = await browser.newPage();
-  page.on("pageerror", (e) => console.log("page error:", e.message));
+  const page = await newPage(browser);
   let saveAs = "fig6.toml";
   page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? saveAs : undefined));
   await page.goto(url);
   const loads = () => page.evaluate(() => window.studio.loads);
-  const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 });
+  const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 }).catch(async (e) => {
+    const s = await page.evaluate(() => [window.studio.loads, window.studio.version, window.studio.state && window.studio.state.chart, document.getElementById("status").textContent, document.getElementById("refused").textContent]);
+    throw new Error(`no model load ${n} (loads, version, chart, status, refusal): ${JSON.stringify(s)}`);
+  });
   await waitLoads(1);
   const parts0 = await page.evaluate(() => window.studio.parts);
   check("the default entrance loads and draws parts", parts0 > 0, `parts ${parts0}`);

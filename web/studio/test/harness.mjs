@@ -50,6 +50,13 @@ export async function launchBrowser() {
   return { browser, profile };
 }
 
+// A new tab of `browser` that reports the page's errors.
+export async function newPage(browser) {
+  const page = await browser.newPage();
+  page.on("pageerror", (e) => console.log("page error:", e.message));
+  return page;
+}
+
 // Closes what a test opened and exits with its count.
 export async function finish({ browser, profile, server, dirs }) {
   if (browser) await browser.close();
