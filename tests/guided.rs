@@ -497,14 +497,21 @@ fn a_local_update_of_the_palm_equals_a_full_recompute() {
     for p in leaf.spec.guides[2].points.iter_mut().skip(2) {
         p.x += 1.0;
     }
+    // Its navigation link back to the crown has no tokens: it sends
+    // nothing, so nothing is downstream of the leaf.
+    assert_eq!(
+        guided::run::downstream(&leaf, 2),
+        std::collections::BTreeSet::from([2])
+    );
     let updated = guided::update(&leaf, &before, 2).unwrap();
     assert_eq!(updated, run(&leaf));
     assert_ne!(updated.seeds[2], before.seeds[2]);
     assert_eq!(updated.seeds[0], before.seeds[0]);
-    // The crown widened: the crown and the five leaves downstream.
+    // The crown widened: the crown and the four leaves its links with
+    // tokens reach (the link to leaf_top has none).
     let mut crown = load("palm.toml");
     crown.spec.guides[1].points[3].x += 0.5;
-    assert_eq!(guided::run::downstream(&crown, 1).len(), 6);
+    assert_eq!(guided::run::downstream(&crown, 1).len(), 5);
     assert_eq!(guided::update(&crown, &before, 1).unwrap(), run(&crown));
 }
 
@@ -676,4 +683,384 @@ fn a_seed_places_a_grammar_component() {
         "the Toukung was meshed: {}",
         done.triangles
     );
+}
+
+/// A seed's drawn segments (clipped), as point pairs.
+fn segments(s: &guided::SeedRun) -> Vec<(glam::DVec2, glam::DVec2, f32)> {
+    s.drawing
+        .chains
+        .iter()
+        .flat_map(|c| {
+            c.points.windows(2).map(|w| {
+                (
+                    glam::DVec2::new(w[0].pos.x as f64, w[0].pos.y as f64),
+                    glam::DVec2::new(w[1].pos.x as f64, w[1].pos.y as f64),
+                    w[0].radius,
+                )
+            })
+        })
+        .collect()
+}
+
+/// The centre a polygon is clipped by (its vertex centroid, in the plane).
+fn centroid(p: &lsys::internals::turtle::drawing::Polygon) -> glam::DVec2 {
+    let c = p.points.iter().copied().sum::<glam::Vec3>() / p.points.len() as f32;
+    glam::DVec2::new(c.x as f64, c.y as f64)
+}
+
+/// Every drawn segment's middle and every polygon's centroid is inside
+/// the seed's guide (on the boundary counts).
+fn assert_clipped_to_guides(l: &Loaded, o: &Outcome) {
+    for s in &o.seeds {
+        let guide = &l.spec.guides[s.guide];
+        for (a, b, _) in segments(s) {
+            let m = (a + b) * 0.5;
+            assert!(
+                guided::geometry::inside(m, &guide.points),
+                "{}: {m:?}",
+                guide.name
+            );
+        }
+        for p in &s.drawing.polygons {
+            let c = centroid(p);
+            assert!(
+                guided::geometry::inside(c, &guide.points),
+                "{}: {c:?}",
+                guide.name
+            );
+        }
+    }
+}
+
+/// The id of the link a seed came through (None: an explicit seed).
+fn link_in(l: &Loaded, s: &guided::SeedRun) -> Option<i64> {
+    match s.origin {
+        Origin::Message { link, .. } => Some(l.spec.links[link].id),
+        Origin::Explicit(_) => None,
+    }
+}
+
+/// The dinosaur's leaf seeds have strings of megabytes: they are
+/// summarised by the number of leaves they draw; the stems' strings are
+/// in full.
+fn dinosaur_summary(l: &Loaded, o: &Outcome) -> String {
+    o.strings(l)
+        .lines()
+        .zip(&o.seeds)
+        .map(|(line, s)| match line.split_once(": ") {
+            Some((head, _)) if !s.drawing.polygons.is_empty() => {
+                format!("{head}: {} leaves\n", s.drawing.polygons.len())
+            }
+            _ => format!("{line}\n"),
+        })
+        .collect()
+}
+
+#[test]
+fn dinosaur_example() {
+    let l = load("dinosaur.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(dinosaur_summary(&l, &o));
+}
+
+#[test]
+fn the_dinosaur_grows_from_its_body_through_the_links() {
+    let l = load("dinosaur.toml");
+    let o = run(&l);
+    // Seven explicit seeds in the body (the leaves, six stems), one seed
+    // per link in every other guide: body -> neck -> head, body -> tail
+    // -> tail tip, body -> each leg.
+    assert_eq!((o.seeds.len(), o.messages.len()), (15, 8));
+    let seed_of = |name: &str| {
+        let g = l.spec.guides.iter().position(|g| g.name == name).unwrap();
+        let mut it = o.seeds.iter().filter(|s| s.guide == g);
+        let s = it.next().expect(name);
+        assert!(it.next().is_none(), "{name} has one seed");
+        s
+    };
+    for (guide, link) in [
+        ("neck", 11),
+        ("head", 12),
+        ("tail", 21),
+        ("tail_tip", 22),
+        ("leg_back_far", 31),
+        ("leg_back_near", 32),
+        ("leg_front_far", 33),
+        ("leg_front_near", 34),
+    ] {
+        assert_eq!(link_in(&l, seed_of(guide)), Some(link), "{guide}");
+    }
+    assert!(seed_of("head").birth > seed_of("neck").birth);
+    assert!(seed_of("tail_tip").birth > seed_of("tail").birth);
+    assert_clipped_to_guides(&l, &o);
+    // Leaves (polygons) in the body, the head and the tail tip only; one
+    // stem, unbroken, in the neck, the tail and each leg.
+    let mut leaves = 0;
+    for s in &o.seeds {
+        let name = l.spec.guides[s.guide].name.as_str();
+        if l.grammar_names[s.grammar].ends_with("dino_leaves.lsys") {
+            assert!(["body", "head", "tail_tip"].contains(&name), "{name}");
+            assert!(s.drawing.chains.is_empty(), "{name}");
+            leaves += s.drawing.polygons.len();
+        } else {
+            assert!(s.drawing.polygons.is_empty(), "{name}");
+            assert_eq!(s.drawing.chains.len(), 1, "{name}");
+        }
+    }
+    assert!(leaves > 5000, "{leaves}");
+    let body = &o.seeds[0].drawing.polygons;
+    // Random colours (the four entries 16-19) and rotations (the leaves'
+    // axes point into all eight octants).
+    let colours: std::collections::BTreeSet<u32> = body.iter().map(|p| p.colour).collect();
+    assert_eq!(colours, [16, 17, 18, 19].into());
+    let octants: std::collections::BTreeSet<i32> = body
+        .iter()
+        .map(|p| {
+            let axis = p.points[2] - p.points[0];
+            (axis.y.atan2(axis.x).to_degrees() / 45.0).floor() as i32
+        })
+        .collect();
+    assert_eq!(octants.len(), 8, "{octants:?}");
+    // A stem follows its guide: every point but the last (the one that
+    // touches the far edge) is inside, and it is as thick as the guide is
+    // wide: the tail's tube narrows toward the tip. The legs reach the
+    // ground (y = 0) within a segment (0.15).
+    for s in o.seeds.iter().filter(|s| !s.drawing.chains.is_empty()) {
+        let guide = &l.spec.guides[s.guide];
+        let pts = &s.drawing.chains[0].points;
+        for p in &pts[..pts.len() - 1] {
+            let q = glam::DVec2::new(p.pos.x as f64, p.pos.y as f64);
+            assert!(
+                guided::geometry::inside(q, &guide.points),
+                "{}: {q:?}",
+                guide.name
+            );
+        }
+        if guide.name.starts_with("leg") {
+            let foot = pts[pts.len() - 1].pos.y;
+            assert!(foot.abs() <= 0.15 + 1e-4, "{}: {foot}", guide.name);
+        }
+    }
+    let tail = &seed_of("tail").drawing.chains[0].points;
+    let (root, tip) = (tail[0].radius, tail[tail.len() - 1].radius);
+    assert!(root > 1.5 * tip, "{root} {tip}");
+}
+
+/// The modules of `s` before its first branch.
+fn before_first_branch(s: &str) -> Vec<&str> {
+    s.split(' ').take_while(|m| *m != "[").collect()
+}
+
+/// For each polygon `{` of a string, the number of segments `F` on the
+/// path from the root to it.
+fn polygon_depths(s: &str) -> Vec<usize> {
+    let mut stack = vec![0];
+    let mut out = Vec::new();
+    for m in s.split(' ') {
+        match m {
+            "[" => stack.push(*stack.last().unwrap()),
+            "]" => {
+                stack.pop();
+            }
+            "{" => out.push(*stack.last().unwrap()),
+            _ if m.starts_with("F(") => *stack.last_mut().unwrap() += 1,
+            _ => {}
+        }
+    }
+    out
+}
+
+#[test]
+fn tree_single_example() {
+    let l = load("tree_single.toml");
+    let o = run(&l);
+    // The string is 300 kB of leaves: its main axis and its counts.
+    let s = &o.seeds[0];
+    insta::assert_snapshot!(format!(
+        "{} segments, {} leaves\nmain axis: {}\n",
+        segments(s).len(),
+        s.drawing.polygons.len(),
+        main_axis(&s.string).join(" ")
+    ));
+}
+
+#[test]
+fn the_single_tree_branches_above_its_trunk_and_fills_its_guide() {
+    let l = load("tree_single.toml");
+    let o = run(&l);
+    assert_eq!((o.seeds.len(), o.messages.len()), (1, 0));
+    let tree = &o.seeds[0];
+    // The trunk: T0 = 9 segments before the first branch.
+    let trunk = before_first_branch(&tree.string);
+    assert_eq!(
+        trunk.iter().filter(|m| m.starts_with("F(")).count(),
+        9,
+        "{trunk:?}"
+    );
+    // Leaves from LEAF = 15 segments from the root on, and only there
+    // (some hang out of the guide and are clipped).
+    let depths = polygon_depths(&tree.string);
+    assert!(depths.len() >= tree.drawing.polygons.len());
+    assert!(depths.len() > 1000, "{}", depths.len());
+    assert!(depths.iter().all(|&d| d >= 15), "{:?}", depths.iter().min());
+    // The clusters bend down: a leaf's tip (its third vertex) below its
+    // base (its first), for more than 85% of the leaves.
+    let hanging = tree
+        .drawing
+        .polygons
+        .iter()
+        .filter(|p| p.points[2].y < p.points[0].y)
+        .count();
+    let drawn = tree.drawing.polygons.len();
+    assert!(hanging * 20 > drawn * 17, "{hanging} of {drawn}");
+    assert_clipped_to_guides(&l, &o);
+    // The crown fills its guide: branches reach within two segments of
+    // its widest points (x = ±5.2) and of its top (y = 12.3).
+    let reach = |o: &Outcome| {
+        let segs = segments(&o.seeds[0]);
+        let xs = segs.iter().flat_map(|(a, b, _)| [a.x, b.x]);
+        let (lo, hi) = xs.fold((0f64, 0f64), |(lo, hi), x| (lo.min(x), hi.max(x)));
+        let top = segs
+            .iter()
+            .map(|(a, b, _)| a.y.max(b.y))
+            .fold(0f64, f64::max);
+        (lo, hi, top)
+    };
+    let (lo, hi, top) = reach(&o);
+    assert!(
+        lo < -5.2 + 0.56 && hi > 5.2 - 0.56 && top > 12.3 - 0.56,
+        "{lo} {hi} {top}"
+    );
+    // A wider crown (x 1.3 about the trunk's axis): the same grammar
+    // grows wider.
+    let mut wide = load("tree_single.toml");
+    for p in wide.spec.guides[0].points.iter_mut().filter(|p| p.y > 2.6) {
+        p.x *= 1.3;
+    }
+    let wide_o = run(&wide);
+    assert_clipped_to_guides(&wide, &wide_o);
+    let (wlo, whi, _) = reach(&wide_o);
+    assert!(wlo < lo - 1.0 && whi > hi + 1.0, "{wlo} {whi} {lo} {hi}");
+}
+
+#[test]
+fn palm_edited_example() {
+    let l = load("palm_edited.toml");
+    let o = run(&l);
+    insta::assert_snapshot!(o.strings(&l));
+}
+
+/// The bounding box of a drawing's points: (min x, min y, max x, max y).
+fn bounds(o: &Outcome) -> (f64, f64, f64, f64) {
+    o.seeds
+        .iter()
+        .flat_map(segments)
+        .flat_map(|(a, b, _)| [a, b])
+        .fold(
+            (f64::MAX, f64::MAX, f64::MIN, f64::MIN),
+            |(x0, y0, x1, y1), p| (x0.min(p.x), y0.min(p.y), x1.max(p.x), y1.max(p.y)),
+        )
+}
+
+#[test]
+fn the_edited_palm_is_the_palm_grown_in_edited_guides() {
+    let (pl, el) = (load("palm.toml"), load("palm_edited.toml"));
+    let (po, eo) = (run(&pl), run(&el));
+    // The same three grammar files, unchanged: only the guides differ.
+    let names = |l: &Loaded| {
+        let mut n = l.grammar_names.clone();
+        n.sort();
+        n
+    };
+    assert_eq!(names(&pl), names(&el));
+    assert_eq!(names(&el).len(), 3);
+    // The upper left leaf guide and its link (13) are gone: its frond
+    // finds no link and is erased (an empty branch); three leaves grow.
+    assert_eq!((eo.seeds.len(), eo.messages.len()), (5, 4));
+    assert!(el.spec.guides.iter().all(|g| g.name != "leaf_upper_left"));
+    let crown = eo.seeds.iter().find(|s| s.guide == 1).unwrap();
+    assert_eq!(crown.string.matches("[ ]").count(), 1, "{}", crown.string);
+    assert_eq!(seeds_in(&eo, &el, "leaf_top"), 0);
+    assert_clipped_to_guides(&el, &eo);
+    // The trunk meets its edited top edge square, in its middle
+    // (-2.664, 10.8), not palm.toml's (2.1, 8).
+    let (a, top, _) = *segments(&eo.seeds[0]).last().unwrap();
+    assert!(
+        top.distance(glam::DVec2::new(-2.664, 10.8)) < 0.35,
+        "{top:?}"
+    );
+    let heading = (top - a).y.atan2((top - a).x).to_degrees();
+    assert!((heading - 105.0).abs() < 0.5, "{heading}");
+    // The drawing follows the guides: taller, and reaching further left
+    // (the longer left leaf).
+    let (p, e) = (bounds(&po), bounds(&eo));
+    assert!(e.3 > p.3 + 2.0, "top {} {}", e.3, p.3);
+    assert!(e.0 < p.0 - 3.0, "left {} {}", e.0, p.0);
+    assert_ne!(eo.drawing(), po.drawing());
+}
+
+#[test]
+fn the_bridge_reshaped_by_the_springs_keeps_its_hangers_spacing() {
+    use glam::DVec2;
+    use lsys::internals::guided::springs::Springs;
+    let l = load("bridge.toml");
+    let before = run(&l);
+    let spec = &l.spec;
+    // Held as in the studio: the cable guides' feet on the deck, the
+    // towers and the deck; the middle of the cable dragged up by 1.2.
+    let s = Springs::new(spec);
+    let mut held = Vec::new();
+    let mut middle = None;
+    for (g, guide) in spec.guides.iter().enumerate() {
+        for (k, p) in guide.points.iter().enumerate() {
+            let cable = guide.name.starts_with("cable");
+            if !cable || (p.y - 0.6).abs() < 1e-9 {
+                held.push(s.particle(g, k).unwrap());
+            }
+            if guide.name == "cable_4" && p.x == 0.0 && p.y > 1.0 {
+                middle = s.particle(g, k);
+            }
+        }
+    }
+    let (x, _) = s.relax(middle.unwrap(), DVec2::new(0.0, 2.4), &held);
+    let moved = s.guide_points(&x);
+    // examples/guided/bridge_moved.toml is that drag, saved by the studio
+    // (to four decimals), seeds carried along.
+    let m = load("bridge_moved.toml");
+    for (g, guide) in m.spec.guides.iter().enumerate() {
+        for (p, q) in guide.points.iter().zip(&moved[g]) {
+            assert!(p.distance(*q) < 1e-4, "{}: {p} vs {q}", guide.name);
+        }
+    }
+    for (a, b) in spec.seeds.iter().zip(&m.spec.seeds) {
+        let (q, heading) = s.carry(a.guide, &x, a.position, a.heading);
+        assert!(q.distance(b.position) < 1e-4 && (heading - b.heading).abs() < 1e-3);
+    }
+    // The neighbours followed: their shared corners rose, and no held
+    // vertex moved.
+    let cable = |name: &str| spec.guides.iter().position(|g| g.name == name).unwrap();
+    let c3 = cable("cable_3");
+    assert!(moved[c3][2].y > spec.guides[c3].points[2].y + 0.02);
+    for &h in &held {
+        assert_eq!(x[h], s.particles[h]);
+    }
+    // The same grammars: every cable guide draws as many pieces (a hanger
+    // and a piece of cable every 0.25 along the deck), and the middle's
+    // cable reaches higher.
+    let after = run(&m);
+    let count = |o: &Outcome, g: usize| guided::run::guide_elements(o, g).len();
+    let top = |o: &Outcome, g: usize| {
+        guided::run::guide_elements(o, g)
+            .iter()
+            .map(|e| e.a.y.max(e.b.y))
+            .fold(f64::MIN, f64::max)
+    };
+    for (g, guide) in spec.guides.iter().enumerate() {
+        assert_eq!(count(&before, g), count(&after, g), "{}", guide.name);
+    }
+    let c4 = cable("cable_4");
+    assert_eq!(count(&before, c4), 16, "8 hangers and 8 pieces of cable");
+    // The cable reaches the dragged corner (0.02 under it, as drawn).
+    let (b, a) = (top(&before, c4), top(&after, c4));
+    assert!((a - (2.4 - 0.02)).abs() < 1e-3 && a > b + 0.8, "{b} -> {a}");
 }

@@ -108,10 +108,21 @@ struct Live<'p> {
     sim: Option<Simulation<'p>>,
 }
 
+/// The random seed of the `index`th seed of `guide`: the scene's seed,
+/// the guide and the index mixed (SplitMix64's finaliser) so that every
+/// bit of the result depends on all three. `ran` keeps only the low 32 bits
+/// (drand48's seed, as cpfg's): the guide used to be mixed in above them,
+/// so seed 0 of every guide drew the same random numbers.
 fn derive_opts(l: &Loaded, guide: usize, index: usize) -> DeriveOptions {
+    fn mix(mut z: u64) -> u64 {
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
     let base = l.spec.seed.unwrap_or(0);
+    let seed = mix(mix(mix(base) ^ guide as u64) ^ index as u64);
     DeriveOptions {
-        seed: Some(base ^ ((guide as u64 + 1) << 32) ^ index as u64),
+        seed: Some(seed & 0xffff_ffff),
         ..DeriveOptions::default()
     }
 }

@@ -244,7 +244,7 @@ impl GuideSession {
 /// The mass–spring drag (seed 002, §4.2): the page's scene as it was when
 /// the drag began, guide `g`'s vertex `k` moved to `to`, the vertices
 /// `held` fixed -> every guide's points at rest and every seed carried
-/// with its guide, without running the scene (the page sends the points as an edit when the drag ends).
+/// with its guide (mean value coordinates), without running the scene (the page sends the points as an edit when the drag ends).
 pub fn springs(v: &Value) -> Result<Value, Value> {
     let refuse = |m: String| json!({"message": m});
     let doc = SceneDoc::from_json(&v["scene"]).map_err(refuse)?;
@@ -286,8 +286,8 @@ pub fn springs(v: &Value) -> Result<Value, Value> {
         .seeds
         .iter()
         .map(|sd| {
-            let (p, turn) = s.carry(sd.guide, &x, sd.position);
-            json!({"position": [p.x, p.y], "heading": sd.heading + turn})
+            let (p, heading) = s.carry(sd.guide, &x, sd.position, sd.heading);
+            json!({"position": [p.x, p.y], "heading": heading})
         })
         .collect();
     Ok(json!({
