@@ -109,87 +109,11 @@ pub fn mesh_guided(
         .map_err(|e| guided_failure(Box::new(e)))
 }
 
-fn guided_failure(e: Box<dyn miette::Diagnostic + Send + Sync>) -> Failure {
+pub(super) fn guided_failure(e: Box<dyn miette::Diagnostic + Send + Sync>) -> Failure {
     Failure {
         reason: Reason::Guided(e),
         sources: Vec::new(),
     }
-}
-
-/// A scene's text (the studio's guides page) named `name`, its grammars
-/// relative to `base` and required inside one of `allowed`, read and its
-/// grammars compiled with `options`' defines and include folders.
-pub fn load_scene_text(
-    name: &str,
-    text: &str,
-    base: &Path,
-    allowed: &[PathBuf],
-    options: &GrammarOptions,
-) -> Result<guided::Loaded, Failure> {
-    guided::load_text_within(name, text, base, &options.build.source, allowed)
-        .map_err(|e| guided_failure(e))
-}
-
-/// Runs `now`. When `before` is a run of the same scene but for the
-/// points of one guide (and its grammars read the same text), only
-/// that guide and those downstream of it derive again, the others
-/// replaying what they did (`guided::update`, equal to a full run). The
-/// outcome, and the guides derived again.
-pub fn grow_scene(
-    now: &guided::Loaded,
-    before: Option<(&guided::Loaded, &guided::Outcome)>,
-) -> Result<(guided::Outcome, Vec<usize>), Failure> {
-    let fail = |e: crate::derive::DeriveError| guided_failure(Box::new(e));
-    let moved = before
-        .filter(|(l, _)| same_grammars(l, now))
-        .and_then(|(l, _)| one_guide_moved(&l.spec, &now.spec));
-    if let Some(g) = moved {
-        let (_, outcome) = before.unwrap_or_else(|| unreachable!());
-        let out = guided::update(now, outcome, g).map_err(fail)?;
-        return Ok((out, guided::run::downstream(now, g).into_iter().collect()));
-    }
-    let out = guided::run(now).map_err(fail)?;
-    Ok((out, (0..now.spec.guides.len()).collect()))
-}
-
-/// Whether `a` and `b` compiled the same grammars from the same text
-/// (a grammar edited on disk between two runs derives anew).
-fn same_grammars(a: &guided::Loaded, b: &guided::Loaded) -> bool {
-    let texts = |l: &guided::Loaded| -> Vec<std::sync::Arc<String>> {
-        l.grammars
-            .iter()
-            .flat_map(|c| c.program.sources.files().iter().map(|f| f.text.clone()))
-            .collect()
-    };
-    a.grammar_names == b.grammar_names && texts(a) == texts(b)
-}
-
-/// The guide whose points alone differ between `a` and `b`, if exactly
-/// one does and nothing else does.
-fn one_guide_moved(a: &guided::SceneSpec, b: &guided::SceneSpec) -> Option<usize> {
-    if (a.steps, a.seed, &a.links, a.guides.len()) != (b.steps, b.seed, &b.links, b.guides.len())
-        || a.seeds.len() != b.seeds.len()
-        || a.seeds.iter().zip(&b.seeds).any(|(x, y)| {
-            (x.guide, x.position, x.heading, &x.parameters)
-                != (y.guide, y.position, y.heading, &y.parameters)
-                || x.grammar.as_ref().map(|g| &g.0) != y.grammar.as_ref().map(|g| &g.0)
-        })
-    {
-        return None;
-    }
-    let mut moved = None;
-    for (i, (x, y)) in a.guides.iter().zip(&b.guides).enumerate() {
-        if (&x.name, &x.grammar, x.height, x.id) != (&y.name, &y.grammar, y.height, y.id) {
-            return None;
-        }
-        if x.points != y.points {
-            if moved.is_some() {
-                return None;
-            }
-            moved = Some(i);
-        }
-    }
-    moved
 }
 
 impl GuidedDone {

@@ -28,6 +28,7 @@ mod infer;
 mod job;
 mod pailou;
 mod run;
+mod scene_edit;
 pub mod session;
 mod stats;
 mod structure;
@@ -35,7 +36,7 @@ mod toml_file;
 #[cfg(feature = "cli")]
 mod watch;
 
-pub use guided::{grow_scene, load_scene_text, mesh_guided, run_guided, GuidedDone, GuidedJob};
+pub use guided::{mesh_guided, run_guided, GuidedDone, GuidedJob};
 pub use infer::{
     infer_drawing, infer_edited, infer_label, read_drawing, write_inference, Correction,
     InferError, InferFailure, InferNode, InferOptions, Inference, Ink, INFER_LABELS,
@@ -43,6 +44,7 @@ pub use infer::{
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
 pub use run::{model_bytes, run, Done, Event, Failure, Reason};
+pub use scene_edit::{check_scene, drag_guides, Drag, DragError, SceneDoc, SceneRun};
 pub use stats::ms;
 pub use structure::library_rules;
 pub use toml_file::{toml_file, NeitherFormat, TomlFile};

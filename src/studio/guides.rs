@@ -11,15 +11,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use glam::DVec2;
 use serde_json::{json, Value};
 
 use super::model;
 use crate::api::Grammar;
-use crate::driver::{self, Failure};
-use crate::guided::document::SceneDoc;
-use crate::guided::springs::Springs;
-use crate::guided::{self, scene, Loaded, Outcome};
+use crate::driver::{self, DragError, Failure, SceneDoc, SceneRun};
 
 /// Segments of the drawing sent to the page, at most (the 3D model has
 /// them all).
@@ -33,9 +29,7 @@ pub struct GuideSession {
     /// The folder the studio opened: every grammar must be inside.
     root: PathBuf,
     doc: SceneDoc,
-    run: Option<(Loaded, Outcome)>,
-    /// The guides the last change derived again.
-    regrown: Vec<usize>,
+    run: Option<SceneRun>,
     timings: Value,
     /// The 3D model (the drawing, with the guides and links as lines).
     pub glb: Option<Vec<u8>>,
@@ -71,7 +65,7 @@ impl GuideSession {
             let text = std::fs::read_to_string(full)
                 .map_err(|e| json!({"message": format!("cannot read {rel}: {e}")}))?;
             // The located diagnostic of a scene that does not read.
-            scene::read(rel, &text)
+            driver::check_scene(rel, &text)
                 .map_err(|e| json!({"diagnostics": [model::one_json(e.as_ref())]}))?;
             SceneDoc::from_toml(&text).map_err(|e| json!({"message": e}))?
         };
@@ -81,7 +75,6 @@ impl GuideSession {
             root: root.to_path_buf(),
             doc,
             run: None,
-            regrown: Vec::new(),
             timings: Value::Null,
             glb: None,
             triangles: 0,
@@ -102,39 +95,24 @@ impl GuideSession {
     }
 
     fn grow(&mut self) {
-        let text = self.doc.to_toml();
         let t0 = Instant::now();
         let options = Grammar::options().max_triangles(self.max_triangles);
-        let loaded = match driver::load_scene_text(
+        let run = match SceneRun::new(
             &self.name,
-            &text,
+            &self.doc,
             &self.folder,
             std::slice::from_ref(&self.root),
             &options,
+            self.run.as_ref(),
         ) {
-            Ok(l) => l,
+            Ok(r) => r,
             Err(f) => return self.fail(f),
         };
         let t1 = Instant::now();
-        let before = self.run.as_ref().map(|(l, o)| (l, o));
-        let (outcome, regrown) = match driver::grow_scene(&loaded, before) {
-            Ok(x) => x,
-            Err(f) => return self.fail(f),
-        };
+        let built = run.model(&options, &self.folder);
         let t2 = Instant::now();
-        let built = driver::mesh_guided(&loaded, &outcome, true, &options, Some(&self.folder))
-            .and_then(|scene| {
-                let glb = driver::model_bytes(&scene, driver::Format::Glb)?;
-                Ok((scene.triangle_count(), glb))
-            });
-        let t3 = Instant::now();
-        self.regrown = regrown;
-        self.timings = json!({
-            "load": driver::ms(t1 - t0),
-            "grow": driver::ms(t2 - t1),
-            "mesh": driver::ms(t3 - t2),
-        });
-        self.run = Some((loaded, outcome));
+        self.timings = json!({"grow": driver::ms(t1 - t0), "mesh": driver::ms(t2 - t1)});
+        self.run = Some(run);
         match built {
             Ok((triangles, glb)) if glb.len() <= model::MAX_GLB_BYTES => {
                 self.triangles = triangles;
@@ -175,26 +153,23 @@ impl GuideSession {
             "grammars": self.grammars(),
             "problem": self.problem,
             "current": self.problem.is_none(),
-            "regrown": self.regrown,
             "timings_ms": self.timings,
         });
-        if let Some((l, o)) = &self.run {
+        if let Some(r) = &self.run {
             let mut left = MAX_SEGMENTS;
-            let drawing: Vec<Value> = (0..l.spec.guides.len())
+            let drawing: Vec<Value> = (0..r.guides())
                 .map(|g| {
-                    let segs: Vec<[f64; 4]> = guided::run::guide_elements(o, g)
-                        .iter()
-                        .take(left)
-                        .map(|e| [e.a.x, e.a.y, e.b.x, e.b.y])
-                        .collect();
+                    let mut segs = r.segments(g);
+                    segs.truncate(left);
                     left -= segs.len();
                     json!(segs)
                 })
                 .collect();
             v["drawing"] = json!(drawing);
             v["truncated"] = json!(left == 0);
-            v["seeds_run"] = json!(o.seeds.len());
-            v["messages"] = json!(o.messages.len());
+            v["regrown"] = json!(r.regrown);
+            v["seeds_run"] = json!(r.seeds());
+            v["messages"] = json!(r.messages());
             v["triangles"] = json!(self.triangles);
         }
         v
@@ -230,7 +205,7 @@ impl GuideSession {
         match std::fs::read_to_string(full) {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
             Err(e) => Err(format!("cannot read it: {e}")),
-            Ok(t) if scene::read("existing", &t).is_ok() => Ok(()),
+            Ok(t) if driver::check_scene("existing", &t).is_ok() => Ok(()),
             Ok(_) => Err("it is not a guided scene, and is not replaced".into()),
         }
     }
@@ -248,55 +223,44 @@ impl GuideSession {
 pub fn springs(v: &Value) -> Result<Value, Value> {
     let refuse = |m: String| json!({"message": m});
     let doc = SceneDoc::from_json(&v["scene"]).map_err(refuse)?;
-    let spec = scene::read("scene", &doc.to_toml())
-        .map_err(|e| json!({"diagnostics": [model::one_json(e.as_ref())]}))?;
-    let s = Springs::new(&spec);
     let index = |x: &Value| -> Option<(usize, usize)> {
         Some((x[0].as_u64()? as usize, x[1].as_u64()? as usize))
     };
     let bad = || {
         refuse("a drag is {\"scene\", \"vertex\": [guide, point], \"to\": [x, y], \"held\": [[guide, point], ...]}".into())
     };
-    let (g, k) = index(&v["vertex"]).ok_or_else(bad)?;
-    let dragged = s
-        .particle(g, k)
-        .ok_or_else(|| refuse(format!("guide {g} has no vertex {k}")))?;
+    let vertex = index(&v["vertex"]).ok_or_else(bad)?;
     let to = match (v["to"][0].as_f64(), v["to"][1].as_f64()) {
-        (Some(x), Some(y)) if x.is_finite() && y.is_finite() => DVec2::new(x, y),
+        (Some(x), Some(y)) if x.is_finite() && y.is_finite() => [x, y],
         _ => return Err(bad()),
     };
-    let held: Vec<usize> = match v.get("held") {
+    let held: Vec<(usize, usize)> = match v.get("held") {
         None | Some(Value::Null) => Vec::new(),
         Some(h) => h
             .as_array()
             .ok_or_else(bad)?
             .iter()
-            .map(|x| index(x).and_then(|(g, k)| s.particle(g, k)).ok_or_else(bad))
+            .map(|x| index(x).ok_or_else(bad))
             .collect::<Result<_, _>>()?,
     };
-    let (x, sweeps) = s.relax(dragged, to, &held);
-    let points: Vec<Vec<[f64; 2]>> = s
-        .guide_points(&x)
-        .iter()
-        .map(|g| g.iter().map(|p| [p.x, p.y]).collect())
-        .collect();
+    let d = driver::drag_guides(&doc, vertex, to, &held).map_err(|e| match e {
+        DragError::Scene(e) => json!({"diagnostics": [model::one_json(e.as_ref())]}),
+        DragError::NoVertex(g, k) => refuse(format!("guide {g} has no vertex {k}")),
+    })?;
     // Seeds go with their guides (a seed left outside its guide is an
     // error of the scene).
-    let seeds: Vec<Value> = spec
+    let seeds: Vec<Value> = d
         .seeds
         .iter()
-        .map(|sd| {
-            let (p, heading) = s.carry(sd.guide, &x, sd.position, sd.heading);
-            json!({"position": [p.x, p.y], "heading": heading})
-        })
+        .map(|(p, heading)| json!({"position": p, "heading": heading}))
         .collect();
     Ok(json!({
-        "points": points,
+        "points": d.points,
         "seeds": seeds,
-        "sweeps": sweeps,
-        "strain": s.strain(&x),
-        "particles": s.particles.len(),
-        "springs": s.springs.len(),
+        "sweeps": d.sweeps,
+        "strain": d.strain,
+        "particles": d.particles,
+        "springs": d.springs,
     }))
 }
 

@@ -10,7 +10,8 @@ import { api } from "./api.js";
 const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
 // What the browser tests read.
-const studio = (window.studio = { parts: 0, version: 0, loads: 0, state: null, refused: null });
+// `edits` counts the edits whose answer (and its model) has been drawn.
+const studio = (window.studio = { parts: 0, version: 0, loads: 0, edits: 0, state: null, refused: null });
 
 // ---- 3D view ------------------------------------------------------------
 const viewer = new Viewer($("canvas"));
@@ -229,6 +230,9 @@ function showRefused(e) {
 async function edit(body) {
   // The page stays live while the server builds (large models take a while).
   if (body.op !== "move" && body.op !== "select") $("status").textContent = "building…";
+  // A new style is a new graph: what was collapsed named the old one's
+  // lintels (a lintel of the same id in the new graph stays open).
+  if (body.op === "style") collapsed.clear();
   pending++;
   try {
     const r = await api("/api/edit", body);
@@ -237,6 +241,7 @@ async function edit(body) {
     if (r.data && r.data.state) await show(r.data.state, body.op !== "move" && body.op !== "select");
   } finally {
     pending--;
+    studio.edits++;
   }
 }
 $("remove").addEventListener("click", () => edit({ op: "remove", id: studio.state.active }));
@@ -351,6 +356,7 @@ $("open").addEventListener("change", async () => {
   if (!f) return;
   const r = await api("/api/open", { path: f });
   viewer.fitted = false;
+  if (r.status === 200) collapsed.clear();
   if (r.status === 200) await show(r.data, true);
   else $("status").textContent = r.data.error || r.data;
 });

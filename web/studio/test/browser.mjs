@@ -19,6 +19,14 @@ try {
   page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? saveAs : undefined));
   await page.goto(url);
   const loads = () => page.evaluate(() => window.studio.loads);
+  // Applies a style and waits for that edit's own answer and model (a
+  // pushed update's reload may land before or after it).
+  const applyStyle = async (style) => {
+    const e = await page.evaluate(() => window.studio.edits);
+    await page.fill("#style", style);
+    await page.click("#apply-style");
+    await page.waitForFunction((e) => window.studio.edits > e, e, { timeout: 60000 });
+  };
   const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 }).catch(async (e) => {
     const s = await page.evaluate(() => [window.studio.loads, window.studio.version, window.studio.state && window.studio.state.chart, document.getElementById("status").textContent, document.getElementById("refused").textContent]);
     throw new Error(`no model load ${n} (loads, version, chart, status, refusal): ${JSON.stringify(s)}`);
@@ -153,10 +161,7 @@ try {
 
   // Parameters the layout cannot honour: the structural check's warnings
   // are listed and their parts drawn red (docs/pailou.md: αSide 0.4 on 4-3-7).
-  n = await loads();
-  await page.fill("#style", "4-3-7");
-  await page.click("#apply-style");
-  await waitLoads(n + 1);
+  await applyStyle("4-3-7");
   // The coloured layout chart (Fig. 9a): 4-3-7 is three ground entrances
   // and three above them, seven roofs (three eaves, four clipped).
   const chart = await page.evaluate(() => ({
@@ -179,10 +184,7 @@ try {
   // on both halves, with its Toukungs and roof; no structural warning
   // (αSide back to its default first).
   await page.evaluate(() => fetch("/api/edit", { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify({ op: "define", name: "αSide", value: null }) }));
-  n = await loads();
-  await page.fill("#style", "4-3-3");
-  await page.click("#apply-style");
-  await waitLoads(n + 1);
+  await applyStyle("4-3-3");
   await select("L21R");
   await page.click("#duplicate-up");
   // The state, not a model load: the define reset above pushes an update
@@ -197,10 +199,7 @@ try {
   // icon's label is a few pixels high; the wheel zooms about the pointer
   // until it reads, the paper pans, a double-clicked lintel collapses
   // what rests on it, and "fit" shows it all again.
-  n = await loads();
-  await page.fill("#style", "8-7-22");
-  await page.click("#apply-style");
-  await waitLoads(n + 1);
+  await applyStyle("8-7-22");
   const labelPx = () => page.evaluate(() => {
     const svg = document.querySelector("#graph");
     return (10 * svg.clientWidth) / svg.viewBox.baseVal.width;
@@ -213,7 +212,7 @@ try {
   for (let i = 0; i < 9; i++) await page.mouse.wheel(0, -100);
   await page.waitForFunction(() => Number(document.querySelector("#graph").dataset.zoom) > 5);
   const zoomed = await labelPx();
-  check("a 116-component graph zooms until its labels read", all === components && components >= 100 && fitted < 6 && zoomed >= 10, `${all} nodes, label ${fitted.toFixed(1)} px fitted, ${zoomed.toFixed(1)} px zoomed`);
+  check("a 116-component graph zooms until its labels read", all === components && components >= 100 && fitted < 6 && zoomed >= 10, `${all} nodes of ${components}, label ${fitted.toFixed(1)} px fitted, ${zoomed.toFixed(1)} px zoomed`);
   const vx0 = await page.evaluate(() => document.querySelector("#graph").viewBox.baseVal.x);
   await page.mouse.move(gb.x + 5, gb.y + 5);
   await page.mouse.down();
