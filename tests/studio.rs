@@ -1030,3 +1030,80 @@ fn the_guides_page_edits_runs_and_saves_scenes() {
     let (code, _) = post(&h, "/api/guides/open", json!({"path": "../x.toml"}));
     assert_eq!(code, 403);
 }
+
+/// Per-entrance ratios (the paper's α^Up_ij, α^Side_ij; issue 34, item 3):
+/// the state names each lintel's entrance, `up[i,j]` and `side[i]` are
+/// defines of the graph that change that entrance only, out-of-range or
+/// misplaced ones are refused, and they survive a save and a reopen.
+#[test]
+fn an_entrance_has_ratios_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    // An edit answers with the state it made.
+    let edit = |v: Value| {
+        let (code, r) = post(&h, "/api/edit", v);
+        let state = r.get("state").cloned().unwrap_or(r);
+        (code, state)
+    };
+    let (code, s) = edit(json!({"op": "style", "style": "4-3-7", "type": "ridge"}));
+    assert_eq!(code, 200, "{s}");
+    let lintel = |s: &Value, at: [u64; 2]| -> String {
+        s["lintels"]
+            .as_object()
+            .unwrap()
+            .iter()
+            .find(|(_, v)| v == &&json!(at))
+            .map(|(id, _)| id.clone())
+            .unwrap_or_else(|| panic!("no lintel of entrance {at:?}: {}", s["lintels"]))
+    };
+    // 4-3-7: three ground entrances, three above; both halves' lintels.
+    let n = s["lintels"].as_object().unwrap().len();
+    assert_eq!(n, 1 + 2 + 1 + 2, "{}", s["lintels"]);
+    let side_above = lintel(&s, [2, 2]);
+    let (_, glb0) = request(&h, "GET", "/api/model.glb", &[], b"");
+    let top = |s: &Value| s["bounds"][1][1].as_f64();
+
+    // The side entrances above lower; the centre's top stays.
+    let (code, s1) = edit(json!({"op": "define", "name": "up[2,2]", "value": 0.35}));
+    assert_eq!(code, 200, "{s1}");
+    assert_eq!(s1["defines"]["up[2,2]"], json!(0.35));
+    assert_eq!(s1["problems"], json!([]));
+    let (_, glb1) = request(&h, "GET", "/api/model.glb", &[], b"");
+    assert_ne!(glb0, glb1, "the model changed");
+    assert!(top(&s).is_some());
+    assert_eq!(top(&s1), top(&s), "the central entrance above is untouched");
+    // The central one above lowers the top.
+    let (code, s2) = edit(json!({"op": "define", "name": "up[1,2]", "value": 0.35}));
+    assert_eq!(code, 200, "{s2}");
+    let (a, b) = (top(&s2).unwrap(), top(&s1).unwrap());
+    assert!(a < b - 1.0, "{a} {b}");
+    let (code, _) = edit(json!({"op": "define", "name": "side[1]", "value": 0.7}));
+    assert_eq!(code, 200);
+    for (name, value, says) in [
+        ("up[2,2]", 5.0, "out of range"),
+        ("up[2,1]", 0.4, "2..4"),
+        ("side[6]", 0.7, "1..5"),
+        ("up[x]", 0.4, "up"),
+    ] {
+        let (code, r) = post(
+            &h,
+            "/api/edit",
+            json!({"op": "define", "name": name, "value": value}),
+        );
+        assert_eq!(code, 422, "{name}: {r}");
+        let m = r["refused"]["message"].as_str().unwrap();
+        assert!(m.contains(says), "{name}: {m}");
+    }
+
+    // Saved with the graph and read back.
+    let (code, r) = post(&h, "/api/save", json!({"path": "mine.toml"}));
+    assert_eq!(code, 200, "{r}");
+    let saved = std::fs::read_to_string(dir.path().join("mine.toml")).unwrap();
+    assert!(saved.contains("\"up[2,2]\" = 0.35"), "{saved}");
+    let (code, s3) = post(&h, "/api/open", json!({"path": "mine.toml"}));
+    assert_eq!(code, 200, "{s3}");
+    assert_eq!(s3["defines"]["up[2,2]"], json!(0.35));
+    assert_eq!(s3["defines"]["side[1]"], json!(0.7));
+    assert_eq!(lintel(&s3, [2, 2]), side_above);
+    h.stop();
+}

@@ -30,6 +30,8 @@ pub struct Pailou {
     /// A relation matrix other than the library's.
     relations: Option<String>,
     unplaced: Vec<String>,
+    /// Each entrance's lintel id and its entrance (i, j) (graphs only).
+    lintels: Vec<(String, usize, usize)>,
 }
 
 /// Why a Pailou could not be read.
@@ -81,6 +83,7 @@ impl Pailou {
             defines: Vec::new(),
             relations: None,
             unplaced: Vec::new(),
+            lintels: Vec::new(),
         })
     }
 
@@ -101,6 +104,7 @@ impl Pailou {
             defines: g.defines,
             relations: relations.map(str::to_string),
             unplaced: g.unplaced,
+            lintels: g.lintels,
         })
     }
 
@@ -128,6 +132,14 @@ impl Pailou {
     /// each.
     pub fn unplaced(&self) -> &[String] {
         &self.unplaced
+    }
+
+    /// Each entrance's lintel id in the graph and its entrance (i, j),
+    /// counted from 1 (the centre outward, the ground upward); empty for a
+    /// style. An entrance's ratios are the grammar's `up[i, j]` and
+    /// `side[i - 1]` (docs/pailou.md).
+    pub fn lintels(&self) -> &[(String, usize, usize)] {
+        &self.lintels
     }
 
     /// The layout as a chart of rows (`lsys pailou --chart`).

@@ -71,6 +71,9 @@ pub struct Graph {
     pub defines: Vec<(String, String)>,
     /// Components the layout has no place for, one sentence each.
     pub unplaced: Vec<String>,
+    /// Each entrance's lintel (both halves; the centre's once) and its
+    /// entrance (i, j), from 1: what the studio's entrance fields name.
+    pub lintels: Vec<(String, usize, usize)>,
 }
 
 struct Reader<'a> {
@@ -300,7 +303,13 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
             String::new(),
         ));
     }
-    let layouts: Vec<Layout> = halves.iter().map(|h| half_layout(&r, h, kind)).collect();
+    let mut lintels: Vec<(String, usize, usize)> = Vec::new();
+    let layouts: Vec<Layout> = halves
+        .iter()
+        .map(|h| half_layout(&r, h, kind, &mut lintels))
+        .collect();
+    lintels.sort_by(|a, b| (a.1, a.2, &a.0).cmp(&(b.1, b.2, &b.0)));
+    lintels.dedup();
     if layouts[0] != layouts[1] {
         return Err(r.err(
             spans.centre.clone(),
@@ -367,11 +376,17 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         kind,
         defines,
         unplaced,
+        lintels,
     })
 }
 
 /// One half's layout from its chain of (lintel, outer pillar) on the ground.
-fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
+fn half_layout(
+    r: &Reader,
+    chain: &[(&str, &str)],
+    kind: PailouType,
+    lintels: &mut Vec<(String, usize, usize)>,
+) -> Layout {
     let mut l = Layout {
         exists: [[false; MAX_LEVELS + 1]; MAX_HALF + 1],
         dec: [[[false; KINDS]; MAX_LEVELS + 1]; MAX_HALF + 1],
@@ -380,6 +395,7 @@ fn half_layout(r: &Reader, chain: &[(&str, &str)], kind: PailouType) -> Layout {
         let mut current = lintel;
         for j in 0..MAX_LEVELS {
             l.exists[i][j] = true;
+            lintels.push((current.to_string(), i + 1, j + 1));
             let d = &mut l.dec[i][j];
             decorate(r, current, d);
             if j == 0 {

@@ -21,13 +21,55 @@ const RANGES: &[(&str, f64, f64, bool)] = &[
     ("αSide", 0.1, 2.0, false),
 ];
 
+/// A table's index ranges, lowest and highest, per dimension.
+type Dims = &'static [(usize, usize)];
+
+/// The per-entrance tables of the grammar: name, the ratio whose range
+/// they take, and their index ranges (docs/pailou.md).
+const TABLES: &[(&str, &str, Dims)] = &[
+    ("up", "αUp", &[(1, 6), (2, 4)]),
+    ("side", "αSide", &[(1, 5)]),
+];
+
+/// `up[i,j]` or `side[i]`: the ratio it is an entrance's value of, or the
+/// sentence saying which indices the table has.
+fn table_ratio(name: &str) -> Option<Result<&'static str, String>> {
+    let (table, rest) = name.split_once('[')?;
+    let &(t, ratio, dims) = TABLES.iter().find(|t| t.0 == table.trim())?;
+    let wanted = || {
+        let dims: Vec<String> = dims.iter().map(|(lo, hi)| format!("{lo}..{hi}")).collect();
+        format!(
+            "`{name}`: the entrance table `{t}` takes [{}] (docs/pailou.md, \"Per entrance\")",
+            dims.join(", ")
+        )
+    };
+    let indices: Vec<Option<usize>> = rest
+        .strip_suffix(']')
+        .unwrap_or("x")
+        .split(',')
+        .map(|n| n.trim().parse().ok())
+        .collect();
+    let fits = indices.len() == dims.len()
+        && indices
+            .iter()
+            .zip(dims)
+            .all(|(n, (lo, hi))| n.is_some_and(|n| (*lo..=*hi).contains(&n)));
+    Some(if fits { Ok(ratio) } else { Err(wanted()) })
+}
+
 /// Whether `value` is a value `name` may take (names without a range may
-/// take any finite value).
+/// take any finite value; an entrance's `up[i,j]` and `side[i]` take
+/// αUp's and αSide's).
 pub fn check(name: &str, value: f64) -> Result<(), String> {
     if !value.is_finite() {
         return Err(format!("`{name}` = {value} is not a number"));
     }
-    let Some(&(_, lo, hi, whole)) = RANGES.iter().find(|r| r.0 == name) else {
+    let ratio = match table_ratio(name) {
+        Some(Ok(ratio)) => ratio,
+        Some(Err(why)) => return Err(why),
+        None => name,
+    };
+    let Some(&(_, lo, hi, whole)) = RANGES.iter().find(|r| r.0 == ratio) else {
         return Ok(());
     };
     if whole && value.fract() != 0.0 {
@@ -57,5 +99,15 @@ mod tests {
         assert!(check("NTL", 4.5).is_err());
         assert!(check("κT", f64::NAN).is_err());
         assert!(check("κT", 0.3).is_ok());
+        // An entrance's ratios: αUp's and αSide's ranges, at indices the
+        // grammar's tables have (no up for a ground entrance).
+        assert!(check("up[2,2]", 0.4).is_ok());
+        assert!(check("up[2, 3]", 0.4).is_ok());
+        assert!(check("side[1]", 0.7).is_ok());
+        assert!(check("up[2,2]", 5.0).unwrap_err().contains("out of range"));
+        assert!(check("up[2,1]", 0.4).unwrap_err().contains("[1..6, 2..4]"));
+        assert!(check("up[2]", 0.4).is_err());
+        assert!(check("side[6]", 0.7).is_err());
+        assert!(check("side[x]", 0.7).is_err());
     }
 }

@@ -28,6 +28,8 @@ pub struct PailouSession {
     pub chart: String,
     /// The chart's entrances, as the page draws them (Fig. 9a).
     pub entrances: Vec<Value>,
+    /// Each entrance's lintel: `{id: [i, j]}` (the entrance fields).
+    pub lintels: Value,
     /// The emitted grammar of the last good graph.
     pub lsys: String,
     /// The build's defines (the graph's, with the Toukung levels passed on).
@@ -58,6 +60,7 @@ impl PailouSession {
             unplaced: Vec::new(),
             chart: String::new(),
             entrances: Vec::new(),
+            lintels: json!({}),
             lsys: String::new(),
             defines: Vec::new(),
             active: String::new(),
@@ -92,6 +95,12 @@ impl PailouSession {
             unplaced: p.unplaced().to_vec(),
             chart: p.chart(),
             entrances: p.entrances().iter().map(entrance_json).collect(),
+            lintels: p
+                .lintels()
+                .iter()
+                .map(|(id, i, j)| (id.clone(), json!([i, j])))
+                .collect::<serde_json::Map<_, _>>()
+                .into(),
             lsys: p.grammar_text(),
             defines,
         })
@@ -102,6 +111,7 @@ impl PailouSession {
         self.unplaced = b.unplaced;
         self.chart = b.chart;
         self.entrances = b.entrances;
+        self.lintels = b.lintels;
         self.lsys = b.lsys;
         self.defines = b.defines;
         self.error = None;
@@ -263,12 +273,15 @@ impl PailouSession {
             "build_defines": self.defines,
             "chart": self.chart,
             "entrances": self.entrances,
+            "lintels": self.lintels,
             "matrix": matrix(),
             "unplaced": self.unplaced,
             "error": self.error,
             "problems": self.model.as_ref().map(|m| m.problems.clone()).unwrap_or_default(),
             "parts": self.model.as_ref().map_or(0, |m| m.parts),
             "triangles": self.model.as_ref().map_or(0, |m| m.triangles),
+            // The box around the model, [min, max] (model units, y up).
+            "bounds": self.model.as_ref().and_then(|m| m.scene.bounds()).map(|(lo, hi)| [lo, hi]),
             "toml": self.graph.to_toml(),
         })
     }
@@ -297,6 +310,7 @@ struct Built {
     unplaced: Vec<String>,
     chart: String,
     entrances: Vec<Value>,
+    lintels: Value,
     lsys: String,
     defines: Vec<(String, String)>,
 }

@@ -185,6 +185,40 @@ function drawParams(s) {
     if (v !== undefined) i.value = v;
     i.nextElementSibling.textContent = v === undefined ? "default" : v;
   });
+  drawEntranceParams(s);
+}
+
+// The active lintel's entrance's own ratios (the paper's α^Up_ij and
+// α^Side_ij): the grammar's `up[i,j]` and `side[i-1]` tables, set as
+// defines of the graph; both halves (the grammar mirrors one).
+function drawEntranceParams(s) {
+  const box = $("entrance-params");
+  const at = (s.lintels || {})[s.active];
+  box.replaceChildren();
+  if (!at) { box.textContent = "select a lintel for its entrance's ratios"; return; }
+  const [i, j] = at;
+  const field = (name, title, fallback) => {
+    const v = s.defines[name];
+    const l = document.createElement("label");
+    l.title = title;
+    l.innerHTML = `${name}<input type="range" data-entrance="${name}" min="0.2" max="1" step="0.01"><output></output>`;
+    const input = l.querySelector("input"), out = l.querySelector("output");
+    input.value = v !== undefined ? v : fallback;
+    out.textContent = v !== undefined ? v : "as all";
+    input.addEventListener("input", () => (out.textContent = input.value));
+    input.addEventListener("change", () => edit({ op: "define", name, value: Number(input.value) }));
+    const reset = document.createElement("button");
+    reset.textContent = "as all";
+    reset.disabled = v === undefined;
+    reset.addEventListener("click", () => edit({ op: "define", name, value: null }));
+    box.append(l, reset);
+  };
+  const head = document.createElement("div");
+  head.textContent = `entrance G${i}${j} (both halves)`;
+  box.append(head);
+  if (j > 1) field(`up[${i},${j}]`, "this entrance's pillar height / the one below (αUp of this entrance)", s.defines["αUp"] ?? 0.5);
+  else if (i > 1) field(`side[${i - 1}]`, "this entrance's pillar height / the inner one (αSide of this entrance)", s.defines["αSide"] ?? 0.8);
+  else box.append("the central entrance: ω sets its height");
 }
 
 function showPailou(s) {

@@ -195,6 +195,21 @@ try {
     up.chart.startsWith("level 2  [G22^]      [G22^]") && up.problems.length === 0 && (await page.$$("#layout-chart g.entrance")).length === 5,
     up.chart + JSON.stringify(up.problems.slice(0, 2)));
 
+  // Per-entrance ratios (the paper's α^Up_ij): the duplicated entrance
+  // above selected, its own αUp lowered on its entrance slider; the other
+  // entrances keep theirs, and nothing collides.
+  const above = Object.entries(up.lintels).find(([, at]) => at[0] === 2 && at[1] === 2)[0];
+  await select(above);
+  await page.waitForSelector('#entrance-params input[data-entrance="up[2,2]"]');
+  const e0 = await page.evaluate(() => window.studio.edits);
+  await page.$eval('#entrance-params input[data-entrance="up[2,2]"]', (i) => { i.value = "0.4"; i.dispatchEvent(new Event("change")); });
+  await page.waitForFunction((e) => window.studio.edits > e, e0, { timeout: 60000 });
+  const own = await page.evaluate(() => window.studio.state);
+  check("an entrance above gets an αUp of its own from its slider, with no structural warning",
+    own.defines["up[2,2]"] === 0.4 && own.defines["αUp"] === undefined && own.problems.length === 0 && own.bounds[1][1] === up.bounds[1][1] &&
+    (await page.textContent("#entrance-params")).includes("G22"),
+    JSON.stringify([own.defines, own.problems.slice(0, 2), own.bounds, up.bounds]));
+
   // A big graph stays readable: 8-7-22 (116 components). Fitted, an
   // icon's label is a few pixels high; the wheel zooms about the pointer
   // until it reads, the paper pans, a double-clicked lintel collapses
