@@ -249,14 +249,15 @@ try {
   const grammar = (n) => `// a bush\n#define ANGLE 25.7, W 3/4\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
   writeFileSync(g, grammar(2));
   await page.evaluate(async () => { const r = await fetch("/api/files"); const f = await r.json(); const sel = document.getElementById("open"); sel.replaceChildren(new Option("open…", ""), ...f.files.map((x) => new Option(x, x))); });
+  // The state, not a load count: the 8-7-22's model (3.6 M triangles) may
+  // finish loading after the grammar's on a debug build.
   n = await loads();
   await page.selectOption("#open", "bush.lsys");
-  await waitLoads(n + 1);
+  await page.waitForFunction((n) => window.studio.state.mode === "grammar" && window.studio.loads > n, n, { timeout: 60000 });
   const t2 = await page.evaluate(() => window.studio.state.triangles);
   check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 3, `triangles ${t2}`);
-  n = await loads();
   writeFileSync(g, grammar(3));
-  await waitLoads(n + 1);
+  await page.waitForFunction((t) => window.studio.state.triangles !== t, t2, { timeout: 60000 }).catch(() => {});
   const t3 = await page.evaluate(() => window.studio.state.triangles);
   check("saving the file on disk updates the view", t3 > t2, `${t2} -> ${t3}`);
   // Moving the step sends the page's overrides: none, though W is 3/4 in
