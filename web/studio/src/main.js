@@ -11,14 +11,21 @@ const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
 // What the browser tests read.
 // `edits` counts the edits whose answer (and its model) has been drawn.
-const studio = (window.studio = { parts: 0, version: 0, loads: 0, edits: 0, state: null, refused: null });
+const studio = (window.studio = { parts: 0, version: 0, loads: 0, loading: 0, edits: 0, state: null, refused: null });
 
 // ---- 3D view ------------------------------------------------------------
 const viewer = new Viewer($("canvas"));
 document.querySelectorAll("#views button").forEach((b) => b.addEventListener("click", () => viewer.view(b.dataset.view)));
 
 async function loadModel(problemParts) {
-  const meshes = await viewer.load("/api/model.glb?v=" + studio.version, problemParts);
+  // `loading`: model loads under way (a big one takes seconds to parse).
+  studio.loading++;
+  let meshes;
+  try {
+    meshes = await viewer.load("/api/model.glb?v=" + studio.version, problemParts);
+  } finally {
+    studio.loading--;
+  }
   if (meshes === null) return;
   studio.parts = meshes;
   studio.loads++;

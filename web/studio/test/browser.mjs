@@ -27,7 +27,7 @@ try {
     await page.click("#apply-style");
     await page.waitForFunction((e) => window.studio.edits > e, e, { timeout: 60000 });
   };
-  const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 30000 }).catch(async (e) => {
+  const waitLoads = (n) => page.waitForFunction((n) => window.studio.loads >= n, n, { timeout: 120000 }).catch(async (e) => {
     const s = await page.evaluate(() => [window.studio.loads, window.studio.version, window.studio.state && window.studio.state.chart, document.getElementById("status").textContent, document.getElementById("refused").textContent]);
     throw new Error(`no model load ${n} (loads, version, chart, status, refusal): ${JSON.stringify(s)}`);
   });
@@ -249,11 +249,13 @@ try {
   const grammar = (n) => `// a bush\n#define ANGLE 25.7, W 3/4\n#define N ${n}\nangle: ANGLE\nderivation length: N\nAxiom: F\nF --> F[+F]F[-F]F\n`;
   writeFileSync(g, grammar(2));
   await page.evaluate(async () => { const r = await fetch("/api/files"); const f = await r.json(); const sel = document.getElementById("open"); sel.replaceChildren(new Option("open…", ""), ...f.files.map((x) => new Option(x, x))); });
-  // The state, not a load count: the 8-7-22's model (3.6 M triangles) may
-  // finish loading after the grammar's on a debug build.
+  // The 8-7-22's model (3.6 M triangles) takes long to load on a debug
+  // build: it is let finish first, then the grammar's state and model are
+  // waited for (not a load count alone).
+  await page.waitForFunction(() => window.studio.loading === 0, null, { timeout: 240000 });
   n = await loads();
   await page.selectOption("#open", "bush.lsys");
-  await page.waitForFunction((n) => window.studio.state.mode === "grammar" && window.studio.loads > n, n, { timeout: 60000 });
+  await page.waitForFunction((n) => window.studio.state.mode === "grammar" && window.studio.loads > n && window.studio.loading === 0, n, { timeout: 240000 });
   const t2 = await page.evaluate(() => window.studio.state.triangles);
   check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 3, `triangles ${t2}`);
   writeFileSync(g, grammar(3));
