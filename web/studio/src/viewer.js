@@ -62,15 +62,11 @@ export class Viewer {
 
   // Loads the GLB at `url`; the meshes under a node named in `marked`
   // are drawn red. Returns the number of meshes, or null when the server
-  // has no model or a later load has started.
+  // has no model.
   async load(url, marked = [], firstView = "iso") {
-    // Loads may finish out of order (a big model started earlier): only
-    // the latest one started is shown; an older one returns null.
-    const mine = (this.started = (this.started || 0) + 1);
     const r = await fetch(url);
-    if (!r.ok || mine !== this.started) return null;
+    if (!r.ok) return null;
     const gltf = await this.loader.parseAsync(await r.arrayBuffer(), "");
-    if (mine !== this.started) return null;
     if (this.model) this.scene.remove(this.model);
     this.model = gltf.scene;
     let meshes = 0;
