@@ -114,17 +114,17 @@ impl GuideSession {
         self.timings = json!({"grow": driver::ms(t1 - t0), "mesh": driver::ms(t2 - t1)});
         self.run = Some(run);
         match built {
-            Ok((triangles, glb)) if glb.len() <= model::MAX_GLB_BYTES => {
-                self.triangles = triangles;
-                self.glb = Some(glb);
-                self.problem = None;
-            }
-            Ok((_, glb)) => {
-                self.glb = None;
-                self.problem = Some(json!({"message": format!(
-                    "the model's GLB is {} MiB, more than the {} MiB the studio sends to a page: derive fewer steps",
-                    glb.len() >> 20, model::MAX_GLB_BYTES >> 20)}));
-            }
+            Ok((triangles, glb)) => match model::within_page_limit(glb.len()) {
+                Ok(()) => {
+                    self.triangles = triangles;
+                    self.glb = Some(glb);
+                    self.problem = None;
+                }
+                Err(e) => {
+                    self.glb = None;
+                    self.problem = Some(json!({"diagnostics": [model::one_json(&e)]}));
+                }
+            },
             Err(f) => {
                 self.glb = None;
                 self.problem = Some(failure_json(f));

@@ -61,6 +61,17 @@ pub struct TooLarge {
     limit: usize,
 }
 
+/// Whether a GLB of `bytes` may be sent to a page ([`MAX_GLB_BYTES`]).
+pub fn within_page_limit(bytes: usize) -> Result<(), TooLarge> {
+    if bytes > MAX_GLB_BYTES {
+        return Err(TooLarge {
+            mib: bytes >> 20,
+            limit: MAX_GLB_BYTES >> 20,
+        });
+    }
+    Ok(())
+}
+
 /// `job` writing the GLB the page's 3D view loads, in memory, with at
 /// most `budget` triangles.
 pub fn for_page(mut job: Job, budget: usize) -> Job {
@@ -86,12 +97,7 @@ pub fn build_reading(job: &Job) -> (Result<(Model, Grammar), Diagnostics>, Vec<P
     match driver::run(job, &mut |_| {}) {
         Ok(mut done) => {
             let sources = std::mem::take(&mut done.sources);
-            let glb = done.bytes.as_ref().map_or(0, Vec::len);
-            if glb > MAX_GLB_BYTES {
-                let e = TooLarge {
-                    mib: glb >> 20,
-                    limit: MAX_GLB_BYTES >> 20,
-                };
+            if let Err(e) = within_page_limit(done.bytes.as_ref().map_or(0, Vec::len)) {
                 return (Err(Diagnostics::new(vec![miette::Report::new(e)])), sources);
             }
             (Ok(model_of(done)), sources)
