@@ -483,7 +483,9 @@ async function opened(r) {
     $("problem").textContent = r.data.error || message(r.data.problem) || String(r.data);
     return;
   }
-  doc = r.data.scene;
+  // The server leaves out empty tables (as the file does): a scene
+  // without links or seeds has none to draw.
+  doc = { guide: [], link: [], seeds: [], ...r.data.scene };
   undo.length = 0; redo.length = 0; held.clear();
   selected = null; sketch = []; picked = null;
   $("file").textContent = r.data.name;
