@@ -12,7 +12,10 @@ import { api } from "./api.js";
 const $ = (id) => document.getElementById(id);
 const NS = "http://www.w3.org/2000/svg";
 // What the browser tests read.
-const page = (window.guidesPage = { state: null, loads: 0, edits: 0, springs: 0, doc: () => doc, held: () => [...held] });
+// `busy()`: a drag, its last springs answer or an edit is still under way
+// (the browser test waits for it to be false before it reads the state).
+const page = (window.guidesPage = { state: null, loads: 0, edits: 0, springs: 0, doc: () => doc, held: () => [...held],
+  busy: () => drag !== null || ending > 0 || inFlight });
 
 let doc = null;            // the scene: {steps, seed?, guide: [], link: [], seeds: []}
 const undo = [], redo = [];
@@ -133,6 +136,7 @@ function draw() {
 
 // ---- the server -------------------------------------------------------------
 let inFlight = false, pending = false;
+let ending = 0; // drags whose end is being committed
 
 // Sends the scene; while an edit is under way only the latest scene waits.
 async function send() {
@@ -392,6 +396,13 @@ $("plane").addEventListener("pointerup", async () => {
   const d = drag;
   drag = null;
   if (!d) return;
+  ending++;
+  try { await endDrag(d); } finally { ending--; }
+});
+
+// Ends a drag: the springs' last answer is awaited, then the change is
+// committed as one undoable step.
+async function endDrag(d) {
   if (d.kind === "springs") {
     while (d.asking) await new Promise((r) => setTimeout(r, 10));
     if (d.to === null) return;
@@ -403,7 +414,7 @@ $("plane").addEventListener("pointerup", async () => {
     selected = { kind: "seed", index: doc.seeds.length - 1 };
   }
   if (JSON.stringify(d.before) !== JSON.stringify(doc)) await commit(d.before);
-});
+}
 
 document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT") return;

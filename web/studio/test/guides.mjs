@@ -16,7 +16,8 @@ import { join } from "node:path";
 import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-guides-"));
-for (const f of ["palm.toml", "palm_trunk.lsys", "palm_crown.lsys", "palm_leaf.lsys", "line.lsys"]) {
+for (const f of ["palm.toml", "palm_trunk.lsys", "palm_crown.lsys", "palm_leaf.lsys", "line.lsys",
+  "bridge.toml", "bridge_deck.lsys", "bridge_tower.lsys", "bridge_cable.lsys"]) {
   copyFileSync(join(repo, "examples/guided", f), join(dir, f));
 }
 const { server, url } = await startStudio(dir);
@@ -28,7 +29,8 @@ try {
   const state = () => page.evaluate(() => window.guidesPage.state);
   const doc = () => page.evaluate(() => window.guidesPage.doc());
   const count = (k) => page.evaluate((k) => window.guidesPage[k], k);
-  // Waits until the page has sent an edit after `n` and the answer shows
+  // Waits until the page has sent an edit after `n`, nothing is under way
+  // (a drag's end, the springs' last answer, an edit) and the answer shows
   // the page's own scene (an edit sent while dragging may answer first).
   const settled = async (n) => {
     await page.waitForFunction((n) => {
@@ -36,7 +38,7 @@ try {
       // Keys sorted: the server's JSON orders them its own way.
       const canon = (v) => JSON.stringify(v, (k, x) => (x && typeof x === "object" && !Array.isArray(x)
         ? Object.fromEntries(Object.entries(x).sort(([a], [b]) => (a < b ? -1 : 1))) : x));
-      return p.edits > n && p.state && canon(p.state.scene) === canon(p.doc());
+      return p.edits > n && !p.busy() && p.state && canon(p.state.scene) === canon(p.doc());
     }, n, { timeout: 60000 }).catch(async (e) => {
       const [st, d, edits] = await page.evaluate(() => [window.guidesPage.state && window.guidesPage.state.scene, window.guidesPage.doc(), window.guidesPage.edits]);
       throw new Error(`no answer showing the page's scene after edit ${n} (edits ${edits}):\n${JSON.stringify(st)}\n${JSON.stringify(d)}`);
@@ -187,6 +189,16 @@ try {
   const out = execFileSync(lsys, ["build", join(dir, "palm.toml"), "-o", join(dir, "palm.glb"), "--stats"], { encoding: "utf8" });
   const stats = JSON.parse(out.slice(out.indexOf("{")));
   check("lsys build runs the saved scene: the page's seeds and messages", stats.seeds === s.seeds_run && stats.messages === s.messages, `${out.trim()} vs ${s.seeds_run}/${s.messages}`);
+
+  // A scene without links or seeds tables (the server leaves empty tables
+  // out, as the file does) opens and draws.
+  const loads = await count("loads");
+  await page.selectOption("#open", "bridge.toml");
+  await page.waitForFunction((l) => window.guidesPage.loads > l && !window.guidesPage.busy(), loads, { timeout: 60000 });
+  s = await state();
+  const drawn = await page.evaluate(() => document.querySelectorAll("#plane .guide").length);
+  check("a scene without links opens: the bridge's guides are drawn and its seeds grow", !s.problem && s.seeds_run === 15 && s.triangles > 0 && drawn === s.scene.guide.length,
+    `${drawn} drawn, ${s.scene.guide.length} guides, ${s.seeds_run} seeds, problem ${JSON.stringify(s.problem)}`);
 } catch (e) {
   check("the test ran to its end", false, e.stack);
 } finally {
