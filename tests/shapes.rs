@@ -272,3 +272,52 @@ fn stats_report_default_and_user_attributes() {
     lines.push(format!("primitives {}", json["primitives"]));
     insta::assert_snapshot!(lines.join("\n"));
 }
+
+/// A hole whose own z is a block's x (a window painted on a side wall:
+/// the page turns its scope to face the left view) cuts through the
+/// block's x when it goes all the way through it; one that does not go
+/// through along that axis is reported and left alone, not cut along
+/// the block's z (which would slice the block end to end).
+#[test]
+fn a_hole_cuts_along_its_own_depth() {
+    let side = "derivation length: 1\nAxiom: [@M(0,0,0) @Scope(0.3,3,6) @Block] [@M(0.3,1,1) /(-90) @Scope(2,1,0.3) @Hole]\n";
+    let scene = lsys::Grammar::from_str("side.lsys", side)
+        .unwrap()
+        .build(1)
+        .unwrap();
+    assert_eq!(
+        scene.constraints(),
+        ["hole (module 10, at 0.3, 1, 1) intersects block (module 4): cut an opening 1 x 2 at (1, 1) of its face, through its depth 0.3"]
+    );
+    // The same hole in a block 6 long in x: it does not go through.
+    let long = side.replace("@Scope(0.3,3,6) @Block", "@Scope(6,3,6) @Block");
+    let scene = lsys::Grammar::from_str("long.lsys", &long)
+        .unwrap()
+        .build(1)
+        .unwrap();
+    assert_eq!(scene.constraints().len(), 1);
+    assert!(
+        scene.constraints()[0].contains("across another of its axes"),
+        "{:?}",
+        scene.constraints()
+    );
+}
+
+/// The painting page's examples (seed 004, docs/studio.md): every window
+/// and door, painted in four views, cuts the wall it is on and only that,
+/// through the wall's thickness.
+#[test]
+fn the_painted_examples_cut_each_hole_through_one_wall() {
+    for (file, holes) in [
+        ("examples/painting/veranda.lsys", 3),
+        ("examples/painting/villa.lsys", 11),
+    ] {
+        let b = build(file, &[]);
+        let cuts: Vec<&String> = b.drawing.constraints.iter().collect();
+        assert_eq!(cuts.len(), holes, "{file}: {cuts:#?}");
+        assert!(
+            cuts.iter().all(|c| c.ends_with("through its depth 0.3")),
+            "{file}: {cuts:#?}"
+        );
+    }
+}

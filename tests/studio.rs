@@ -1107,3 +1107,120 @@ fn an_entrance_has_ratios_of_its_own() {
     assert_eq!(lintel(&s3, [2, 2]), side_above);
     h.stop();
 }
+
+#[test]
+fn the_painting_page_paints_builds_and_saves_sessions() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let painting = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/painting");
+    for f in ["house.rules", "villa.lsys"] {
+        std::fs::copy(painting.join(f), d.join(f)).unwrap();
+    }
+    std::fs::write(d.join("plain.lsys"), "Axiom: F\n").unwrap();
+    std::fs::write(d.join("photo.png"), b"\x89PNG\r\n\x1a\n").unwrap();
+    let h = studio(d);
+    let (code, _) = get(&h, "/api/paint/state");
+    assert_eq!(code, 404, "no session before one is opened");
+    let (_, list) = get(&h, "/api/paintings");
+    assert_eq!(
+        list["sessions"],
+        json!(["villa.lsys"]),
+        "only painting sessions"
+    );
+    assert_eq!(list["rules"], json!(["house.rules"]));
+    assert_eq!(list["photos"], json!(["photo.png"]));
+
+    // The villa opens as it builds from the command line.
+    let (code, s) = post(&h, "/api/paint/open", json!({"path": "villa.lsys"}));
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(s["session"]["parts"].as_array().unwrap().len(), 16);
+    assert_eq!(s["holes"].as_array().unwrap().len(), 11);
+    assert_eq!(s["constraints"].as_array().unwrap().len(), 11);
+    let (code, glb) = request(&h, "GET", "/api/paint/model.glb", &[], b"");
+    assert_eq!((code, &glb[..4]), (200, &b"glTF"[..]));
+
+    // A new session: a wall, then a window painted 0.1 below the wall's
+    // top, which the correction moves onto it, through the wall.
+    let (code, s) = post(
+        &h,
+        "/api/paint/open",
+        json!({"path": "new.lsys", "rules": "house.rules"}),
+    );
+    assert_eq!(code, 200, "{s}");
+    let paint = |body: Value| post(&h, "/api/paint/paint", body);
+    let (code, _) = paint(json!({"view": "front", "rect": [0, 0, 6, 3], "component": "Wall"}));
+    assert_eq!(code, 200);
+    let (code, s) = paint(json!({"view": "front", "rect": [1, 1, 2, 2.9], "component": "Window"}));
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(
+        s["painted"]["corrections"],
+        json!(["its top edge moved by 0.1 to meet Wall 1's top edge"])
+    );
+    assert_eq!(s["session"]["parts"][1]["max"], json!([2.0, 3.0, 0.3]));
+    assert_eq!(
+        s["holes"],
+        json!(["Window 2 intersects Wall 1: a hole 1 x 2 is cut through it"])
+    );
+    assert_eq!(s["constraints"].as_array().unwrap().len(), 1);
+
+    // Refused: an unknown component, a rectangle too small, no view, a
+    // part that is not there; the session is kept.
+    for (bad, says) in [
+        (
+            json!({"view": "front", "rect": [0, 0, 1, 1], "component": "Tower"}),
+            "no component `Tower`",
+        ),
+        (
+            json!({"view": "front", "rect": [0, 0, 0.001, 1], "component": "Wall"}),
+            "too small",
+        ),
+        (
+            json!({"view": "side", "rect": [0, 0, 1, 1], "component": "Wall"}),
+            "a view is",
+        ),
+        (
+            json!({"part": 9, "view": "left", "rect": [0, 0, 1, 1]}),
+            "no part 10",
+        ),
+    ] {
+        let (code, r) = paint(bad);
+        assert_eq!(code, 422, "{r}");
+        assert!(r["refused"].to_string().contains(says), "{r}");
+        assert_eq!(r["state"]["session"]["parts"].as_array().unwrap().len(), 2);
+    }
+    let mut session = s["session"].clone();
+    session["threshold"] = json!(-1);
+    let (code, _) = post(&h, "/api/paint/edit", json!({ "session": session }));
+    assert_eq!(code, 422, "a negative threshold is refused");
+
+    // Saved beside its rules, rebuilt by `lsys build`; a file that is not
+    // a session, or outside the folder, is never replaced.
+    let (code, r) = post(&h, "/api/paint/save", json!({}));
+    assert_eq!(code, 200, "{r}");
+    let text = std::fs::read_to_string(d.join("new.lsys")).unwrap();
+    let scene = lsys::Grammar::from_path(d.join("new.lsys"))
+        .unwrap()
+        .build(16)
+        .unwrap();
+    assert_eq!(scene.constraints().len(), 1, "{text}");
+    for (path, code_wanted) in [
+        ("plain.lsys", 409),
+        ("house.rules", 403),
+        ("../out.lsys", 403),
+    ] {
+        let (code, r) = post(&h, "/api/paint/save", json!({ "path": path }));
+        assert_eq!(code, code_wanted, "{path}: {r}");
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join("plain.lsys")).unwrap(),
+        "Axiom: F\n"
+    );
+    // Photos only from the folder, only images.
+    let (code, _) = request(&h, "GET", "/api/paint/photo?path=photo.png", &[], b"");
+    assert_eq!(code, 200);
+    for bad in ["house.rules", "../photo.png"] {
+        let (code, _) = request(&h, "GET", &format!("/api/paint/photo?path={bad}"), &[], b"");
+        assert_eq!(code, 403, "{bad}");
+    }
+    h.stop();
+}

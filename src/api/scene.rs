@@ -81,6 +81,13 @@ impl Scene {
             .map(|(lo, hi)| (lo.to_array(), hi.to_array()))
     }
 
+    /// What the shape grammars' constraint rules did, one sentence each
+    /// in the order they applied (`@Hole`'s openings, `@Snap`'s moves;
+    /// docs/shapes.md); empty for other models.
+    pub fn constraints(&self) -> &[String] {
+        &self.built.drawing.constraints
+    }
+
     /// The internal meshes, materials and instances, for the crate's own
     /// tests (`lsys::internals`); no API.
     #[doc(hidden)]

@@ -17,6 +17,10 @@
 //! [`batch`] runs many jobs from a manifest (`lsys batch`): each item is
 //! the job `lsys build` would run, written into one folder with an index.
 //!
+//! `painting` turns rectangles painted in five views into parts of a
+//! painting session, and `painting_file` writes the session as the
+//! `.lsys` file `lsys build` rebuilds (the studio's painting page).
+//!
 //! [`session`] is the other kind of job: an interactive one (the REPL's),
 //! a grammar kept as text that is edited, stepped and inspected one input
 //! at a time.
@@ -27,6 +31,8 @@ mod guided;
 mod infer;
 mod job;
 mod pailou;
+mod painting;
+mod painting_file;
 mod run;
 mod scene_edit;
 pub mod session;
@@ -43,6 +49,8 @@ pub use infer::{
 };
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
+pub use painting::{holes, paint, reshape, Component, PaintError, PaintView, Painted, Part};
+pub use painting_file::{PaintDoc, PaintFileError, Photo};
 pub use run::{model_bytes, run, Done, Event, Failure, Reason};
 pub use scene_edit::{check_scene, drag_guides, Drag, DragError, SceneDoc, SceneRun};
 pub use stats::ms;
@@ -66,6 +74,19 @@ pub use crate::pailou::{Entrance, GraphDocument, Roof};
 pub use crate::build::WORKER_STACK;
 pub use crate::diag::render as render_diagnostic;
 pub use crate::export::atomic::{remove_temporaries, write_file, OutputIsInput};
+
+/// The painting palette of a compiled session: its `DEPTH_X` defines
+/// (painting.rs).
+pub fn painting_palette(grammar: &crate::Grammar) -> Vec<Component> {
+    let defines: Vec<(String, f64)> = grammar
+        .comp
+        .program
+        .defines
+        .iter()
+        .filter_map(|d| Some((d.name.clone(), d.value?)))
+        .collect();
+    painting::palette(&defines)
+}
 
 /// Refuses `output` when it is a file `grammar` was read from (the
 /// grammar or a file it includes): `lsys derive g.lsys -o g.lsys`.

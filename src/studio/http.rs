@@ -160,6 +160,7 @@ fn route(
         (Method::Get, "/") | (Method::Get, "/index.html") => page(sh, "index.html"),
         (Method::Get, "/drawing") | (Method::Get, "/drawing.html") => page(sh, "drawing.html"),
         (Method::Get, "/guides") | (Method::Get, "/guides.html") => page(sh, "guides.html"),
+        (Method::Get, "/paint") | (Method::Get, "/paint.html") => page(sh, "paint.html"),
         (Method::Get, p) if p.starts_with("/assets/") => asset(sh, &p[1..]),
         (Method::Get, "/api/state") => json_reply(200, state(sh)),
         (Method::Get, "/api/model.glb") => match model_bytes(sh) {
@@ -232,6 +233,9 @@ fn route(
         (Method::Post, "/api/save") => save(sh, json_body()),
         (_, p) if p.starts_with("/api/drawing") => {
             super::drawing_routes::route(method, p, query, body, sh)
+        }
+        (_, p) if p.starts_with("/api/paint") => {
+            super::painting_routes::route(method, p, query, body, sh)
         }
         (_, p) if p.starts_with("/api/guides") || p == "/api/scenes" => {
             super::guides_routes::route(method, p, body, sh)

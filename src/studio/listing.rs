@@ -49,3 +49,33 @@ fn list(dir: &Path, prefix: &str, depth: usize, endings: &[&str], out: &mut Vec<
         }
     }
 }
+
+/// A file of the folder a page asked for by its relative path `rel`: one
+/// of `endings`, inside the folder (links resolved), at most `max` bytes.
+/// The refusal is an HTTP status and a sentence for the page.
+pub fn folder_file(
+    root: &Path,
+    rel: &str,
+    endings: &[&str],
+    max: u64,
+) -> Result<(std::path::PathBuf, Vec<u8>), (u16, String)> {
+    if !endings.iter().any(|e| rel.ends_with(e)) {
+        return Err((403, format!("{rel}: not a {} file", endings.join(" or "))));
+    }
+    let full = super::confine(root, rel).map_err(|e| (403, e.to_string()))?;
+    let len = std::fs::metadata(&full)
+        .map_err(|e| (404, format!("cannot read {rel}: {e}")))?
+        .len();
+    if len > max {
+        return Err((
+            403,
+            format!(
+                "{rel} is {} MiB; the studio reads at most {} MiB",
+                len >> 20,
+                max >> 20
+            ),
+        ));
+    }
+    let bytes = std::fs::read(&full).map_err(|e| (404, format!("cannot read {rel}: {e}")))?;
+    Ok((full, bytes))
+}

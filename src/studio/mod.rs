@@ -13,7 +13,9 @@
 //! graph or grammar take it down (docs/studio.md). The drawing page
 //! (`drawing.rs`, its routes in `drawing_routes.rs`) reads elevation
 //! drawings into shape grammars beside whichever session is open; the
-//! guides page (`guides.rs`, `guides_routes.rs`) edits guided scenes.
+//! guides page (`guides.rs`, `guides_routes.rs`) edits guided scenes; the
+//! painting page (`painting.rs`, `painting_routes.rs`) paints parts in
+//! five views into a `.lsys` session of construction rules.
 
 mod drawing;
 mod drawing_routes;
@@ -24,6 +26,8 @@ mod http;
 mod listing;
 mod model;
 mod pailou;
+mod painting;
+mod painting_routes;
 mod reply;
 mod safety;
 
@@ -120,6 +124,8 @@ pub(crate) struct Shared {
     pub drawing: Mutex<Option<drawing::DrawingSession>>,
     /// The guides page's scene (`None` until one is opened).
     pub guides: Mutex<Option<guides::GuideSession>>,
+    /// The painting page's session (`None` until one is opened).
+    pub painting: Mutex<Option<painting::PaintSession>>,
     /// Bumped on every change of the model; waited on by event streams.
     pub version: Mutex<u64>,
     pub changed: Condvar,
@@ -192,6 +198,7 @@ pub fn start(config: Config) -> Result<Handle, String> {
         session: Mutex::new(session),
         drawing: Mutex::new(None),
         guides: Mutex::new(None),
+        painting: Mutex::new(None),
         max_triangles: budget,
         version: Mutex::new(1),
         changed: Condvar::new(),

@@ -17,7 +17,7 @@ use glam::{DVec3, Vec3};
 use super::chinese_roof::RoofShape;
 use super::drawing::Polygon;
 use super::frame::Frame;
-use super::scope::{axes, num};
+use super::scope::{axes, frame_from, num};
 use crate::lang::scope_commands::Primitive;
 
 /// A primitive or a hole with its scope.
@@ -66,8 +66,9 @@ pub fn build(solids: &[Solid], holes: &[Solid]) -> (Vec<Polygon>, Vec<String>) {
         }
         match s.kind {
             Primitive::Block => {
-                let openings = openings(s, holes, &mut report);
-                block(s, &openings, &mut polys);
+                let b = turned_to_cut(s, holes);
+                let openings = openings(&b, holes, &mut report);
+                block(&b, &openings, &mut polys);
             }
             Primitive::Cylinder => cylinder(s, &mut polys),
             Primitive::Prism => prism(s, &mut polys),
@@ -91,43 +92,98 @@ pub fn kind_name(k: Primitive) -> &'static str {
     }
 }
 
-/// The openings that `holes` cut in block `b`, with a report line each.
+/// `b` turned so that its z axis is the one the first hole that goes
+/// through it along its x or y cuts along (the hole's own z: a window
+/// painted on a side wall cuts through the wall's x), the same box with
+/// its axes cycled; `b` itself when no hole does (holes cut along z, as
+/// they always have).
+fn turned_to_cut(b: &Solid, holes: &[Solid]) -> Solid {
+    let [bx, by, bz] = axes(&b.frame);
+    // A face (no depth) is cut through its own z only.
+    if b.size.z.abs() < EPS {
+        return *b;
+    }
+    // The first hole that meets the block and goes through it along
+    // the block's x or y, its own z being that axis.
+    let along = |h: &Solid| {
+        let (lo, hi) = meets(b, h)?;
+        let hz = axes(&h.frame)[2];
+        [bx, by].iter().enumerate().find_map(|(k, a)| {
+            let through = lo[k] <= EPS && hi[k] >= b.size[k] - EPS;
+            (hz.dot(*a).abs() > 1.0 - 1e-6 && through).then_some(k)
+        })
+    };
+    let Some(k) = holes.iter().filter(|h| h.seq > b.seq).find_map(along) else {
+        return *b;
+    };
+    let mut t = *b;
+    let s = b.size;
+    // Cycling the axes keeps the frame right-handed.
+    if k == 0 {
+        t.frame = frame_from(&b.frame, b.frame.pos, by, bz, bx);
+        t.size = DVec3::new(s.y, s.z, s.x);
+    } else {
+        t.frame = frame_from(&b.frame, b.frame.pos, bz, bx, by);
+        t.size = DVec3::new(s.z, s.x, s.y);
+    }
+    t
+}
+
+/// The box of hole `h` in block `b`'s coordinates, when they meet.
+fn meets(b: &Solid, h: &Solid) -> Option<(DVec3, DVec3)> {
+    let [bx, by, bz] = axes(&b.frame);
+    let [hx, hy, hz] = axes(&h.frame);
+    let local = |p: DVec3| {
+        let d = p - b.frame.pos;
+        DVec3::new(d.dot(bx), d.dot(by), d.dot(bz))
+    };
+    let corners: Vec<DVec3> = (0..8)
+        .map(|k| {
+            let c = DVec3::new(
+                if k & 1 == 0 { 0.0 } else { h.size.x },
+                if k & 2 == 0 { 0.0 } else { h.size.y },
+                if k & 4 == 0 { 0.0 } else { h.size.z },
+            );
+            local(h.frame.pos + hx * c.x + hy * c.y + hz * c.z)
+        })
+        .collect();
+    let lo = corners.iter().fold(DVec3::INFINITY, |a, c| a.min(*c));
+    let hi = corners.iter().fold(DVec3::NEG_INFINITY, |a, c| a.max(*c));
+    let overlap = (0..3).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS)
+        || (h.size.z == 0.0
+            && lo.z >= -EPS
+            && hi.z <= b.size.z + EPS
+            && (0..2).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS));
+    overlap.then_some((lo, hi))
+}
+
+/// The openings that `holes` cut in block `b` (turned by
+/// [`turned_to_cut`]), with a report line each. A hole is cut when its
+/// axes are parallel to the block's and its z is the block's z; a hole
+/// at an angle, or cutting along another axis than the block's first
+/// hole, is reported and not cut.
 fn openings(b: &Solid, holes: &[Solid], report: &mut Vec<String>) -> Vec<Opening> {
     let [bx, by, bz] = axes(&b.frame);
     let mut out = Vec::new();
     for h in holes.iter().filter(|h| h.seq > b.seq) {
         let [hx, hy, hz] = axes(&h.frame);
-        // The hole's corners in the block's coordinates.
-        let local = |p: DVec3| {
-            let d = p - b.frame.pos;
-            DVec3::new(d.dot(bx), d.dot(by), d.dot(bz))
-        };
-        let corners: Vec<DVec3> = (0..8)
-            .map(|k| {
-                let c = DVec3::new(
-                    if k & 1 == 0 { 0.0 } else { h.size.x },
-                    if k & 2 == 0 { 0.0 } else { h.size.y },
-                    if k & 4 == 0 { 0.0 } else { h.size.z },
-                );
-                local(h.frame.pos + hx * c.x + hy * c.y + hz * c.z)
-            })
-            .collect();
-        let lo = corners.iter().fold(DVec3::INFINITY, |a, c| a.min(*c));
-        let hi = corners.iter().fold(DVec3::NEG_INFINITY, |a, c| a.max(*c));
-        let overlap = (0..3).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS)
-            || (h.size.z == 0.0
-                && lo.z >= -EPS
-                && hi.z <= b.size.z + EPS
-                && (0..2).all(|k| lo[k] < b.size[k] - EPS && hi[k] > EPS));
-        if !overlap {
+        let Some((lo, hi)) = meets(b, h) else {
             continue;
-        }
+        };
         let parallel = [hx, hy, hz]
             .iter()
             .all(|a| [bx, by, bz].iter().any(|c| a.dot(*c).abs() > 1.0 - 1e-6));
         if !parallel {
             report.push(format!(
                 "hole (module {}) meets block (module {}) at an angle: not cut (only holes parallel to the block are)",
+                h.module + 1,
+                b.module + 1
+            ));
+            continue;
+        }
+        if hz.dot(bz).abs() <= 1.0 - 1e-6 {
+            report.push(format!(
+                "hole (module {}) meets block (module {}) across another of its axes than its first hole: not cut (a block's openings go through one axis)",
                 h.module + 1,
                 b.module + 1
             ));

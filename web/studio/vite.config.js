@@ -1,6 +1,6 @@
 // The studio's front end: built into dist/, which `lsys studio` serves.
-// Three pages: the editor (index.html), the drawing page (drawing.html)
-// and the guides page (guides.html).
+// Four pages: the editor (index.html), the drawing page (drawing.html),
+// the guides page (guides.html) and the painting page (paint.html).
 import { fileURLToPath } from "node:url";
 
 const page = (name) => fileURLToPath(new URL(name, import.meta.url));
@@ -11,6 +11,6 @@ export default {
     outDir: "dist",
     emptyOutDir: true,
     chunkSizeWarningLimit: 1000,
-    rollupOptions: { input: { main: page("index.html"), drawing: page("drawing.html"), guides: page("guides.html") } },
+    rollupOptions: { input: { main: page("index.html"), drawing: page("drawing.html"), guides: page("guides.html"), paint: page("paint.html") } },
   },
 };

@@ -8,9 +8,9 @@
 // change (docs/studio.md, "The guides page").
 import { Viewer } from "./viewer.js";
 import { api } from "./api.js";
+import { el, Plane } from "./plane.js";
 
 const $ = (id) => document.getElementById(id);
-const NS = "http://www.w3.org/2000/svg";
 // What the browser tests read.
 // `busy()`: a drag, its last springs answer or an edit is still under way
 // (the browser test waits for it to be false before it reads the state).
@@ -23,7 +23,7 @@ const held = new Set();    // "g:k": vertices the springs hold
 let selected = null;       // {kind: "guide" | "link" | "seed", index}
 let sketch = [];           // the corners of a guide being drawn
 let picked = null;         // a link's first edge: {g, k}
-let box = [-5, -5, 5, 5];  // the world shown: x0, y0, x1, y1
+const plane = new Plane($("plane"), $("world"));
 let drag = null;           // the drag under way
 let version = 0;
 
@@ -54,39 +54,16 @@ function inside(p, pts) {
 }
 
 function fit() {
-  const pts = doc ? doc.guide.flatMap((g) => g.points).concat(doc.seeds.map((s) => s.position)) : [];
-  if (pts.length === 0) { box = [-5, -5, 5, 5]; return; }
-  let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
-  for (const [x, y] of pts) { x0 = Math.min(x0, x); y0 = Math.min(y0, y); x1 = Math.max(x1, x); y1 = Math.max(y1, y); }
-  const m = Math.max(x1 - x0, y1 - y0, 1) * 0.08;
-  box = [x0 - m, y0 - m, x1 + m, y1 + m];
+  plane.fit(doc ? doc.guide.flatMap((g) => g.points).concat(doc.seeds.map((s) => s.position)) : []);
 }
 
-// World units per screen pixel.
-function pixel() {
-  const svg = $("plane");
-  return Math.max((box[2] - box[0]) / (svg.clientWidth || 1), (box[3] - box[1]) / (svg.clientHeight || 1));
-}
-
-function at(e) {
-  const m = $("world").getScreenCTM().inverse();
-  const p = new DOMPoint(e.clientX, e.clientY).matrixTransform(m);
-  return [p.x, p.y];
-}
+const pixel = () => plane.pixel();
+const at = (e) => plane.at(e);
 
 // ---- drawing the plane -----------------------------------------------------
-function el(name, attrs, parent) {
-  const e = document.createElementNS(NS, name);
-  for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
-  if (parent) parent.appendChild(e);
-  return e;
-}
-
 function draw() {
-  const svg = $("plane"), w = $("world");
-  svg.setAttribute("viewBox", `${box[0]} ${-box[3]} ${box[2] - box[0]} ${box[3] - box[1]}`);
-  w.setAttribute("transform", "scale(1,-1)");
-  w.replaceChildren();
+  plane.clear();
+  const w = plane.world;
   if (!doc) return;
   const px = pixel(), s = page.state, regrown = new Set(s ? s.regrown || [] : []);
   if ($("show-drawing").checked && s && s.drawing) {

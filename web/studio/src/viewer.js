@@ -85,7 +85,9 @@ export class Viewer {
     this.scene.add(this.model);
     this.bounds = new THREE.Box3().setFromObject(this.model);
     this.resize();
-    if (!this.fitted) { this.view(firstView); this.fitted = true; }
+    // The camera is fitted to the first model with something in it (an
+    // empty one, a new session's, has no extent to fit).
+    if (!this.fitted && !this.bounds.isEmpty()) { this.view(firstView); this.fitted = true; }
     this.render();
     return meshes;
   }

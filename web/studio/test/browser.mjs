@@ -93,7 +93,15 @@ try {
     await waitLoads(k + 1);
     took.push(Date.now() - t0);
   };
-  const select = async (id) => { await page.click(`#graph g.node[data-id="${id}"]`); await page.waitForFunction((id) => window.studio.state.active === id, id); };
+  // A click on a node is a "select" edit even when it is active already,
+  // which draws the palette again: wait for that edit's answer, or a
+  // palette click right after lands on a button being replaced (CI lost
+  // the middle Toukung's click so).
+  const select = async (id) => {
+    const k = await page.evaluate(() => window.studio.edits);
+    await page.click(`#graph g.node[data-id="${id}"]`);
+    await page.waitForFunction(([id, k]) => window.studio.edits > k && window.studio.state.active === id, [id, k]);
+  };
   await select("L11");
   await add("middle_toukung");
   await add("eaves_roof");           // the new Toukung is active: the roof rests on it
