@@ -21,6 +21,7 @@ fn material(name: &str, rgb: [f32; 3]) -> Material {
     Material {
         name: name.into(),
         rgb,
+        texture: None,
     }
 }
 

@@ -1130,9 +1130,23 @@ fn the_painting_page_paints_builds_and_saves_sessions() {
     assert_eq!(list["rules"], json!(["house.rules"]));
     assert_eq!(list["photos"], json!(["photo.png"]));
 
-    // The villa opens as it builds from the command line.
+    // The villa without its photo: it opens, and its texture header is
+    // the located diagnostic; no model.
     let (code, s) = post(&h, "/api/paint/open", json!({"path": "villa.lsys"}));
     assert_eq!(code, 200, "{s}");
+    assert_eq!(s["current"], json!(false));
+    assert_eq!(s["diagnostics"][0]["code"], "lsys::resolve::bad_value");
+    assert!(s["diagnostics"][0]["message"]
+        .as_str()
+        .unwrap()
+        .contains("villa_front.png"));
+    assert_eq!(s["diagnostics"][0]["line"], json!(13));
+
+    // With it, the villa opens as it builds from the command line.
+    std::fs::copy(painting.join("villa_front.png"), d.join("villa_front.png")).unwrap();
+    let (code, s) = post(&h, "/api/paint/open", json!({"path": "villa.lsys"}));
+    assert_eq!(code, 200, "{s}");
+    assert_eq!(s["current"], json!(true), "{s}");
     assert_eq!(s["session"]["parts"].as_array().unwrap().len(), 16);
     assert_eq!(s["holes"].as_array().unwrap().len(), 11);
     assert_eq!(s["constraints"].as_array().unwrap().len(), 11);

@@ -136,6 +136,7 @@ module.exports = grammar({
       $.environment_header,
       $.dialect_header,
       $.colour_header,
+      $.texture_header,
       $.block_header,
     ),
 
@@ -165,6 +166,7 @@ module.exports = grammar({
     dialect_header: $ => seq(alias(hk(/[Dd]ialect/), $.keyword), alias($.name, $.dialect_name)),
     colour_header: $ => seq(alias(kw('colour', 'Colour', 'color', 'Color'), $.keyword), $._expression, ':', $.hex_colour),
     hex_colour: _ => /#[0-9a-fA-F]{6}/,
+    texture_header: $ => seq(alias(kw('texture', 'Texture'), $.keyword), $._expression, ':', field('path', $.string)),
     // Wins over the paper's form `Start : { ...`, which would also parse.
     block_header: $ => prec.dynamic(10, seq(
       alias(hk(/[Ss]tart/, /[Ss]tartEach/, /[Ee]nd/, /[Ee]ndEach/, /[Dd]efine/), $.keyword),

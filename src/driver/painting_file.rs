@@ -17,6 +17,11 @@ pub struct PaintDoc {
     pub rules: String,
     /// The automatic correction's threshold.
     pub threshold: f64,
+    /// Whether each part's faces toward the view it was painted in show
+    /// the photo under that view (seed 004, §5.1): a `texture i:` header
+    /// per photo and `@Tex` with the part's crop.
+    #[serde(default)]
+    pub textures: bool,
     #[serde(default)]
     pub photos: Vec<Photo>,
     #[serde(default)]
@@ -49,6 +54,9 @@ impl PaintDoc {
              `// paint` lines are the page's. */\n",
         );
         s += &format!("// paint threshold {}\n", number(self.threshold));
+        if self.textures {
+            s += "// paint textures\n";
+        }
         for p in &self.photos {
             s += &format!(
                 "// paint photo {} {} {} {} {} {}\n",
@@ -61,14 +69,32 @@ impl PaintDoc {
             );
         }
         s += &format!(
-            "\nderivation length: {STEPS}\n#include \"{}\"\n\nAxiom:",
+            "\nderivation length: {STEPS}\n#include \"{}\"\n",
             self.rules
         );
+        // The photos as textures, numbered in order.
+        let textured: Vec<&Photo> = if self.textures {
+            self.photos.iter().collect()
+        } else {
+            Vec::new()
+        };
+        for (k, p) in textured.iter().enumerate() {
+            s += &format!("texture {}: \"{}\"\n", k + 1, p.file);
+        }
+        s += "\nAxiom:";
         for p in &self.parts {
             let (corner, turn, size) = p.scope();
             let three = |v: [f64; 3]| v.map(number).join(", ");
+            let tex = textured
+                .iter()
+                .position(|ph| ph.view == p.view)
+                .map(|k| {
+                    let crop = crop(&p.rect(p.view), &textured[k].rect);
+                    format!(" @Tex({}, {})", k + 1, crop.map(number).join(", "))
+                })
+                .unwrap_or_default();
             s += &format!(
-                "\n  [@M({}) {turn}@Scope({}) {}]  // paint {}",
+                "\n  [@M({}) {turn}@Scope({}){tex} {}]  // paint {}",
                 three(corner),
                 three(size),
                 p.component,
@@ -86,6 +112,7 @@ impl PaintDoc {
         let mut doc = PaintDoc {
             rules: String::new(),
             threshold: 0.0,
+            textures: false,
             photos: Vec::new(),
             parts: Vec::new(),
         };
@@ -107,7 +134,11 @@ impl PaintDoc {
                 in_comment = !t.contains("*/");
                 continue;
             }
-            if let Some(rest) = t.strip_prefix("// paint threshold ") {
+            if t.trim_end() == "// paint textures" {
+                doc.textures = true;
+            } else if t.starts_with("texture ") {
+                // Written from the photos.
+            } else if let Some(rest) = t.strip_prefix("// paint threshold ") {
                 doc.threshold = rest
                     .trim()
                     .parse()
@@ -161,6 +192,20 @@ impl PaintDoc {
     }
 }
 
+/// Where rectangle `r` lies in the photo stretched over `photo` (both
+/// `[u0, v0, u1, v1]` in one view): `@Tex`'s crop, 0..1 from the photo's
+/// bottom left (outside it where the part reaches past the photo).
+fn crop(r: &[f64; 4], photo: &[f64; 4]) -> [f64; 4] {
+    let w = (photo[2] - photo[0]).max(1e-9);
+    let h = (photo[3] - photo[1]).max(1e-9);
+    [
+        (r[0] - photo[0]) / w,
+        (r[1] - photo[1]) / h,
+        (r[2] - photo[0]) / w,
+        (r[3] - photo[1]) / h,
+    ]
+}
+
 /// One axiom line: `[@M(x, y, z) TURN @Scope(sx, sy, sz) Name]  // paint
 /// VIEW`, where TURN is the view's ([`PaintView::turn`]).
 fn part(t: &str) -> Option<Part> {
@@ -171,6 +216,11 @@ fn part(t: &str) -> Option<Part> {
     let rest = rest.trim_start().strip_prefix(view.turn().trim())?;
     let rest = rest.trim_start().strip_prefix("@Scope(")?;
     let (size, name) = rest.split_once(')')?;
+    // `@Tex(...)` is written from the photos.
+    let name = match name.trim_start().strip_prefix("@Tex(") {
+        Some(tex) => tex.split_once(')')?.1,
+        None => name,
+    };
     let three = |s: &str| -> Option<[f64; 3]> {
         let v: Vec<f64> = s
             .split(',')
@@ -209,6 +259,7 @@ mod tests {
         PaintDoc {
             rules: "house.rules".into(),
             threshold: 0.25,
+            textures: true,
             photos: vec![Photo {
                 view: PaintView::Front,
                 file: "villa.png".into(),
@@ -245,9 +296,9 @@ mod tests {
     fn a_line_that_is_no_part_is_named() {
         let text = doc()
             .to_lsys()
-            .replace("@Scope(10, 3.2, 6) Wall", "@Scope(10, 3.2) Wall");
+            .replace("@Scope(10, 3.2, 6) @Tex", "@Scope(10, 3.2) @Tex");
         let e = PaintDoc::from_lsys(&text).unwrap_err();
-        assert_eq!((e.line, e.col), (14, 3));
+        assert_eq!((e.line, e.col), (16, 3));
         let text = doc().to_lsys().replace("#include", "// #include");
         assert_eq!(PaintDoc::from_lsys(&text).unwrap_err().line, 1);
     }

@@ -39,6 +39,7 @@ pub fn write_obj_only(scene: &Scene, mtl_file_name: &str, obj: &mut dyn Write) -
     let mut w = MeshWriter {
         out: &mut out,
         next: 1,
+        next_uv: 1,
         normals: Vec::new(),
     };
     if scene.strokes.iter().any(|s| !s.mesh.is_empty()) {
@@ -71,6 +72,9 @@ struct MeshWriter<'w> {
     /// The 1-based number of the next vertex; positions and normals are
     /// written in pairs, so one number serves both.
     next: u64,
+    /// The 1-based number of the next texture coordinate (textured meshes
+    /// only have them).
+    next_uv: u64,
     /// Scratch space for one mesh's normals, reused across meshes.
     normals: Vec<Vec3>,
 }
@@ -116,11 +120,30 @@ impl MeshWriter<'_> {
         // corners to keep their front faces in front.
         let flip = linear.determinant() < 0.0;
         let next = self.next;
-        lines(self.out, &mesh.indices, 3, |t, out| {
-            let [a, b, c] = [t[0], t[1], t[2]].map(|i| next + u64::from(i));
-            let (b, c) = if flip { (c, b) } else { (b, c) };
-            writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}")
-        })?;
+        if mesh.uvs.len() == mesh.positions.len() && !mesh.uvs.is_empty() {
+            // A textured mesh: OBJ's v runs up the image, glTF's down.
+            lines(self.out, &mesh.uvs, 1, |t, out| {
+                writeln!(out, "vt {} {}", t[0].x, 1.0 - t[0].y)
+            })?;
+            let uv = self.next_uv;
+            lines(self.out, &mesh.indices, 3, |t, out| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| next + u64::from(i));
+                let [ta, tb, tc] = [t[0], t[1], t[2]].map(|i| uv + u64::from(i));
+                let ((b, tb), (c, tc)) = if flip {
+                    ((c, tc), (b, tb))
+                } else {
+                    ((b, tb), (c, tc))
+                };
+                writeln!(out, "f {a}/{ta}/{a} {b}/{tb}/{b} {c}/{tc}/{c}")
+            })?;
+            self.next_uv += mesh.uvs.len() as u64;
+        } else {
+            lines(self.out, &mesh.indices, 3, |t, out| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| next + u64::from(i));
+                let (b, c) = if flip { (c, b) } else { (b, c) };
+                writeln!(out, "f {a}//{a} {b}//{b} {c}//{c}")
+            })?;
+        }
         self.next += mesh.positions.len() as u64;
         Ok(())
     }
@@ -219,6 +242,11 @@ fn write_mtl(scene: &Scene, names: &[String], mtl: &mut dyn Write) -> io::Result
             out,
             "\nnewmtl {name}\nKa 0 0 0\nKd {r} {g} {b}\nKs 0 0 0\nd 1\nillum 1"
         )?;
+        // The image by the name the grammar gives it: OBJ readers look for
+        // it beside the .mtl (copy it there; the GLB carries it inside).
+        if let Some(t) = m.texture.and_then(|t| scene.textures.get(t)) {
+            writeln!(out, "map_Kd {}", t.name)?;
+        }
     }
     out.flush()
 }
@@ -235,6 +263,7 @@ mod tests {
             scene.materials.push(Material {
                 name: name.into(),
                 rgb: [0.5; 3],
+                texture: None,
             });
         }
         assert_eq!(
@@ -255,11 +284,13 @@ mod tests {
                 .collect(),
             normals: vec![Vec3::Y; n],
             indices: (0..3 * n as u32).map(|i| i % n as u32).collect(),
+            uvs: Vec::new(),
         };
         let mut out = Vec::new();
         let mut w = MeshWriter {
             out: &mut out,
             next: 5,
+            next_uv: 1,
             normals: Vec::new(),
         };
         w.mesh("m", &mesh, Mat4::IDENTITY).unwrap();
@@ -282,6 +313,7 @@ mod tests {
         let mut w = MeshWriter {
             out: &mut out,
             next: 1,
+            next_uv: 1,
             normals: Vec::new(),
         };
         let e = w.mesh("m", &bad, Mat4::IDENTITY).unwrap_err();

@@ -92,6 +92,7 @@ pub fn place_and_clip(d: &Drawing, at: &Placement, guide: &[DVec2]) -> Drawing {
             out.polygons.push(crate::turtle::drawing::Polygon {
                 colour: p.colour,
                 points: pts,
+                uv: p.uv.clone(),
             });
         }
     }

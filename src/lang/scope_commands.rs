@@ -72,6 +72,10 @@ pub enum ScopeCmd {
     /// `@Snap(d)`: blocks drawn after this snap to earlier blocks' faces
     /// within d (0 switches it off).
     Snap,
+    /// `@Tex(n, u0, v0, u1, v1)`: texture n's crop projected along the
+    /// scope's z onto the faces of the blocks drawn after it that face
+    /// that way (`@Tex(0)` switches it off).
+    Texture,
 }
 
 /// A scope command's row: the same action in both dialects.
@@ -231,5 +235,12 @@ pub const SCOPE_COMMANDS: &[Command] = &[
         "",
         Snap,
         "later blocks snap to earlier blocks' faces within d (0: off)",
+    ),
+    row(
+        "@Tex",
+        (1, 5),
+        "the whole image",
+        Texture,
+        "project texture n's crop u0,v0,u1,v1 (0..1, v up) along the scope's z onto later blocks' faces that face it (0: off)",
     ),
 ];

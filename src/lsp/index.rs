@@ -259,7 +259,8 @@ impl Builder {
             | HeaderKind::Angle(e)
             | HeaderKind::Step(e)
             | HeaderKind::Width(e)
-            | HeaderKind::Colour(e, ..) => self.expr(e, &[], 0),
+            | HeaderKind::Colour(e, ..)
+            | HeaderKind::Texture(e, ..) => self.expr(e, &[], 0),
             HeaderKind::Module(ds) => {
                 for d in ds {
                     self.push(d.name.span, Kind::Module, &d.name.name, true, 0);

@@ -57,6 +57,8 @@ struct Builder<'a> {
     colour_materials: FxHashMap<u32, usize>,
     /// Material index -> index in `scene.strokes`.
     stroke_of: FxHashMap<usize, usize>,
+    /// (colour, `texture i:` index) -> material index.
+    textured: FxHashMap<(u32, u32), usize>,
 }
 
 impl Builder<'_> {
@@ -65,7 +67,11 @@ impl Builder<'_> {
             return m;
         }
         let (name, rgb) = self.palette.colour(colour);
-        let wanted = Material { name, rgb };
+        let wanted = Material {
+            name,
+            rgb,
+            texture: None,
+        };
         // A grammar component may have brought the same colour already.
         let m = match self.scene.materials.iter().position(|m| *m == wanted) {
             Some(m) => m,
@@ -76,6 +82,47 @@ impl Builder<'_> {
         };
         self.colour_materials.insert(colour, m);
         m
+    }
+
+    /// The mesh of `colour` under texture `index` (`texture i:`), its
+    /// material made on first use.
+    fn textured_mesh(&mut self, program: &Program, colour: u32, index: u32) -> &mut TriMesh {
+        let material = match self.textured.get(&(colour, index)) {
+            Some(&m) => m,
+            None => {
+                // The turtle checked that the header exists.
+                let t = program
+                    .turtle
+                    .textures
+                    .iter()
+                    .find(|t| t.index == index as usize)
+                    .expect("a @Tex names a texture header");
+                let texture = match self.scene.textures.iter().position(|s| s.index == t.index) {
+                    Some(k) => k,
+                    None => {
+                        self.scene.textures.push(t.clone());
+                        self.scene.textures.len() - 1
+                    }
+                };
+                let (name, rgb) = self.palette.colour(colour);
+                self.scene.materials.push(Material {
+                    name: format!("{name}/texture{index}"),
+                    rgb,
+                    texture: Some(texture),
+                });
+                let m = self.scene.materials.len() - 1;
+                self.textured.insert((colour, index), m);
+                m
+            }
+        };
+        let k = *self.stroke_of.entry(material).or_insert_with(|| {
+            self.scene.strokes.push(Stroke {
+                material,
+                mesh: TriMesh::default(),
+            });
+            self.scene.strokes.len() - 1
+        });
+        &mut self.scene.strokes[k].mesh
     }
 
     fn stroke_mesh(&mut self, colour: u32) -> &mut TriMesh {
@@ -111,6 +158,7 @@ pub fn assemble_scene(
         scene: Scene::default(),
         colour_materials: FxHashMap::default(),
         stroke_of: FxHashMap::default(),
+        textured: FxHashMap::default(),
     };
     let mut triangles = 0usize;
     let mut check = |added: usize| {
@@ -168,9 +216,12 @@ pub fn assemble_scene(
         check(added)?;
     }
     for p in &drawing.polygons {
-        let mesh = b.stroke_mesh(p.colour);
+        let mesh = match &p.uv {
+            Some(uv) => b.textured_mesh(program, p.colour, uv.texture),
+            None => b.stroke_mesh(p.colour),
+        };
         let before = mesh.triangle_count();
-        shapes::polygon(&p.points, mesh);
+        shapes::polygon_uv(&p.points, p.uv.as_ref().map(|uv| &uv.coords[..]), mesh);
         let added = mesh.triangle_count() - before;
         check(added)?;
     }

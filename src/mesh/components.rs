@@ -266,6 +266,7 @@ pub fn parse_obj(
         materials.push(Material {
             name: format!("{name}/{}", m.name),
             rgb: rgb.map(|c| c.clamp(0.0, 1.0)),
+            texture: None,
         });
     }
     let meshes = models.into_iter().map(|model| {

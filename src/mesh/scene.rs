@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use glam::{Mat3, Mat4, Vec3};
+use glam::{Mat3, Mat4, Vec2, Vec3};
 
 pub use super::component::{Component, Later, Nested};
 
@@ -16,6 +16,9 @@ pub struct TriMesh {
     pub normals: Vec<Vec3>,
     /// Three indices per triangle, counter-clockwise seen from the front.
     pub indices: Vec<u32>,
+    /// Texture coordinates, one per vertex, in a textured material's mesh
+    /// (glTF's: (0, 0) the image's top left); empty in every other.
+    pub uvs: Vec<Vec2>,
 }
 
 impl TriMesh {
@@ -39,6 +42,12 @@ impl TriMesh {
         i
     }
 
+    /// Adds a textured vertex and returns its index.
+    pub fn vertex_uv(&mut self, position: Vec3, normal: Vec3, uv: Vec2) -> u32 {
+        self.uvs.push(uv);
+        self.vertex(position, normal)
+    }
+
     pub fn triangle(&mut self, a: u32, b: u32, c: u32) {
         self.indices.extend_from_slice(&[a, b, c]);
     }
@@ -48,6 +57,7 @@ impl TriMesh {
         let base = self.positions.len() as u32;
         self.positions.extend_from_slice(&other.positions);
         self.normals.extend_from_slice(&other.normals);
+        self.uvs.extend_from_slice(&other.uvs);
         self.indices.extend(other.indices.iter().map(|i| i + base));
     }
 
@@ -107,6 +117,9 @@ pub fn bounds_from(
 pub struct Material {
     pub name: String,
     pub rgb: [f32; 3],
+    /// A texture of [`Scene::textures`] over the colour (`@Tex`): exporters
+    /// that carry images draw it, the others the colour.
+    pub texture: Option<usize>,
 }
 
 /// One piece of a component with a single material.
@@ -143,6 +156,9 @@ pub struct Stroke {
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     pub materials: Vec<Material>,
+    /// The images textured materials name (`texture i:` headers that a
+    /// `@Tex` used), in order of first use.
+    pub textures: Vec<crate::resolve::ir::Texture>,
     pub components: Vec<Component>,
     pub instances: Vec<Instance>,
     /// At most one entry per material, in order of first use.
@@ -338,6 +354,7 @@ mod tests {
         s.materials.push(Material {
             name: "m".into(),
             rgb: [1.0, 0.0, 0.0],
+            texture: None,
         });
         s.components.push(Component::new(
             "B",

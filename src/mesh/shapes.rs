@@ -4,7 +4,7 @@
 
 use std::f32::consts::{PI, TAU};
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::scene::TriMesh;
 use crate::turtle::drawing::{Shape, ShapeKind};
@@ -81,6 +81,11 @@ fn annulus(c: Vec3, normal: Vec3, inner: f32, outer: f32, sides: u32, mesh: &mut
 /// Triangulates a (possibly concave) planar outline, both faces. Returns
 /// false when the outline is degenerate (collinear or self-overlapping).
 pub fn polygon(points: &[Vec3], mesh: &mut TriMesh) -> bool {
+    polygon_uv(points, None, mesh)
+}
+
+/// [`polygon`], with texture coordinates (one per point) when given.
+pub fn polygon_uv(points: &[Vec3], uvs: Option<&[Vec2]>, mesh: &mut TriMesh) -> bool {
     // Newell's method: a robust normal for a non-convex outline.
     let mut n = Vec3::ZERO;
     for (i, p) in points.iter().enumerate() {
@@ -108,8 +113,11 @@ pub fn polygon(points: &[Vec3], mesh: &mut TriMesh) -> bool {
     }
     for face in [n, -n] {
         let base = mesh.positions.len() as u32;
-        for &p in points {
-            mesh.vertex(p, face);
+        for (k, &p) in points.iter().enumerate() {
+            match uvs {
+                Some(uv) => mesh.vertex_uv(p, face, uv[k]),
+                None => mesh.vertex(p, face),
+            };
         }
         for t in tris.chunks_exact(3) {
             let [i, j, k] = [t[0], t[1], t[2]].map(|x| base + x as u32);

@@ -82,14 +82,19 @@ pub fn grammar_component(
     let inner = inner_search(name, input, search).map_err(fail)?;
     let scene = grammars.scene(name, input, &inner).map_err(fail)?;
     // The grammar's own colours become materials of the outer scene (the
-    // same colour once).
+    // same colour once). Its textures stay its own: a textured material
+    // keeps its name (so its mesh stays apart) and shows its colour.
     let map: Vec<usize> = scene
         .materials
         .iter()
-        .map(|m| match materials.iter().position(|x| x == m) {
+        .map(|m| Material {
+            texture: None,
+            ..m.clone()
+        })
+        .map(|m| match materials.iter().position(|x| *x == m) {
             Some(i) => i,
             None => {
-                materials.push(m.clone());
+                materials.push(m);
                 materials.len() - 1
             }
         })

@@ -104,6 +104,8 @@ pub enum HeaderKind {
     Environment(String, Span),
     /// `colour i: #rrggbb`, with the colour's span.
     Colour(Expr, String, Span),
+    /// `texture i: "file.png"`: the file name (unquoted) and its span.
+    Texture(Expr, String, Span),
 }
 
 #[derive(Clone, Debug, serde::Serialize, serde::Deserialize)]

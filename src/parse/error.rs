@@ -383,7 +383,7 @@ fn describe(rule: Rule) -> Option<&'static str> {
         | endlsystem_h | ring_h | homomorphism_h | homomorphism_kw | decomposition_h
         | decomposition_kw | module_h | module_kw | block_h | block_kw | angle_h | angle_kw
         | step_h | step_kw | width_h | width_kw | dialect_h | dialect_kw | colour_h | colour_kw
-        | environment_h | environment_kw => "a header statement",
+        | texture_h | texture_kw | environment_h | environment_kw => "a header statement",
         dialect_name => "a dialect name (`paper` or `cpfg`)",
         hex_colour => "a colour `#rrggbb`",
         module_decl => "a module declaration",

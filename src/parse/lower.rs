@@ -198,6 +198,12 @@ impl Lower<'_> {
                 let hex = next(&mut inner);
                 HeaderKind::Colour(index, hex.as_str().to_string(), self.span(&hex))
             }
+            Rule::texture_h => {
+                let index = self.expr(next(&mut inner))?;
+                let file = next(&mut inner);
+                let name = file.as_str().trim_matches('"').to_string();
+                HeaderKind::Texture(index, name, self.span(&file))
+            }
             other => unreachable!("statement child {other:?} is not a header"),
         };
         Ok(Header {

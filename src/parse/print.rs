@@ -281,6 +281,9 @@ fn dump_item(out: &mut String, item: &Item) {
                 HeaderKind::Colour(i, hex, _) => {
                     let _ = write!(out, "colour {i} {hex}");
                 }
+                HeaderKind::Texture(i, file, _) => {
+                    let _ = write!(out, "texture {i} {file:?}");
+                }
             }
         }
         Item::Production(p) => {

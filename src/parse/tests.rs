@@ -93,6 +93,7 @@ fn indented_headers_end_a_successor() {
         "maxdepth_h",
         "seed_h",
         "step_h",
+        "texture_h",
         "width_h",
     ];
     let mut listed: Vec<&str> = without_colon.iter().map(|h| h.0).collect();

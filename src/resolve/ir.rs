@@ -375,6 +375,31 @@ impl TableDef {
     }
 }
 
+/// An image `texture i: "file"` names, read when the grammar is compiled.
+#[derive(Clone, PartialEq)]
+pub struct Texture {
+    pub index: usize,
+    /// The file name as written (the glTF image's name).
+    pub name: String,
+    /// `image/png` or `image/jpeg`, from the file's first bytes.
+    pub mime: &'static str,
+    pub bytes: std::sync::Arc<Vec<u8>>,
+}
+
+/// The bytes are not shown (a photograph is megabytes).
+impl std::fmt::Debug for Texture {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "Texture({} {:?}, {}, {} bytes)",
+            self.index,
+            self.name,
+            self.mime,
+            self.bytes.len()
+        )
+    }
+}
+
 /// What the file's turtle headers say; `None` where a header is absent, so
 /// that the command line and the turtle's defaults can fill in.
 #[derive(Clone, Debug, Default)]
@@ -387,6 +412,8 @@ pub struct TurtleSettings {
     pub width: Option<f64>,
     /// `colour i: #rrggbb` entries, sRGB 0..=1, in file order.
     pub palette: Vec<(usize, [f32; 3])>,
+    /// `texture i: "file"` entries, in file order (resolve/textures.rs).
+    pub textures: Vec<Texture>,
     /// The turtle's first colour index (a cpfg view file's `initial
     /// color:`); 0 without it.
     pub colour: Option<u32>,

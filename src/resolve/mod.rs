@@ -19,6 +19,7 @@ mod reach;
 mod shadowing;
 mod statements;
 mod tables;
+mod textures;
 mod turtle_headers;
 mod view_functions;
 

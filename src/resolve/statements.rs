@@ -384,7 +384,8 @@ impl Resolver {
             | HeaderKind::Step(_)
             | HeaderKind::Width(_)
             | HeaderKind::Dialect(..)
-            | HeaderKind::Colour(..) => unreachable!("handled by turtle_header"),
+            | HeaderKind::Colour(..)
+            | HeaderKind::Texture(..) => unreachable!("handled by turtle_header"),
             HeaderKind::Block(kw, b) => self.hook_block(kw, b, order),
         }
     }

@@ -1,5 +1,5 @@
-//! Turtle headers: `angle:`, `step:`, `width:`, `dialect:` and `colour i:`
-//! statements -> [`TurtleSettings`]. Each is a constant; each may appear
+//! Turtle headers: `angle:`, `step:`, `width:`, `dialect:`, `colour i:` and
+//! `texture i:` (textures.rs) statements -> [`TurtleSettings`]. Each is a constant; each may appear
 //! once (a colour once per index).
 
 use super::error::ResolveError;
@@ -19,6 +19,19 @@ pub(super) struct TurtleHeaders {
     width: Option<Span>,
     dialect: Option<Span>,
     colours: Vec<(usize, Span)>,
+    textures: Vec<(usize, Span)>,
+}
+
+impl TurtleHeaders {
+    /// Where texture `i` was first given, if it was.
+    pub(super) fn texture_first(&self, i: usize) -> Option<Span> {
+        self.textures.iter().find(|(j, _)| *j == i).map(|&(_, s)| s)
+    }
+
+    pub(super) fn add_texture(&mut self, at: Span, t: super::ir::Texture) {
+        self.textures.push((t.index, at));
+        self.settings.textures.push(t);
+    }
 }
 
 impl Resolver {
@@ -86,6 +99,9 @@ impl Resolver {
                 }
                 t.colours.push((i, h.keyword));
                 t.settings.palette.push((i, parse_hex(hex)));
+            }
+            HeaderKind::Texture(index, file, span) => {
+                self.texture_header(h, index, file, *span, scope, t);
             }
             _ => return false,
         }

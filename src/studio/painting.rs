@@ -57,6 +57,7 @@ impl PaintSession {
                 PaintDoc {
                     rules: rules.to_string(),
                     threshold: THRESHOLD,
+                    textures: false,
                     photos: Vec::new(),
                     parts: Vec::new(),
                 }

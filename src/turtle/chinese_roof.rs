@@ -225,6 +225,7 @@ pub fn draw(s: &Solid, r: &RoofShape, polys: &mut Vec<Polygon>) {
         polys.push(Polygon {
             colour,
             points: pts.iter().map(|p| p.as_vec3()).collect(),
+            uv: None,
         });
     };
     let (sx, sz) = (s.size.x, s.size.z);

@@ -65,6 +65,7 @@ pub(super) fn sweep(
             d.polygons.push(Polygon {
                 colour,
                 points: vec![prev[i], prev[j], next[j], next[i]],
+                uv: None,
             });
         }
         prev = next;

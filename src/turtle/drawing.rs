@@ -47,6 +47,18 @@ pub struct Origin {
 pub struct Polygon {
     pub colour: u32,
     pub points: Vec<Vec3>,
+    /// Texture coordinates, one per point, when a `@Tex` projection
+    /// covers it (a block's face).
+    pub uv: Option<Box<Uv>>,
+}
+
+/// A polygon's place in a texture (solid.rs, `Projection`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Uv {
+    /// The `texture i:` index.
+    pub texture: u32,
+    /// glTF's coordinates: (0, 0) the image's top left.
+    pub coords: Vec<glam::Vec2>,
 }
 
 pub use crate::lang::commands::ShapeKind;

@@ -156,6 +156,20 @@ pub enum ShapeError {
         help: String,
     },
 
+    #[error("module {index} of the string, `{text}`, names texture {texture}, which no `texture {texture}:` header gives")]
+    #[diagnostic(code(lsys::turtle::no_texture))]
+    NoTexture {
+        index: usize,
+        text: String,
+        texture: usize,
+        #[source_code]
+        src: NamedSource<crate::source::SourceText>,
+        #[label("used here")]
+        written_by: Option<SourceSpan>,
+        #[help]
+        help: String,
+    },
+
     #[error("module {index} of the string, `{text}`, needs a scope, and none is set")]
     #[diagnostic(code(lsys::turtle::no_scope))]
     NoScope {

@@ -7,6 +7,7 @@ use glam::{DVec3, Vec3};
 use super::drawing::{Drawing, Polygon};
 use super::error::TurtleError;
 use super::frame::{Frame, SinCosCache};
+use super::solid::Projection;
 use crate::derive::store::{head_arity, head_sym, rest_of_branch};
 use crate::derive::ModuleStore;
 use crate::lang::commands::{lookup, Action};
@@ -104,6 +105,9 @@ pub(super) struct State {
     pub(super) scope: Option<DVec3>,
     /// `@Snap(d)`: blocks drawn now snap to earlier ones within d.
     pub(super) snap: f64,
+    /// `@Tex(...)`: the texture projected onto the blocks drawn now
+    /// (boxed: few models have one, and the state is copied at every `[`).
+    pub(super) texture: Option<Box<Projection>>,
     pub(super) width: f32,
     pub(super) colour: u32,
     pub(super) scale: f32,
@@ -262,6 +266,7 @@ fn interpret_with(
         state: State {
             scope: None,
             snap: 0.0,
+            texture: None,
             frame: if opts.profile.cpfg_turtle {
                 Frame::cpfg()
             } else {
@@ -507,6 +512,7 @@ impl Turtle<'_> {
                     self.drawing.polygons.push(Polygon {
                         colour: self.state.colour,
                         points,
+                        uv: None,
                     });
                 }
             }

@@ -11,7 +11,7 @@ use super::error::{source_of_symbol, ShapeError, TurtleError};
 use super::frame::Frame;
 use super::interp::{QueryFn, Turtle, Walk};
 use super::scope::{self, axes, num, Misfit, Role, Size};
-use super::solid::Solid;
+use super::solid::{Projection, Solid};
 use crate::derive::store::{head_sym, rest_of_branch};
 use crate::lang::scope_commands::{Primitive, ScopeCmd};
 use crate::resolve::ir::{SymId, OPEN_BRACKET};
@@ -108,6 +108,42 @@ impl Turtle<'_> {
             }
             ScopeCmd::Snap => {
                 self.state.snap = arg(0).abs();
+                Ok(next)
+            }
+            ScopeCmd::Texture => {
+                let n = arg(0);
+                if n < 0.5 {
+                    self.state.texture = None;
+                    return Ok(next);
+                }
+                let n = n.round() as usize;
+                if !self.program.turtle.textures.iter().any(|t| t.index == n) {
+                    let (src, span) = source_of_symbol(self.program, sym);
+                    return Err(ShapeError::NoTexture {
+                        index: index + 1,
+                        text: self.text(sym, args),
+                        texture: n,
+                        src,
+                        written_by: span,
+                        help: format!("add a header `texture {n}: \"image.png\"` naming an image beside the grammar"),
+                    }
+                    .into());
+                }
+                let crop = if args.len() >= 5 {
+                    [arg(1), arg(2), arg(3), arg(4)]
+                } else {
+                    [0.0, 0.0, 1.0, 1.0]
+                };
+                let [x, y, z] = axes(&frame);
+                self.state.texture = Some(Box::new(Projection {
+                    texture: n as u32,
+                    origin: frame.pos,
+                    x,
+                    y,
+                    z,
+                    size: [size.x, size.y],
+                    crop,
+                }));
                 Ok(next)
             }
             ScopeCmd::Hole => {
@@ -304,6 +340,7 @@ impl Turtle<'_> {
             seq: self.solids.len() + self.holes.len(),
             snap: self.state.snap,
             roof: None,
+            texture: self.state.texture.as_deref().copied(),
         }
     }
 

@@ -12,10 +12,10 @@
 //! leaving out the cells inside an opening, and each opening gets its four
 //! reveal faces. Holes at an angle to the block are reported, not cut.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 
 use super::chinese_roof::RoofShape;
-use super::drawing::Polygon;
+use super::drawing::{Polygon, Uv};
 use super::frame::Frame;
 use super::scope::{axes, frame_from, num};
 use crate::lang::scope_commands::Primitive;
@@ -39,6 +39,8 @@ pub struct Solid {
     pub snap: f64,
     /// What `@Roof`'s parameters ask for.
     pub roof: Option<RoofShape>,
+    /// `@Tex` in force when it was drawn (blocks only use it).
+    pub texture: Option<Projection>,
 }
 
 /// An opening in a block, in the block's x–y coordinates.
@@ -218,7 +220,70 @@ fn push(polys: &mut Vec<Polygon>, colour: u32, pts: &[DVec3]) {
     polys.push(Polygon {
         colour,
         points: pts.iter().map(|p| p.as_vec3()).collect::<Vec<Vec3>>(),
+        uv: None,
     });
+}
+
+/// A face of block or prism `s`: with texture coordinates when its `@Tex`
+/// projection looks at it (the face's outward normal within 75° of the
+/// projection's z: a block's face toward it, a roof's slope), else plain.
+fn face(polys: &mut Vec<Polygon>, s: &Solid, pts: &[DVec3]) {
+    push(polys, s.colour, pts);
+    let Some(t) = &s.texture else {
+        return;
+    };
+    // Newell's normal of the outline, as drawn (counter-clockwise outside).
+    let mut n = DVec3::ZERO;
+    for (i, p) in pts.iter().enumerate() {
+        let q = pts[(i + 1) % pts.len()];
+        n += DVec3::new(
+            (p.y - q.y) * (p.z + q.z),
+            (p.z - q.z) * (p.x + q.x),
+            (p.x - q.x) * (p.y + q.y),
+        );
+    }
+    if n.normalize_or_zero().dot(t.z) > FACING {
+        let last = polys.len() - 1;
+        polys[last].uv = Some(Box::new(Uv {
+            texture: t.texture,
+            coords: pts.iter().map(|&p| t.uv(p)).collect(),
+        }));
+    }
+}
+
+/// cos 75°: a face turned further from the projection is not textured.
+const FACING: f64 = 0.2588;
+
+/// `@Tex(n, u0, v0, u1, v1)`: texture n's crop laid over the scope it was
+/// given in, seen along the scope's z (a planar projection, CGA's
+/// `setupProjection` + `projectUV`): a point's place in the scope's x–y
+/// rectangle is its place in the crop. Past the scope's edges the image's
+/// edge pixels repeat (the exporters clamp).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projection {
+    pub texture: u32,
+    pub origin: DVec3,
+    pub x: DVec3,
+    pub y: DVec3,
+    pub z: DVec3,
+    /// The scope's width and height.
+    pub size: [f64; 2],
+    /// u0, v0, u1, v1 in the image, 0..1 from its bottom left.
+    pub crop: [f64; 4],
+}
+
+impl Projection {
+    /// `p`'s texture coordinates, glTF's way: (0, 0) the image's top left.
+    pub fn uv(&self, p: DVec3) -> Vec2 {
+        let d = p - self.origin;
+        let s = d.dot(self.x) / self.size[0].max(1e-12);
+        let t = d.dot(self.y) / self.size[1].max(1e-12);
+        let [u0, v0, u1, v1] = self.crop;
+        Vec2::new(
+            (u0 + s * (u1 - u0)) as f32,
+            (1.0 - (v0 + t * (v1 - v0))) as f32,
+        )
+    }
 }
 
 /// A box, its front (z = sz) and back (z = 0) faces tiled around openings.
@@ -226,28 +291,27 @@ fn block(s: &Solid, openings: &[Opening], polys: &mut Vec<Polygon>) {
     let [x, y, z] = axes(&s.frame);
     let (sx, sy, sz) = (s.size.x, s.size.y, s.size.z);
     let p = |a: f64, b: f64, c: f64| s.frame.pos + x * a + y * b + z * c;
-    let c = s.colour;
     let flat = sz.abs() < EPS;
     // Sides: left, right, bottom, top (whole; openings go through z).
     if !flat {
-        push(
+        face(
             polys,
-            c,
+            s,
             &[p(0., 0., 0.), p(0., 0., sz), p(0., sy, sz), p(0., sy, 0.)],
         );
-        push(
+        face(
             polys,
-            c,
+            s,
             &[p(sx, 0., 0.), p(sx, sy, 0.), p(sx, sy, sz), p(sx, 0., sz)],
         );
-        push(
+        face(
             polys,
-            c,
+            s,
             &[p(0., 0., 0.), p(sx, 0., 0.), p(sx, 0., sz), p(0., 0., sz)],
         );
-        push(
+        face(
             polys,
-            c,
+            s,
             &[p(0., sy, 0.), p(0., sy, sz), p(sx, sy, sz), p(sx, sy, 0.)],
         );
     }
@@ -272,15 +336,15 @@ fn block(s: &Solid, openings: &[Opening], polys: &mut Vec<Polygon>) {
                 continue;
             }
             let (a, b, d, e) = (xs[i], xs[i + 1], ys[j], ys[j + 1]);
-            push(
+            face(
                 polys,
-                c,
+                s,
                 &[p(a, d, sz), p(b, d, sz), p(b, e, sz), p(a, e, sz)],
             );
             if !flat {
-                push(
+                face(
                     polys,
-                    c,
+                    s,
                     &[p(a, d, 0.), p(a, e, 0.), p(b, e, 0.), p(b, d, 0.)],
                 );
             }
@@ -290,24 +354,24 @@ fn block(s: &Solid, openings: &[Opening], polys: &mut Vec<Polygon>) {
     if !flat {
         for o in openings {
             let (a, b, d, e) = (o.x0, o.x1, o.y0, o.y1);
-            push(
+            face(
                 polys,
-                c,
+                s,
                 &[p(a, d, 0.), p(b, d, 0.), p(b, d, sz), p(a, d, sz)],
             );
-            push(
+            face(
                 polys,
-                c,
+                s,
                 &[p(a, e, 0.), p(a, e, sz), p(b, e, sz), p(b, e, 0.)],
             );
-            push(
+            face(
                 polys,
-                c,
+                s,
                 &[p(a, d, 0.), p(a, d, sz), p(a, e, sz), p(a, e, 0.)],
             );
-            push(
+            face(
                 polys,
-                c,
+                s,
                 &[p(b, d, 0.), p(b, e, 0.), p(b, e, sz), p(b, d, sz)],
             );
         }
@@ -341,10 +405,9 @@ fn prism(s: &Solid, polys: &mut Vec<Polygon>) {
     let [x, y, z] = axes(&s.frame);
     let (sx, sy, sz) = (s.size.x, s.size.y, s.size.z);
     let p = |a: f64, b: f64, c: f64| s.frame.pos + x * a + y * b + z * c;
-    let c = s.colour;
-    push(
+    face(
         polys,
-        c,
+        s,
         &[
             p(0., 0., sz),
             p(sx, 0., sz),
@@ -352,9 +415,9 @@ fn prism(s: &Solid, polys: &mut Vec<Polygon>) {
             p(0., sy, sz / 2.),
         ],
     );
-    push(
+    face(
         polys,
-        c,
+        s,
         &[
             p(sx, 0., 0.),
             p(0., 0., 0.),
@@ -362,19 +425,19 @@ fn prism(s: &Solid, polys: &mut Vec<Polygon>) {
             p(sx, sy, sz / 2.),
         ],
     );
-    push(
+    face(
         polys,
-        c,
+        s,
         &[p(0., 0., 0.), p(0., 0., sz), p(0., sy, sz / 2.)],
     );
-    push(
+    face(
         polys,
-        c,
+        s,
         &[p(sx, 0., sz), p(sx, 0., 0.), p(sx, sy, sz / 2.)],
     );
-    push(
+    face(
         polys,
-        c,
+        s,
         &[p(0., 0., 0.), p(sx, 0., 0.), p(sx, 0., sz), p(0., 0., sz)],
     );
 }

@@ -76,6 +76,7 @@
   (array_statement ["," ";"] @punctuation.delimiter)
   (production ":" @punctuation.delimiter)
   (colour_header ":" @punctuation.delimiter)
+  (texture_header ":" @punctuation.delimiter)
   (section_header ":" @punctuation.delimiter)
   (block ";" @punctuation.delimiter)
   (assignment ";" @punctuation.delimiter)

@@ -35,6 +35,7 @@ pub(super) fn build(scene: &Scene) -> Result<(json::Root, Bin<'_>), ExportError>
         root: json::Root::default(),
         bin: Bin::default(),
         materials: vec![None; scene.materials.len()],
+        textures: vec![None; scene.textures.len()],
         parts: FxHashMap::default(),
         meshes: FxHashMap::default(),
         ids: FxHashMap::default(),
@@ -107,6 +108,8 @@ struct Geometry {
     positions: Index<Accessor>,
     normals: Index<Accessor>,
     indices: Index<Accessor>,
+    /// Texture coordinates, for a textured material's mesh.
+    uvs: Option<Index<Accessor>>,
 }
 
 struct Builder<'s> {
@@ -117,6 +120,8 @@ struct Builder<'s> {
     /// glTF material per scene material, created on first use so that unused
     /// colours do not clutter the file.
     materials: Vec<Option<Index<json::Material>>>,
+    /// glTF texture per scene texture, created on first use.
+    textures: Vec<Option<Index<json::Texture>>>,
     /// Per (component id, part), its geometry (None: empty part), written
     /// once however many meshes and placements use it.
     parts: FxHashMap<(usize, usize), Option<Geometry>>,
@@ -222,12 +227,21 @@ impl<'s> Builder<'s> {
     }
 
     fn primitive(&mut self, g: Geometry, material: usize) -> Result<Primitive, ExportError> {
+        let mut attributes: std::collections::BTreeMap<_, _> = [
+            (Valid(Semantic::Positions), g.positions),
+            (Valid(Semantic::Normals), g.normals),
+        ]
+        .into();
+        let textured = self
+            .scene
+            .materials
+            .get(material)
+            .is_some_and(|m| m.texture.is_some());
+        if let (Some(uvs), true) = (g.uvs, textured) {
+            attributes.insert(Valid(Semantic::TexCoords(0)), uvs);
+        }
         Ok(Primitive {
-            attributes: [
-                (Valid(Semantic::Positions), g.positions),
-                (Valid(Semantic::Normals), g.normals),
-            ]
-            .into(),
+            attributes,
             extensions: None,
             extras: Default::default(),
             indices: Some(g.indices),
@@ -249,11 +263,22 @@ impl<'s> Builder<'s> {
             return Ok(done);
         }
         let [r, g, b] = m.rgb.map(srgb_to_linear);
+        // A texture is the surface's colour as photographed: not tinted.
+        let (factor, texture) = match m.texture {
+            Some(t) => ([1.0; 4], Some(self.texture(t)?)),
+            None => ([r, g, b, 1.0], None),
+        };
         let done = self.root.push(json::Material {
             name: Some(m.name.clone()),
             double_sided: false,
             pbr_metallic_roughness: PbrMetallicRoughness {
-                base_color_factor: PbrBaseColorFactor([r, g, b, 1.0]),
+                base_color_factor: PbrBaseColorFactor(factor),
+                base_color_texture: texture.map(|index| json::texture::Info {
+                    index,
+                    tex_coord: 0,
+                    extensions: None,
+                    extras: Default::default(),
+                }),
                 metallic_factor: StrengthFactor(0.0),
                 roughness_factor: StrengthFactor(0.8),
                 ..Default::default()
@@ -261,6 +286,55 @@ impl<'s> Builder<'s> {
             ..Default::default()
         });
         self.materials[index] = Some(done);
+        Ok(done)
+    }
+
+    /// The glTF texture of scene texture `index`: its image embedded in the
+    /// buffer, sampled with the edges clamped (a face larger than the crop
+    /// repeats the image's edge pixels, docs/shapes.md "Textures").
+    fn texture(&mut self, index: usize) -> Result<Index<json::Texture>, ExportError> {
+        if let Some(done) = self.textures[index] {
+            return Ok(done);
+        }
+        let scene = self.scene;
+        let t = &scene.textures[index];
+        let start = self.bin.push(Piece::Slice(&t.bytes));
+        let view = self.root.push(json::buffer::View {
+            buffer: Index::new(0),
+            byte_length: (self.bin.end() - start).into(),
+            byte_offset: Some(start.into()),
+            byte_stride: None,
+            name: None,
+            target: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let image = self.root.push(json::Image {
+            buffer_view: Some(view),
+            mime_type: Some(json::image::MimeType(t.mime.to_string())),
+            name: Some(t.name.clone()),
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        use json::texture::{MagFilter, MinFilter, WrappingMode};
+        let sampler = self.root.push(json::texture::Sampler {
+            mag_filter: Some(Valid(MagFilter::Linear)),
+            min_filter: Some(Valid(MinFilter::LinearMipmapLinear)),
+            wrap_s: Valid(WrappingMode::ClampToEdge),
+            wrap_t: Valid(WrappingMode::ClampToEdge),
+            name: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let done = self.root.push(json::Texture {
+            sampler: Some(sampler),
+            source: image,
+            name: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        self.textures[index] = Some(done);
         Ok(done)
     }
 
@@ -327,10 +401,19 @@ impl<'s> Builder<'s> {
             ComponentType::U32
         };
         let indices = self.accessor(view, mesh.indices.len(), kind, Type::Scalar, None);
+        // Texture coordinates do not move with a transform.
+        let uvs = (mesh.uvs.len() == n).then(|| {
+            let mut bytes = Vec::with_capacity(n * 8);
+            bin::f32_bytes(&mut bytes, mesh.uvs.iter().flat_map(|uv| [uv.x, uv.y]));
+            let start = self.bin.push(Piece::Bytes(bytes));
+            let view = self.view(start, Target::ArrayBuffer);
+            self.accessor(view, n, ComponentType::F32, Type::Vec2, None)
+        });
         Ok(Some(Geometry {
             positions,
             normals,
             indices,
+            uvs,
         }))
     }
 

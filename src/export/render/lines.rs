@@ -189,6 +189,7 @@ mod tests {
             scene.materials.push(Material {
                 name: format!("m{m}"),
                 rgb: [0.5; 3],
+                texture: None,
             });
         }
         for &(lo, hi, material) in boxes {

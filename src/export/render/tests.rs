@@ -13,6 +13,7 @@ fn material(scene: &mut Scene, rgb: [f32; 3]) -> usize {
     scene.materials.push(Material {
         name: format!("m{}", scene.materials.len()),
         rgb,
+        texture: None,
     });
     scene.materials.len() - 1
 }

@@ -90,6 +90,7 @@ async function show(s) {
   buttons();
   palette();
   $("threshold").value = s.session.threshold;
+  $("textures").checked = !!s.session.textures;
   $("threshold-value").textContent = s.session.threshold;
   $("file").textContent = s.name;
   $("text").textContent = s.text;
@@ -239,6 +240,11 @@ $("fit").addEventListener("click", () => { fitView(); draw(); });
 $("threshold").addEventListener("change", () => {
   const next = clone(session());
   next.threshold = Number($("threshold").value);
+  edit(next);
+});
+$("textures").addEventListener("change", () => {
+  const next = clone(session());
+  next.textures = $("textures").checked;
   edit(next);
 });
 $("threshold").addEventListener("input", () => { $("threshold-value").textContent = $("threshold").value; });

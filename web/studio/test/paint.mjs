@@ -4,8 +4,9 @@
 // session, hole report and model must be the example's; a part painted a
 // little off is corrected onto its neighbour; a part is reshaped from
 // another view, deleted, undone and redone; the threshold switched off
-// leaves a rectangle as painted; a reference photo lies under the front
-// view; the saved file rebuilds with `lsys build` to the page's model.
+// leaves a rectangle as painted; the villa's photo lies under the front
+// view and its textures are cut from it; the saved file rebuilds with
+// `lsys build` to the page's model.
 // Screenshot: docs/images/studio-paint.png. Prints "N passed, N failed".
 //
 //   LSYS=path/to/lsys node test/paint.mjs     (default: target/debug/lsys)
@@ -16,9 +17,7 @@ import { join } from "node:path";
 import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-paint-"));
-for (const f of ["house.rules", "veranda.lsys", "villa.lsys"]) copyFileSync(join(repo, "examples/painting", f), join(dir, f));
-// A reference "photo": the villa's front, rendered (no photograph ships).
-execFileSync(lsys, ["render", join(dir, "villa.lsys"), "--view", "front", "-o", join(dir, "villa_front.png")]);
+for (const f of ["house.rules", "veranda.lsys", "villa.lsys", "villa_front.png"]) copyFileSync(join(repo, "examples/painting", f), join(dir, f));
 const built = (file) => {
   const out = execFileSync(lsys, ["build", join(dir, file), "-o", join(dir, file + ".glb"), "--stats"], { encoding: "utf8" });
   return JSON.parse(out.slice(out.indexOf("{")));
@@ -92,6 +91,32 @@ try {
     check(`${example}: the same holes are reported`, JSON.stringify(s.holes) === JSON.stringify(want.holes) && s.constraints.length === want.constraints.length && s.holes.length > 0,
       JSON.stringify([s.holes, want.holes]));
     check(`${example}: the same model (${s.triangles} triangles)`, s.triangles === want.triangles && s.triangles > 0);
+    // The villa was painted over a photo, with textures from it: the same
+    // photo under the front view, stretched as the example has it, and
+    // the textures switched on give the example's file, word for word.
+    for (const ph of want.session.photos) {
+      let n = await count();
+      await choose("view", ph.view);
+      await page.selectOption("#photo", ph.file);
+      s = await settled(n);
+      for (let k = 0; k < 4; k++) {
+        if (s.session.photos[0].rect[k] === ph.rect[k]) continue;
+        n = await count();
+        await page.fill(`#photo-rect input[data-k="${k}"]`, String(ph.rect[k]));
+        await page.dispatchEvent(`#photo-rect input[data-k="${k}"]`, "change");
+        s = await settled(n);
+      }
+    }
+    if (want.session.textures) {
+      const n = await count();
+      await page.check("#textures");
+      s = await settled(n);
+      const shown = await page.locator("#plane image.photo").count();
+      const glb = await page.evaluate(async () => new Uint8Array(await (await fetch("/api/paint/model.glb")).arrayBuffer()).length);
+      check(`${example}: over its photo with textures on, the page writes the example's file word for word, and the model carries the photo`,
+        shown === 1 && s.text === readFileSync(join(dir, example), "utf8") && s.text.includes("@Tex(1, ") && glb > readFileSync(join(dir, "villa_front.png")).length,
+        `${shown} photo, ${glb} bytes\n${s.text}`);
+    }
     if (nudge !== null) {
       check(`${example}: a part painted 0.1 off is corrected onto its neighbour, and the page says so`,
         corrected && corrected.corrections.length === 1 && /its bottom edge moved by -0\.1 to meet Body 2's top edge/.test(corrected.corrections[0]), JSON.stringify(corrected));
@@ -157,15 +182,9 @@ try {
   s = await settled(n);
   check("a rectangle too small to paint is refused and the page says why", (await page.textContent("#problem")).includes("too small"));
 
-  // A reference photo under the front view.
-  n = await count();
-  await page.selectOption("#photo", "villa_front.png");
-  s = await settled(n);
-  const shown = await page.locator("#plane image.photo").count();
-  check("a reference photo lies under the front view and is part of the session", shown === 1 && s.session.photos.length === 1 && s.session.photos[0].view === "front" &&
-    s.text.includes("// paint photo front villa_front.png"));
+  // The photo is served from the session's folder.
   const loaded = await page.evaluate(() => new Promise((res) => { const i = new Image(); i.onload = () => res(i.naturalWidth); i.onerror = () => res(0); i.src = document.querySelector("#plane image.photo").getAttribute("href"); }));
-  check("the photo is served from the session's folder", loaded > 0);
+  check("the photo under the front view is served from the session's folder", loaded > 0);
 
   await page.screenshot({ path: join(images, "studio-paint.png") });
 

@@ -29,6 +29,8 @@ pub(super) enum Piece<'s> {
         small: bool,
     },
     Bytes(Vec<u8>),
+    /// Bytes the scene holds (a texture's image), written as they are.
+    Slice(&'s [u8]),
 }
 
 impl Piece<'_> {
@@ -37,6 +39,7 @@ impl Piece<'_> {
             Piece::Positions(m, _) | Piece::Normals(m, _, _) => m.positions.len() * 12,
             Piece::Indices { mesh, small, .. } => mesh.indices.len() * if *small { 2 } else { 4 },
             Piece::Bytes(b) => b.len(),
+            Piece::Slice(b) => b.len(),
         }
     }
 }
@@ -205,6 +208,7 @@ impl<'s> Bin<'s> {
                     }
                 }
                 Piece::Bytes(bytes) => blocks.bytes(bytes)?,
+                Piece::Slice(bytes) => blocks.bytes(bytes)?,
             }
         }
         blocks.zeros(self.len() - at);
