@@ -56,30 +56,47 @@ function message(p) {
 }
 
 // ---- the server -------------------------------------------------------------
-async function call(path, body) {
+// Requests go one at a time, in the order the user made the changes: two
+// edits sent at once could be answered out of order and the older session
+// would win. `body` may be a function, called when the request's turn
+// comes, so that a change applies to the session as the changes before it
+// left it.
+let queue = Promise.resolve();
+function call(path, body) {
   asking++;
-  try {
-    const r = await api(path, body);
-    page.edits++;
-    if (r.status === 200) { $("problem").textContent = ""; await show(r.data); }
-    else {
-      $("problem").textContent = r.data.refused ? message(r.data.refused) : r.data.error || r.data.problem ? message(r.data.problem) || r.data.error : String(r.data);
-      if (r.data.state) await show(r.data.state);
-    }
-    return r;
-  } finally { asking--; }
+  const turn = queue.then(() => send(path, typeof body === "function" ? body() : body)).finally(() => asking--);
+  queue = turn.catch(() => {});
+  return turn;
 }
 
-// A change the page made to the session: undoable, then sent whole.
-function edit(next) {
-  undo.push(clone(session())); redo.length = 0;
-  return call("/api/paint/edit", { session: next });
+async function send(path, body) {
+  const r = await api(path, body);
+  page.edits++;
+  if (r.status === 200) { $("problem").textContent = ""; await show(r.data); }
+  else {
+    $("problem").textContent = r.data.refused ? message(r.data.refused) : r.data.error || r.data.problem ? message(r.data.problem) || r.data.error : String(r.data);
+    if (r.data.state) await show(r.data.state);
+  }
+  return r;
+}
+
+// A change the page made to the session, `change(next)` applied to a copy
+// of it when its turn comes: undoable, then sent whole.
+function edit(change) {
+  return call("/api/paint/edit", () => {
+    undo.push(clone(session())); redo.length = 0;
+    const next = clone(session());
+    change(next);
+    return { session: next };
+  });
 }
 
 // A rectangle the server places: undoable.
 function paint(body) {
-  undo.push(clone(session())); redo.length = 0;
-  return call("/api/paint/paint", body);
+  return call("/api/paint/paint", () => {
+    undo.push(clone(session())); redo.length = 0;
+    return body;
+  });
 }
 
 async function show(s) {
@@ -194,10 +211,8 @@ function partDown(e, i) {
   if (t === "select") { selected = i; draw(); e.stopPropagation(); return; }
   if (t === "delete") {
     e.stopPropagation();
-    const next = clone(session());
-    next.parts.splice(i, 1);
     selected = null;
-    edit(next);
+    edit((next) => next.parts.splice(i, 1));
   }
 }
 
@@ -238,14 +253,12 @@ document.querySelectorAll("input[name=tool]").forEach((r) => r.addEventListener(
 }));
 $("fit").addEventListener("click", () => { fitView(); draw(); });
 $("threshold").addEventListener("change", () => {
-  const next = clone(session());
-  next.threshold = Number($("threshold").value);
-  edit(next);
+  const t = Number($("threshold").value);
+  edit((next) => { next.threshold = t; });
 });
 $("textures").addEventListener("change", () => {
-  const next = clone(session());
-  next.textures = $("textures").checked;
-  edit(next);
+  const on = $("textures").checked;
+  edit((next) => { next.textures = on; });
 });
 $("threshold").addEventListener("input", () => { $("threshold-value").textContent = $("threshold").value; });
 $("photo-opacity").addEventListener("input", draw);
@@ -261,43 +274,41 @@ function photoControls() {
 }
 
 $("photo").addEventListener("change", () => {
-  const next = clone(session());
-  next.photos = next.photos.filter((p) => p.view !== view());
-  const file = $("photo").value;
+  const file = $("photo").value, v = view();
+  const others = (next) => { next.photos = next.photos.filter((p) => p.view !== v); };
   if (file) {
     // Stretched over the parts this view shows, or 12 × 8 at the origin.
     const img = new Image();
     img.onload = () => {
-      const r = state.rects[view()];
+      const r = state.rects[v];
       const u0 = r.length ? Math.min(...r.map((q) => q[0])) : 0, v0 = r.length ? Math.min(...r.map((q) => q[1])) : 0;
       const width = r.length ? Math.max(...r.map((q) => q[2])) - u0 : 12;
       const height = width * (img.naturalHeight / img.naturalWidth || 0.66);
-      next.photos.push({ view: view(), file, rect: [u0, v0, u0 + width, v0 + height].map(round) });
-      edit(next);
+      edit((next) => { others(next); next.photos.push({ view: v, file, rect: [u0, v0, u0 + width, v0 + height].map(round) }); });
     };
     img.onerror = () => { $("problem").textContent = `${file} does not load as an image`; };
     img.src = photoUrl(file);
-  } else edit(next);
+  } else edit(others);
 });
 $("photo-rect").querySelectorAll("input").forEach((i) => i.addEventListener("change", () => {
-  const next = clone(session());
-  const ph = next.photos.find((p) => p.view === view());
-  const x = Number(i.value);
-  if (!ph || !Number.isFinite(x)) return;
-  ph.rect[Number(i.dataset.k)] = x;
-  edit(next);
+  const x = Number(i.value), k = Number(i.dataset.k), v = view();
+  if (!Number.isFinite(x)) return;
+  edit((next) => {
+    const ph = next.photos.find((p) => p.view === v);
+    if (ph) ph.rect[k] = x;
+  });
 }));
 
-$("undo").addEventListener("click", () => {
-  if (!undo.length) return;
+$("undo").addEventListener("click", () => call("/api/paint/edit", () => {
+  if (!undo.length) return { session: session() };
   redo.push(clone(session()));
-  call("/api/paint/edit", { session: undo.pop() });
-});
-$("redo").addEventListener("click", () => {
-  if (!redo.length) return;
+  return { session: undo.pop() };
+}));
+$("redo").addEventListener("click", () => call("/api/paint/edit", () => {
+  if (!redo.length) return { session: session() };
   undo.push(clone(session()));
-  call("/api/paint/edit", { session: redo.pop() });
-});
+  return { session: redo.pop() };
+}));
 document.addEventListener("keydown", (e) => {
   if (e.target.tagName === "INPUT") return;
   if ((e.ctrlKey || e.metaKey) && e.key === "z") $(e.shiftKey ? "redo" : "undo").click();
