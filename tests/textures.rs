@@ -183,3 +183,23 @@ fn a_wrong_texture_is_a_located_error() {
         e.render_plain()
     );
 }
+
+/// The image is read again when it changes (the compiler keeps images
+/// between compilations while their size and time stay the same).
+#[test]
+fn a_changed_image_is_read_again() {
+    let dir = folder(WALL);
+    let mime = |dir: &Path| {
+        let glb = build(dir).unwrap().to_glb().unwrap();
+        let gltf = gltf::Gltf::from_slice(&glb).unwrap();
+        let image = gltf.images().next().unwrap();
+        match image.source() {
+            gltf::image::Source::View { mime_type, view } => (mime_type.to_string(), view.length()),
+            gltf::image::Source::Uri { .. } => panic!("embedded"),
+        }
+    };
+    assert_eq!(mime(dir.path()), ("image/png".to_string(), PNG.len()));
+    // The same name, now a (tiny) JPEG.
+    std::fs::write(dir.path().join("photo.png"), b"\xff\xd8\xff\xe0 a jpeg").unwrap();
+    assert_eq!(mime(dir.path()), ("image/jpeg".to_string(), 11));
+}

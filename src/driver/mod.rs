@@ -18,8 +18,9 @@
 //! the job `lsys build` would run, written into one folder with an index.
 //!
 //! `painting` turns rectangles painted in five views into parts of a
-//! painting session, and `painting_file` writes the session as the
-//! `.lsys` file `lsys build` rebuilds (the studio's painting page).
+//! painting session (its `correct.rs` is seed 004's automatic correction)
+//! and writes the session as the `.lsys` file `lsys build` rebuilds
+//! (`file.rs`; the studio's painting page).
 //!
 //! [`session`] is the other kind of job: an interactive one (the REPL's),
 //! a grammar kept as text that is edited, stepped and inspected one input
@@ -32,7 +33,6 @@ mod infer;
 mod job;
 mod pailou;
 mod painting;
-mod painting_file;
 mod run;
 mod scene_edit;
 pub mod session;
@@ -49,8 +49,10 @@ pub use infer::{
 };
 pub use job::{format_of, grammar_dir, Check, Job, Output};
 pub use pailou::{check_pailou_define, Pailou, PailouError, PailouType};
-pub use painting::{holes, paint, reshape, Component, PaintError, PaintView, Painted, Part};
-pub use painting_file::{PaintDoc, PaintFileError, Photo};
+pub use painting::{
+    holes, paint, reshape, Component, PaintDoc, PaintError, PaintFileError, PaintView, Painted,
+    Part, Photo,
+};
 pub use run::{model_bytes, run, Done, Event, Failure, Reason};
 pub use scene_edit::{check_scene, drag_guides, Drag, DragError, SceneDoc, SceneRun};
 pub use stats::ms;
@@ -76,7 +78,7 @@ pub use crate::diag::render as render_diagnostic;
 pub use crate::export::atomic::{remove_temporaries, write_file, OutputIsInput};
 
 /// The painting palette of a compiled session: its `DEPTH_X` defines
-/// (painting.rs).
+/// (painting/mod.rs).
 pub fn painting_palette(grammar: &crate::Grammar) -> Vec<Component> {
     let defines: Vec<(String, f64)> = grammar
         .comp

@@ -3,10 +3,14 @@
 //! the top-level grammar's folder (as includes do), be a PNG or a JPEG,
 //! and be at most [`MAX_TEXTURE_BYTES`]. Read here, when the grammar is
 //! compiled, so that a missing or wrong file is a located diagnostic and
-//! the model's export never fails on it.
+//! the model's export never fails on it. The bytes are kept per path while
+//! the file's size and time stay the same: the language server, `watch`
+//! and the studio compile on every edit, and a photograph is megabytes.
 
-use std::path::Path;
-use std::sync::Arc;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::SystemTime;
 
 use super::error::ResolveError;
 use super::expr::Scope;
@@ -18,6 +22,39 @@ use crate::source::Span;
 
 /// An image file read, at most (a photograph of a facade is a few MiB).
 pub const MAX_TEXTURE_BYTES: u64 = 64 << 20;
+
+/// Images kept between compilations, at most (in all); past it the cache
+/// starts again empty.
+const MAX_CACHED_BYTES: usize = 256 << 20;
+
+type Cached = (SystemTime, u64, Arc<Vec<u8>>);
+
+/// An image read: its MIME type and bytes, or why not and what to do.
+type Read = Result<(&'static str, Arc<Vec<u8>>), (String, String)>;
+
+fn cache() -> &'static Mutex<HashMap<PathBuf, Cached>> {
+    static CACHE: OnceLock<Mutex<HashMap<PathBuf, Cached>>> = OnceLock::new();
+    CACHE.get_or_init(Default::default)
+}
+
+/// The file's bytes, from the cache while its size and time are those it
+/// had when it was read.
+fn read_cached(full: &Path, meta: &std::fs::Metadata) -> std::io::Result<Arc<Vec<u8>>> {
+    let stamp = (meta.modified()?, meta.len());
+    let mut c = cache().lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((t, n, bytes)) = c.get(full) {
+        if (*t, *n) == stamp {
+            return Ok(bytes.clone());
+        }
+    }
+    let bytes = Arc::new(std::fs::read(full)?);
+    let held: usize = c.values().map(|(_, _, b)| b.len()).sum();
+    if held + bytes.len() > MAX_CACHED_BYTES {
+        c.clear();
+    }
+    c.insert(full.to_path_buf(), (stamp.0, stamp.1, bytes.clone()));
+    Ok(bytes)
+}
 
 impl Resolver {
     pub(super) fn texture_header(
@@ -49,7 +86,7 @@ impl Resolver {
                     index: i,
                     name: file.to_string(),
                     mime,
-                    bytes: Arc::new(bytes),
+                    bytes,
                 },
             ),
             Err((why, help)) => self.error(ResolveError::BadValue {
@@ -64,11 +101,7 @@ impl Resolver {
 
     /// The image `file` names, beside the file `span` is in: its type and
     /// bytes, or why not and what to do.
-    fn read_texture(
-        &self,
-        file: &str,
-        span: Span,
-    ) -> Result<(&'static str, Vec<u8>), (String, String)> {
+    fn read_texture(&self, file: &str, span: Span) -> Read {
         let from = self.sources.get(span.file);
         let Some(dir) = from.dir() else {
             return Err((
@@ -96,23 +129,24 @@ impl Resolver {
                 "a texture must be inside the grammar's folder (links followed); copy the image there".to_string(),
             ));
         }
-        let len = std::fs::metadata(&full).map(|m| m.len()).unwrap_or(0);
-        if len > MAX_TEXTURE_BYTES {
+        let unreadable = |e: std::io::Error| {
+            (
+                format!("cannot read {}: {e}", full.display()),
+                "check that the file is readable".to_string(),
+            )
+        };
+        let meta = std::fs::metadata(&full).map_err(unreadable)?;
+        if meta.len() > MAX_TEXTURE_BYTES {
             return Err((
                 format!(
                     "{file} is {} MiB, more than the {} MiB a texture may be",
-                    len >> 20,
+                    meta.len() >> 20,
                     MAX_TEXTURE_BYTES >> 20
                 ),
                 "make the image smaller".to_string(),
             ));
         }
-        let bytes = std::fs::read(&full).map_err(|e| {
-            (
-                format!("cannot read {}: {e}", full.display()),
-                "check that the file is readable".to_string(),
-            )
-        })?;
+        let bytes = read_cached(&full, &meta).map_err(unreadable)?;
         let mime = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
             "image/png"
         } else if bytes.starts_with(&[0xff, 0xd8, 0xff]) {

@@ -6,7 +6,7 @@
 //! of the holes the parts will cut.
 //!
 //! The rules (a `.rules` file of productions, included by the session's
-//! `.lsys`; `painting_file.rs` writes and reads that file) say which
+//! `.lsys`; `file.rs` writes and reads that file) say which
 //! components the palette offers and how deep each is: a component is a
 //! module `X` with a `#define DEPTH_X d` (its depth, the configure rule of
 //! the dimension a view does not show), and `#define THROUGH_X 1` makes it
@@ -20,6 +20,14 @@
 //! corresponding body component".
 
 use serde::{Deserialize, Serialize};
+
+mod correct;
+mod file;
+#[cfg(test)]
+mod tests;
+
+use correct::{correct, overlap, standing_on};
+pub use file::{PaintDoc, PaintFileError, Photo};
 
 /// One of the five views the page paints in (seed 004, Sec 4: "front,
 /// back, up, left and right").
@@ -373,90 +381,6 @@ pub fn reshape(
     Ok((part, painted))
 }
 
-/// The part whose top edge (in `view`) the rectangle `r` stands on,
-/// within `threshold` (at least 1e-6), across the most of its width.
-fn standing_on(parts: &[Part], view: PaintView, r: &[f64; 4], threshold: f64) -> Option<usize> {
-    let t = threshold.max(1e-6);
-    parts
-        .iter()
-        .enumerate()
-        .map(|(i, p)| (i, p.rect(view)))
-        .filter(|(_, q)| (q[3] - r[1]).abs() <= t)
-        .map(|(i, q)| (i, r[2].min(q[2]) - r[0].max(q[0])))
-        .filter(|&(_, shared)| shared > 0.0)
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(i, _)| i)
-}
-
-fn overlap(a: &[f64; 4], b: &[f64; 4]) -> bool {
-    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
-}
-
-/// Seed 004's automatic correction: each of the part's four painted
-/// edges within `threshold` of an edge of a part near it (their
-/// rectangles in the view and their depths within the threshold of each
-/// other) moves onto
-/// the nearest such edge, unless that would leave the part thinner than
-/// the threshold.
-fn correct(part: &mut Part, parts: &[Part], view: PaintView, threshold: f64, out: &mut Painted) {
-    if threshold <= 0.0 {
-        return;
-    }
-    let r = part.rect(view);
-    let w = view.axes()[2];
-    let (w0, w1) = part.span(w);
-    let near: Vec<(usize, [f64; 4])> = parts
-        .iter()
-        .enumerate()
-        // Near in depth too: a window on the far side of the house,
-        // seen through in this view, is no edge to meet.
-        .filter(|(_, p)| {
-            let (a, b) = p.span(w);
-            a < w1 + threshold && w0 - threshold < b
-        })
-        .map(|(i, p)| (i, p.rect(view)))
-        .filter(|(_, q)| {
-            r[0] - threshold < q[2]
-                && q[0] < r[2] + threshold
-                && r[1] - threshold < q[3]
-                && q[1] < r[3] + threshold
-        })
-        .collect();
-    let mut moved = r;
-    // Edges: 0 left, 1 bottom, 2 right, 3 top; an edge meets the other
-    // rectangles' edges along the same axis (left or right, bottom or top).
-    const EDGE: [&str; 4] = ["left", "bottom", "right", "top"];
-    for e in 0..4 {
-        let axis = e % 2;
-        let best = near
-            .iter()
-            .flat_map(|(i, q)| [(*i, q[axis], axis), (*i, q[axis + 2], axis + 2)])
-            .map(|(i, at, edge)| (i, at, edge, (at - r[e]).abs()))
-            .filter(|&(_, _, _, d)| d > 1e-9 && d <= threshold)
-            .min_by(|a, b| a.3.total_cmp(&b.3));
-        let Some((i, at, edge, _)) = best else {
-            continue;
-        };
-        let mut trial = moved;
-        trial[e] = at;
-        if trial[axis + 2] - trial[axis] < threshold {
-            continue;
-        }
-        out.corrections.push(format!(
-            "its {} edge moved by {} to meet {} {}'s {} edge",
-            EDGE[e],
-            number(at - r[e]),
-            parts[i].component,
-            i + 1,
-            EDGE[edge]
-        ));
-        moved = trial;
-    }
-    let [u, v, _] = view.axes();
-    part.set_span(u, (moved[0], moved[2]));
-    part.set_span(v, (moved[1], moved[3]));
-}
-
 /// The holes the constraint rule will cut: each `THROUGH_` part in every
 /// other part it intersects, as a sentence for the page.
 pub fn holes(parts: &[Part], palette: &[Component]) -> Vec<String> {
@@ -492,137 +416,4 @@ pub fn number(x: f64) -> String {
     let r = (x * 1000.0).round() / 1000.0;
     let r = if r == 0.0 { 0.0 } else { r };
     format!("{r}")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn palette_() -> Vec<Component> {
-        palette(&[
-            ("H".into(), 3.0),
-            ("DEPTH_Wall".into(), 0.5),
-            ("DEPTH_Window".into(), 0.25),
-            ("THROUGH_Window".into(), 1.0),
-            ("DEPTH_Porch".into(), 2.0),
-        ])
-    }
-
-    #[test]
-    fn the_palette_is_the_depth_defines() {
-        let p = palette_();
-        let names: Vec<(&str, bool)> = p.iter().map(|c| (c.name.as_str(), c.through)).collect();
-        assert_eq!(names, [("Wall", false), ("Window", true), ("Porch", false)]);
-    }
-
-    #[test]
-    fn each_view_sees_the_same_box_from_its_side() {
-        let p = Part {
-            component: "Wall".into(),
-            view: PaintView::Front,
-            min: [1.0, 2.0, 3.0],
-            max: [4.0, 6.0, 8.0],
-        };
-        assert_eq!(p.rect(PaintView::Front), [1.0, 2.0, 4.0, 6.0]);
-        assert_eq!(p.rect(PaintView::Back), [-4.0, 2.0, -1.0, 6.0]);
-        assert_eq!(p.rect(PaintView::Top), [1.0, -8.0, 4.0, -3.0]);
-        assert_eq!(p.rect(PaintView::Left), [3.0, 2.0, 8.0, 6.0]);
-        assert_eq!(p.rect(PaintView::Right), [-8.0, 2.0, -3.0, 6.0]);
-    }
-
-    #[test]
-    fn a_window_takes_the_walls_depth_and_snaps_to_its_edge() {
-        let pal = palette_();
-        let (wall, _) = front(&[], [0.0, 0.0, 6.0, 3.0], "Wall", 0.2, None).unwrap();
-        assert_eq!((wall.min, wall.max), ([0.0, 0.0, 0.0], [6.0, 3.0, 0.5]));
-        // Painted 0.15 short of the wall's top: the correction moves it up.
-        let (win, how) = front(
-            std::slice::from_ref(&wall),
-            [1.0, 1.0, 2.0, 2.85],
-            "Window",
-            0.2,
-            None,
-        )
-        .unwrap();
-        assert_eq!((win.min, win.max), ([1.0, 1.0, 0.25], [2.0, 3.0, 0.5]));
-        assert_eq!(
-            how.corrections,
-            ["its top edge moved by 0.15 to meet Wall 1's top edge"]
-        );
-        assert_eq!(
-            how.depth,
-            "0.25 into Wall 1 from its face (DEPTH_Window, THROUGH_Window)"
-        );
-        assert_eq!(
-            holes(&[wall.clone(), win.clone()], &pal),
-            ["Window 2 intersects Wall 1: a hole 1 x 2 is cut through it"]
-        );
-        // Threshold 0.1: no correction.
-        let (win, how) = front(
-            std::slice::from_ref(&wall),
-            [1.0, 1.0, 2.0, 2.85],
-            "Window",
-            0.1,
-            None,
-        )
-        .unwrap();
-        assert_eq!(win.max[1], 2.85);
-        assert!(how.corrections.is_empty());
-        // A porch painted on the wall stands in front of it.
-        let (porch, _) = front(&[wall], [1.0, 0.0, 5.0, 1.0], "Porch", 0.0, None).unwrap();
-        assert_eq!((porch.min[2], porch.max[2]), (0.5, 2.5));
-        // A window over the porch goes into the porch, or into the wall
-        // when the user chose it.
-        let two = [wall_(), porch.clone()];
-        let (win, _) = front(&two, [2.0, 0.2, 3.0, 0.8], "Window", 0.0, None).unwrap();
-        assert_eq!((win.min[2], win.max[2]), (2.25, 2.5));
-        let (win, how) = front(&two, [2.0, 0.2, 3.0, 0.8], "Window", 0.0, Some(0)).unwrap();
-        assert_eq!((win.min[2], win.max[2]), (0.25, 0.5));
-        assert_eq!(
-            how.depth,
-            "0.25 into Wall 1 from its face (DEPTH_Window, THROUGH_Window)"
-        );
-        // A roof painted above the wall, 0.1 above its top: corrected onto
-        // it, and as deep as the wall it stands on.
-        let (roof, how) = front(&[wall_()], [-0.5, 3.1, 6.5, 5.0], "Porch", 0.2, None).unwrap();
-        assert_eq!((roof.min, roof.max), ([-0.5, 3.0, 0.0], [6.5, 5.0, 0.5]));
-        assert_eq!(how.depth, "as deep as Wall 1, which it stands on");
-    }
-
-    /// Paints in the front view with the test palette.
-    fn front(
-        parts: &[Part],
-        rect: [f64; 4],
-        c: &str,
-        t: f64,
-        on: Option<usize>,
-    ) -> Result<(Part, Painted), PaintError> {
-        paint(parts, &palette_(), PaintView::Front, rect, c, t, on)
-    }
-
-    fn wall_() -> Part {
-        Part {
-            component: "Wall".into(),
-            view: PaintView::Front,
-            min: [0.0; 3],
-            max: [6.0, 3.0, 0.5],
-        }
-    }
-
-    #[test]
-    fn a_rectangle_from_another_view_gives_the_depth() {
-        let (wall, _) = front(&[], [0.0, 0.0, 6.0, 3.0], "Wall", 0.0, None).unwrap();
-        let (w, _) = reshape(&[wall], 0, PaintView::Left, [-1.0, 0.0, 4.0, 3.5], 0.0).unwrap();
-        assert_eq!((w.min, w.max), ([0.0, 0.0, -1.0], [6.0, 3.5, 4.0]));
-    }
-
-    #[test]
-    fn bad_rectangles_and_components_are_refused() {
-        let small = front(&[], [0.0, 0.0, 0.001, 3.0], "Wall", 0.0, None);
-        assert!(matches!(small, Err(PaintError::Small { .. })));
-        let far = front(&[], [0.0, 0.0, f64::NAN, 3.0], "Wall", 0.0, None);
-        assert!(matches!(far, Err(PaintError::Far { .. })));
-        let none = front(&[], [0.0, 0.0, 1.0, 3.0], "Tower", 0.0, None);
-        assert!(matches!(none, Err(PaintError::Component { .. })));
-    }
 }

@@ -8,7 +8,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::painting::{number, PaintView, Part};
+use super::{number, PaintView, Part};
 
 /// A painting session.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
