@@ -258,12 +258,18 @@ try {
   writeFileSync(g, grammar(2));
   await page.evaluate(async () => { const r = await fetch("/api/files"); const f = await r.json(); const sel = document.getElementById("open"); sel.replaceChildren(new Option("open…", ""), ...f.files.map((x) => new Option(x, x))); });
   // The 8-7-22's model (3.6 M triangles) takes long to load on a debug
-  // build: it is let finish first, then the grammar's state and model are
-  // waited for (not a load count alone).
-  await page.waitForFunction(() => window.studio.loading === 0, null, { timeout: 240000 });
+  // build, and a late update of it kept the page from counting the
+  // grammar's model on CI twice (240 s): a small Pailou first, its load
+  // let finish, then the grammar's state and model are waited for (not a
+  // load count alone), the page's counters shown if they never come.
+  await applyStyle("2-1-1");
+  const counters = () => page.evaluate(() => JSON.stringify({ mode: window.studio.state.mode, loads: window.studio.loads,
+    loading: window.studio.loading, version: window.studio.version, triangles: window.studio.state.triangles, status: document.getElementById("status").textContent }));
+  const wait = (f, arg) => page.waitForFunction(f, arg, { timeout: 240000 }).catch(async (e) => { throw new Error(`${e.message}: ${await counters()}`); });
+  await wait(() => window.studio.loading === 0 && window.studio.state.triangles < 1000000);
   n = await loads();
   await page.selectOption("#open", "bush.lsys");
-  await page.waitForFunction((n) => window.studio.state.mode === "grammar" && window.studio.loads > n && window.studio.loading === 0, n, { timeout: 240000 });
+  await wait((n) => window.studio.state.mode === "grammar" && window.studio.loads > n && window.studio.loading === 0, n);
   const t2 = await page.evaluate(() => window.studio.state.triangles);
   check("grammar mode shows the grammar with its #defines as sliders", t2 > 0 && (await page.$$("#grammar-defines input[type=range]")).length === 3, `triangles ${t2}`);
   writeFileSync(g, grammar(3));
