@@ -69,12 +69,20 @@ function call(path, body) {
   return turn;
 }
 
+// Why the server said no: a refused paint or edit (a diagnostic), an
+// error, an unreadable session, or plain text.
+function refusal(d) {
+  if (d.refused) return message(d.refused);
+  if (d.problem) return message(d.problem);
+  return d.error || String(d);
+}
+
 async function send(path, body) {
   const r = await api(path, body);
   page.edits++;
   if (r.status === 200) { $("problem").textContent = ""; await show(r.data); }
   else {
-    $("problem").textContent = r.data.refused ? message(r.data.refused) : r.data.error || r.data.problem ? message(r.data.problem) || r.data.error : String(r.data);
+    $("problem").textContent = refusal(r.data);
     if (r.data.state) await show(r.data.state);
   }
   return r;
@@ -317,7 +325,7 @@ document.addEventListener("keydown", (e) => {
 
 // ---- files -------------------------------------------------------------------
 async function opened(r) {
-  if (r.status !== 200) { $("problem").textContent = r.data.error || message(r.data.problem) || String(r.data); return; }
+  if (r.status !== 200) { $("problem").textContent = refusal(r.data); return; }
   undo.length = 0; redo.length = 0; selected = null; state = null;
   viewer.fitted = false;
   await show(r.data);
