@@ -184,6 +184,26 @@ fn a_wrong_texture_is_a_located_error() {
     );
 }
 
+/// A grammar named without a folder (`lsys build g.lsys` in its folder)
+/// finds its texture beside it.
+#[test]
+fn a_grammar_given_by_its_bare_name_finds_its_texture() {
+    let dir = folder(WALL);
+    let lsys = env!("CARGO_BIN_EXE_lsys");
+    let out = std::process::Command::new(lsys)
+        .current_dir(dir.path())
+        .args(["build", "g.lsys", "-o", "g.glb"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let gltf = gltf::Gltf::open(dir.path().join("g.glb")).unwrap();
+    assert_eq!(gltf.images().count(), 1);
+}
+
 /// The image is read again when it changes (the compiler keeps images
 /// between compilations while their size and time stay the same).
 #[test]

@@ -112,8 +112,16 @@ impl Resolver {
                 "textures are read beside the grammar file; build it from a file".to_string(),
             ));
         };
-        let root = self.sources.get(0).dir().unwrap_or(dir).to_path_buf();
-        let full = dir.join(file);
+        // `g.lsys` given bare has the folder "": the current one.
+        let here = |d: &Path| {
+            if d.as_os_str().is_empty() {
+                Path::new(".").to_path_buf()
+            } else {
+                d.to_path_buf()
+            }
+        };
+        let root = here(self.sources.get(0).dir().unwrap_or(dir));
+        let full = here(dir).join(file);
         let canon = |p: &Path| {
             p.canonicalize().map_err(|e| {
                 (
