@@ -429,3 +429,97 @@ fn clipped_roofs_of_18_3_span_between_the_entrances_above() {
         assert!(covered, "no clipped roof from x = {a} to {b}");
     }
 }
+
+/// Issue 34, item 3: the paper's per-component, per-entrance sizes
+/// (α^XW_ij, α^XH_ij, α^XD_ij) as the grammar's tables `pw[i,j]`,
+/// `tk[i,j]`, `rd[i,j]`, ...: one entrance's value changes that entrance's
+/// components of that kind and no others.
+#[test]
+fn a_component_kind_has_sizes_of_its_own_per_entrance() {
+    let built = |defines: &[&str]| {
+        let mut args = vec!["pailou", "--style", "4-3-7"];
+        for d in defines {
+            args.extend(["-D", d]);
+        }
+        boxes(&args)
+    };
+    let of = |parts: &[(String, Vec3, Vec3)], prefix: &str| -> Vec<(Vec3, Vec3)> {
+        let mut v: Vec<(Vec3, Vec3)> = parts
+            .iter()
+            .filter(|p| p.0.starts_with(prefix))
+            .map(|p| (p.1, p.2))
+            .collect();
+        v.sort_by(|a, b| (a.0.y, a.0.x).partial_cmp(&(b.0.y, b.0.x)).unwrap());
+        v
+    };
+    let base = built(&[]);
+    // The outer ground entrances' pillars (the outermost two) thicken by
+    // 0.16 / (7/61); the centre's keep their diameter.
+    let thick = built(&["pw[2,1]=0.16"]);
+    let ground = |parts: &[(String, Vec3, Vec3)]| -> Vec<f32> {
+        let mut v: Vec<(f32, f32)> = of(parts, "MP#")
+            .into_iter()
+            .filter(|(lo, _)| lo.y < 0.1)
+            .map(|(lo, hi)| ((lo.x + hi.x) / 2.0, hi.x - lo.x))
+            .collect();
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        v.into_iter().map(|(_, w)| w).collect()
+    };
+    let (w0, w1) = (ground(&base), ground(&thick));
+    assert_eq!(w0.len(), 4, "{w0:?}");
+    assert_eq!(w1.len(), 4, "{w1:?}");
+    let ratio = 0.16 / (7.0 / 61.0);
+    for k in [0, 3] {
+        assert!(
+            (w1[k] / w0[k] - ratio).abs() < 1e-3,
+            "outer pillar {k}: {w0:?} -> {w1:?}"
+        );
+    }
+    for k in [1, 2] {
+        assert!(
+            (w1[k] - w0[k]).abs() < 1e-4,
+            "central pillar {k}: {w0:?} -> {w1:?}"
+        );
+    }
+    // The central entrance above's Toukungs grow by 0.16 / 0.12 (the
+    // highest row); every other Toukung keeps its size.
+    let big = built(&["tk[1,2]=0.16"]);
+    let sizes = |parts: &[(String, Vec3, Vec3)]| -> (f32, Vec<f32>) {
+        let tm = of(parts, "TM#");
+        let top = tm.iter().map(|(lo, _)| lo.y).fold(f32::MIN, f32::max);
+        let high = tm
+            .iter()
+            .find(|(lo, _)| lo.y == top)
+            .map(|(lo, hi)| hi.y - lo.y)
+            .unwrap();
+        let mut rest: Vec<f32> = tm
+            .iter()
+            .filter(|(lo, _)| lo.y < top - 0.5)
+            .map(|(lo, hi)| ((hi.y - lo.y) * 1e4).round() / 1e4)
+            .collect();
+        rest.sort_by(f32::total_cmp);
+        rest.dedup();
+        (high, rest)
+    };
+    let ((h0, r0), (h1, r1)) = (sizes(&base), sizes(&big));
+    assert!((h1 / h0 - 0.16 / 0.12).abs() < 1e-3, "{h0} -> {h1}");
+    assert!(!r0.is_empty());
+    assert_eq!(r0, r1, "the lower rows' Toukungs keep their sizes");
+    // The main roof deepens to 0.7 of its column's height; the outer
+    // entrances' roofs keep their depth.
+    let deep = built(&["rd[1,2]=0.7"]);
+    let depths = |parts: &[(String, Vec3, Vec3)]| -> Vec<f32> {
+        of(parts, "RE#")
+            .iter()
+            .map(|(lo, hi)| ((hi.z - lo.z) * 1e4).round() / 1e4)
+            .collect()
+    };
+    let (d0, d1) = (depths(&base), depths(&deep));
+    assert_eq!(d0.len(), d1.len());
+    let main = d0.len() - 1; // sorted by height: the main roof is the highest
+    assert!(
+        (d1[main] / d0[main] - 0.7 / 0.45).abs() < 1e-2,
+        "{d0:?} -> {d1:?}"
+    );
+    assert_eq!(d0[..main], d1[..main], "the other roofs keep their depth");
+}

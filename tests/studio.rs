@@ -79,6 +79,25 @@ fn get(h: &Handle, path: &str) -> (u16, Value) {
     (s, serde_json::from_slice(&b).unwrap_or(Value::Null))
 }
 
+/// An edit and the state it made (a refusal's answer as it is).
+fn edit_state(h: &Handle, v: Value) -> (u16, Value) {
+    let (code, r) = post(h, "/api/edit", v);
+    let state = r.get("state").cloned().unwrap_or(r);
+    (code, state)
+}
+
+/// Setting each `name` to its `value` is refused with a message saying
+/// `says`.
+fn defines_are_refused(h: &Handle, cases: &[(&str, f64, &str)]) {
+    for &(name, value, says) in cases {
+        let edit = json!({"op": "define", "name": name, "value": value});
+        let (code, r) = post(h, "/api/edit", edit);
+        assert_eq!(code, 422, "{name}: {r}");
+        let m = r["refused"]["message"].as_str().unwrap();
+        assert!(m.contains(says), "{name}: {m}");
+    }
+}
+
 fn post(h: &Handle, path: &str, v: Value) -> (u16, Value) {
     let (s, b) = request(
         h,
@@ -1039,12 +1058,7 @@ fn the_guides_page_edits_runs_and_saves_scenes() {
 fn an_entrance_has_ratios_of_its_own() {
     let dir = tempfile::tempdir().unwrap();
     let h = studio(dir.path());
-    // An edit answers with the state it made.
-    let edit = |v: Value| {
-        let (code, r) = post(&h, "/api/edit", v);
-        let state = r.get("state").cloned().unwrap_or(r);
-        (code, state)
-    };
+    let edit = |v: Value| edit_state(&h, v);
     let (code, s) = edit(json!({"op": "style", "style": "4-3-7", "type": "ridge"}));
     assert_eq!(code, 200, "{s}");
     let lintel = |s: &Value, at: [u64; 2]| -> String {
@@ -1079,21 +1093,15 @@ fn an_entrance_has_ratios_of_its_own() {
     assert!(a < b - 1.0, "{a} {b}");
     let (code, _) = edit(json!({"op": "define", "name": "side[1]", "value": 0.7}));
     assert_eq!(code, 200);
-    for (name, value, says) in [
-        ("up[2,2]", 5.0, "out of range"),
-        ("up[2,1]", 0.4, "2..4"),
-        ("side[6]", 0.7, "1..5"),
-        ("up[x]", 0.4, "up"),
-    ] {
-        let (code, r) = post(
-            &h,
-            "/api/edit",
-            json!({"op": "define", "name": name, "value": value}),
-        );
-        assert_eq!(code, 422, "{name}: {r}");
-        let m = r["refused"]["message"].as_str().unwrap();
-        assert!(m.contains(says), "{name}: {m}");
-    }
+    defines_are_refused(
+        &h,
+        &[
+            ("up[2,2]", 5.0, "out of range"),
+            ("up[2,1]", 0.4, "2..4"),
+            ("side[6]", 0.7, "1..5"),
+            ("up[x]", 0.4, "up"),
+        ],
+    );
 
     // Saved with the graph and read back.
     let (code, r) = post(&h, "/api/save", json!({"path": "mine.toml"}));
@@ -1105,6 +1113,71 @@ fn an_entrance_has_ratios_of_its_own() {
     assert_eq!(s3["defines"]["up[2,2]"], json!(0.35));
     assert_eq!(s3["defines"]["side[1]"], json!(0.7));
     assert_eq!(lintel(&s3, [2, 2]), side_above);
+    h.stop();
+}
+
+/// Per-component sizes at an entrance (the paper's α^XW_ij, α^XH_ij,
+/// α^XD_ij; issue 34, item 3): the state gives every component its
+/// entrance, and `tk[i,j]`, `pw[i,j]`, ... are graph defines checked
+/// against their global ratio's range and the tables' indices.
+#[test]
+fn a_component_has_sizes_of_its_own_at_its_entrance() {
+    let dir = tempfile::tempdir().unwrap();
+    let h = studio(dir.path());
+    let edit = |v: Value| edit_state(&h, v);
+    let (code, s) = edit(json!({"op": "style", "style": "4-3-7", "type": "ridge"}));
+    assert_eq!(code, 200, "{s}");
+    let of = s["entrance_of"].as_object().unwrap();
+    assert_eq!(
+        of.len(),
+        s["components"].as_array().unwrap().len(),
+        "{of:?}"
+    );
+    for (id, at) in [
+        ("P1R", [1, 1]),  // the central entrance's pillar
+        ("P2R", [2, 1]),  // the outer entrance's outer pillar
+        ("B2R", [2, 1]),  // its base
+        ("RP2R", [2, 1]), // the clipped roof over it
+        ("Y21R", [2, 1]), // a Yundan under a Queti under the lintel
+        ("S12a", [1, 2]), // a suspended pillar: the entrance it holds up
+        ("TM12", [1, 2]),
+        ("RE12", [1, 2]), // the main roof, on the Toukungs
+        ("RE22L", [2, 2]),
+    ] {
+        assert_eq!(of[id], json!(at), "{id}");
+    }
+    let top = |s: &Value| s["bounds"][1][1].as_f64().unwrap();
+    // Bigger Toukungs under the main roof raise it.
+    let (code, s1) = edit(json!({"op": "define", "name": "tk[1,2]", "value": 0.16}));
+    assert_eq!(code, 200, "{s1}");
+    assert_eq!(s1["problems"], json!([]));
+    assert!(top(&s1) > top(&s) + 0.1, "{} {}", top(&s1), top(&s));
+    let (code, s2) = edit(json!({"op": "define", "name": "pw[2,1]", "value": 0.14}));
+    assert_eq!(code, 200, "{s2}");
+    assert_eq!(s2["defines"]["pw[2,1]"], json!(0.14));
+    defines_are_refused(
+        &h,
+        &[
+            ("tk[1,2]", 0.9, "0.02 to 0.5"),
+            ("pw[7,1]", 0.1, "1..6, 1..4"),
+            ("rh[1]", 0.3, "rh"),
+        ],
+    );
+    let (code, r) = post(&h, "/api/save", json!({"path": "sized.toml"}));
+    assert_eq!(code, 200, "{r}");
+    let saved = std::fs::read_to_string(dir.path().join("sized.toml")).unwrap();
+    assert!(saved.contains("\"tk[1,2]\" = 0.16"), "{saved}");
+    // The saved graph builds the page's model from the command line.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+        .args(["pailou", "sized.toml", "-o", "sized.obj"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     h.stop();
 }
 

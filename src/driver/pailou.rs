@@ -32,6 +32,8 @@ pub struct Pailou {
     unplaced: Vec<String>,
     /// Each entrance's lintel id and its entrance (i, j) (graphs only).
     lintels: Vec<(String, usize, usize)>,
+    /// Every placed component's entrance (graphs only).
+    entrance_of: Vec<(String, usize, usize)>,
 }
 
 /// Why a Pailou could not be read.
@@ -84,6 +86,7 @@ impl Pailou {
             relations: None,
             unplaced: Vec::new(),
             lintels: Vec::new(),
+            entrance_of: Vec::new(),
         })
     }
 
@@ -105,6 +108,7 @@ impl Pailou {
             relations: relations.map(str::to_string),
             unplaced: g.unplaced,
             lintels: g.lintels,
+            entrance_of: g.entrance_of,
         })
     }
 
@@ -140,6 +144,13 @@ impl Pailou {
     /// `side[i - 1]` (docs/pailou.md).
     pub fn lintels(&self) -> &[(String, usize, usize)] {
         &self.lintels
+    }
+
+    /// Every placed component's id and its entrance (i, j), sorted by id
+    /// (empty for a style): whose per-entrance sizes it takes, `pw[i,j]`
+    /// for a pillar, `tk[i,j]` for a Toukung, ... (docs/pailou.md).
+    pub fn entrance_of(&self) -> &[(String, usize, usize)] {
+        &self.entrance_of
     }
 
     /// The layout as a chart of rows (`lsys pailou --chart`).

@@ -74,6 +74,9 @@ pub struct Graph {
     /// Each entrance's lintel (both halves; the centre's once) and its
     /// entrance (i, j), from 1: what the studio's entrance fields name.
     pub lintels: Vec<(String, usize, usize)>,
+    /// Every placed component's entrance (i, j), sorted by id: whose
+    /// per-entrance sizes (`pw[i,j]`, `tk[i,j]`, ...) it takes.
+    pub entrance_of: Vec<(String, usize, usize)>,
 }
 
 struct Reader<'a> {
@@ -310,6 +313,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         .collect();
     lintels.sort_by(|a, b| (a.1, a.2, &a.0).cmp(&(b.1, b.2, &b.0)));
     lintels.dedup();
+    let entrance_of = entrances_of(&r, &halves, &lintels);
     if layouts[0] != layouts[1] {
         return Err(r.err(
             spans.centre.clone(),
@@ -377,6 +381,7 @@ pub fn read(name: &str, text: &str, relations: &str) -> Result<Graph, Box<GraphE
         defines,
         unplaced,
         lintels,
+        entrance_of,
     })
 }
 
@@ -433,6 +438,62 @@ fn half_layout(
         }
     }
     l
+}
+
+/// Every component's entrance (i, j): a lintel's own; a ground pillar's,
+/// the entrance it is the outer pillar of (the grammar draws an entrance's
+/// outer pillars; its inner one is its inner neighbour's outer one); a
+/// suspended pillar's, the entrance above it that it holds up; anything
+/// else, the entrance of what it attaches to, except a clipped roof on a
+/// suspended pillar, which is a side roof of the entrance under it
+/// (decoration 8). Components attached to nothing placed have none.
+fn entrances_of(
+    r: &Reader,
+    halves: &[Vec<(&str, &str)>],
+    lintels: &[(String, usize, usize)],
+) -> Vec<(String, usize, usize)> {
+    let mut at: BTreeMap<&str, (usize, usize)> = lintels
+        .iter()
+        .map(|(id, i, j)| (id.as_str(), (*i, *j)))
+        .collect();
+    for half in halves {
+        for (k, &(_, pillar)) in half.iter().enumerate() {
+            at.insert(pillar, (k + 1, 1));
+        }
+    }
+    for (id, kind) in &r.kinds {
+        if *kind == "suspended_pillar" {
+            let held = r.under.get(id).into_iter().flatten();
+            if let Some(e) = held.filter_map(|l| at.get(l).copied()).min() {
+                at.insert(id, e);
+            }
+        }
+    }
+    // Outward along the attachments, one step per pass: a chain is at
+    // most as long as there are components.
+    for _ in 0..r.kinds.len() {
+        let mut found = Vec::new();
+        for (id, kind) in &r.kinds {
+            if at.contains_key(id) {
+                continue;
+            }
+            let hosts = r.on.get(id).into_iter().flatten();
+            let host = hosts
+                .filter_map(|h| at.get(h).map(|e| (*e, r.kind(h))))
+                .min();
+            if let Some(((i, j), host_kind)) = host {
+                let under = *kind == "clipped_roof" && host_kind == "suspended_pillar";
+                found.push((*id, (i, if under { j.saturating_sub(1).max(1) } else { j })));
+            }
+        }
+        if found.is_empty() {
+            break;
+        }
+        at.extend(found);
+    }
+    at.into_iter()
+        .map(|(id, (i, j))| (id.to_string(), i, j))
+        .collect()
 }
 
 fn decorate(r: &Reader, lintel: &str, d: &mut [bool; KINDS]) {

@@ -19,19 +19,29 @@ const RANGES: &[(&str, f64, f64, bool)] = &[
     ("αLW", 0.1, 3.0, false),
     ("αUp", 0.1, 2.0, false),
     ("αSide", 0.1, 2.0, false),
+    ("κT", 0.02, 0.5, false),
+    ("αRD", 0.1, 2.0, false),
+    ("αRH", 0.05, 1.0, false),
 ];
 
 /// A table's index ranges, lowest and highest, per dimension.
 type Dims = &'static [(usize, usize)];
 
-/// The per-entrance tables of the grammar: name, the ratio whose range
-/// they take, and their index ranges (docs/pailou.md).
+/// The per-entrance tables of the grammar (the entrance's ratios and its
+/// components' sizes): name, the ratio whose range they take, and their
+/// index ranges (docs/pailou.md, "Per entrance").
 const TABLES: &[(&str, &str, Dims)] = &[
     ("up", "αUp", &[(1, 6), (2, 4)]),
     ("side", "αSide", &[(1, 5)]),
+    ("pw", "αPW", &[(1, 6), (1, 4)]),
+    ("lh", "αLH", &[(1, 6), (1, 4)]),
+    ("lw", "αLW", &[(1, 6), (1, 4)]),
+    ("tk", "κT", &[(1, 6), (1, 4)]),
+    ("rd", "αRD", &[(1, 6), (1, 4)]),
+    ("rh", "αRH", &[(1, 6), (1, 4)]),
 ];
 
-/// `up[i,j]` or `side[i]`: the ratio it is an entrance's value of, or the
+/// `up[i,j]`, `side[i]`, `pw[i,j]`, ...: the ratio it is an entrance's value of, or the
 /// sentence saying which indices the table has.
 fn table_ratio(name: &str) -> Option<Result<&'static str, String>> {
     let (table, rest) = name.split_once('[')?;
@@ -58,8 +68,8 @@ fn table_ratio(name: &str) -> Option<Result<&'static str, String>> {
 }
 
 /// Whether `value` is a value `name` may take (names without a range may
-/// take any finite value; an entrance's `up[i,j]` and `side[i]` take
-/// αUp's and αSide's).
+/// take any finite value; an entrance's `up[i,j]`, `side[i]`, `pw[i,j]`,
+/// ... take the range of the ratio they default to).
 pub fn check(name: &str, value: f64) -> Result<(), String> {
     if !value.is_finite() {
         return Err(format!("`{name}` = {value} is not a number"));
@@ -109,5 +119,11 @@ mod tests {
         assert!(check("up[2]", 0.4).is_err());
         assert!(check("side[6]", 0.7).is_err());
         assert!(check("side[x]", 0.7).is_err());
+        // a component's size at an entrance takes its global ratio's range
+        assert!(check("pw[2,1]", 0.16).is_ok());
+        assert!(check("tk[1,2]", 0.16).is_ok());
+        assert!(check("tk[1,2]", 3.0).unwrap_err().contains("0.02 to 0.5"));
+        assert!(check("rh[7,1]", 0.3).unwrap_err().contains("1..6, 1..4"));
+        assert!(check("αRD", -1.0).is_err());
     }
 }

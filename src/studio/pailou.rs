@@ -30,6 +30,9 @@ pub struct PailouSession {
     pub entrances: Vec<Value>,
     /// Each entrance's lintel: `{id: [i, j]}` (the entrance fields).
     pub lintels: Value,
+    /// Every placed component's entrance: `{id: [i, j]}` (the fields of
+    /// the active component's sizes).
+    pub entrance_of: Value,
     /// The emitted grammar of the last good graph.
     pub lsys: String,
     /// The build's defines (the graph's, with the Toukung levels passed on).
@@ -61,6 +64,7 @@ impl PailouSession {
             chart: String::new(),
             entrances: Vec::new(),
             lintels: json!({}),
+            entrance_of: json!({}),
             lsys: String::new(),
             defines: Vec::new(),
             active: String::new(),
@@ -95,12 +99,8 @@ impl PailouSession {
             unplaced: p.unplaced().to_vec(),
             chart: p.chart(),
             entrances: p.entrances().iter().map(entrance_json).collect(),
-            lintels: p
-                .lintels()
-                .iter()
-                .map(|(id, i, j)| (id.clone(), json!([i, j])))
-                .collect::<serde_json::Map<_, _>>()
-                .into(),
+            lintels: entrance_map(p.lintels()),
+            entrance_of: entrance_map(p.entrance_of()),
             lsys: p.grammar_text(),
             defines,
         })
@@ -112,6 +112,7 @@ impl PailouSession {
         self.chart = b.chart;
         self.entrances = b.entrances;
         self.lintels = b.lintels;
+        self.entrance_of = b.entrance_of;
         self.lsys = b.lsys;
         self.defines = b.defines;
         self.error = None;
@@ -274,6 +275,7 @@ impl PailouSession {
             "chart": self.chart,
             "entrances": self.entrances,
             "lintels": self.lintels,
+            "entrance_of": self.entrance_of,
             "matrix": matrix(),
             "unplaced": self.unplaced,
             "error": self.error,
@@ -285,6 +287,14 @@ impl PailouSession {
             "toml": self.graph.to_toml(),
         })
     }
+}
+
+/// `{id: [i, j]}` of (id, i, j).
+fn entrance_map(of: &[(String, usize, usize)]) -> Value {
+    of.iter()
+        .map(|(id, i, j)| (id.clone(), json!([i, j])))
+        .collect::<serde_json::Map<_, _>>()
+        .into()
 }
 
 fn first_diagnostic(d: &crate::Diagnostics) -> Value {
@@ -311,6 +321,7 @@ struct Built {
     chart: String,
     entrances: Vec<Value>,
     lintels: Value,
+    entrance_of: Value,
     lsys: String,
     defines: Vec<(String, String)>,
 }

@@ -195,20 +195,39 @@ function drawParams(s) {
   drawEntranceParams(s);
 }
 
-// The active lintel's entrance's own ratios (the paper's α^Up_ij and
-// α^Side_ij): the grammar's `up[i,j]` and `side[i-1]` tables, set as
-// defines of the graph; both halves (the grammar mirrors one).
+// The active component's entrance's own ratios (the paper's α^Up_ij and
+// α^Side_ij: the grammar's `up[i,j]` and `side[i-1]` tables) and the
+// sizes of its kind at that entrance (α^XW_ij, α^XH_ij, α^XD_ij: `pw`,
+// `lh`, `lw`, `tk`, `rd`, `rh`), set as defines of the graph; both halves
+// (the grammar mirrors one). Slider bounds lie inside the server's ranges
+// (src/pailou/ranges.rs); the fallback is the grammar's global default.
+const SIZES = {
+  pw: ["αPW", 7 / 61, 0.05, 0.3, "pillar diameter / pillar height"],
+  lh: ["αLH", 6 / 7, 0.4, 1.5, "big lintel's height / pillar diameter"],
+  lw: ["αLW", 1, 0.5, 1.5, "Toukung row's length / entrance width"],
+  tk: ["κT", 0.12, 0.05, 0.25, "Toukung size per unit of column height"],
+  rd: ["αRD", 0.45, 0.2, 1, "roof depth per unit of column height"],
+  rh: ["αRH", 0.25, 0.1, 0.6, "roof height per unit of column height"],
+};
+const SIZES_OF = {
+  pillar: ["pw"], suspended_pillar: ["pw"], pillar_base: ["pw"],
+  lintel: ["lh"], flower_board: ["lh"], inscribed_board: ["lh"], queti: ["lh"], yundan: ["lh"],
+  middle_toukung: ["tk", "lw"], side_toukung: ["tk", "lw"],
+  eaves_roof: ["rd", "rh"], clipped_roof: ["rd", "rh"],
+};
+
 function drawEntranceParams(s) {
   const box = $("entrance-params");
-  const at = (s.lintels || {})[s.active];
+  const at = (s.entrance_of || {})[s.active] || (s.lintels || {})[s.active];
   box.replaceChildren();
-  if (!at) { box.textContent = "select a lintel for its entrance's ratios"; return; }
+  if (!at) { box.textContent = "select a component for its entrance's ratios and sizes"; return; }
   const [i, j] = at;
-  const field = (name, title, fallback) => {
+  const kind = (s.components.find((c) => c.id === s.active) || {}).kind || "";
+  const field = (name, title, fallback, min = 0.2, max = 1) => {
     const v = s.defines[name];
     const l = document.createElement("label");
     l.title = title;
-    l.innerHTML = `${name}<input type="range" data-entrance="${name}" min="0.2" max="1" step="0.01"><output></output>`;
+    l.innerHTML = `${name}<input type="range" data-entrance="${name}" min="${min}" max="${max}" step="0.005"><output></output>`;
     const input = l.querySelector("input"), out = l.querySelector("output");
     input.value = v !== undefined ? v : fallback;
     out.textContent = v !== undefined ? v : "as all";
@@ -226,6 +245,16 @@ function drawEntranceParams(s) {
   if (j > 1) field(`up[${i},${j}]`, "this entrance's pillar height / the one below (αUp of this entrance)", s.defines["αUp"] ?? 0.5);
   else if (i > 1) field(`side[${i - 1}]`, "this entrance's pillar height / the inner one (αSide of this entrance)", s.defines["αSide"] ?? 0.8);
   else box.append("the central entrance: ω sets its height");
+  const sizes = SIZES_OF[kind] || [];
+  if (sizes.length) {
+    const sub = document.createElement("div");
+    sub.textContent = `${kind.replace("_", " ")}s of G${i}${j}`;
+    box.append(sub);
+  }
+  for (const t of sizes) {
+    const [ratio, dflt, min, max, what] = SIZES[t];
+    field(`${t}[${i},${j}]`, `${what} at this entrance (${ratio} of this entrance)`, s.defines[ratio] ?? dflt, min, max);
+  }
 }
 
 function showPailou(s) {

@@ -4,7 +4,8 @@
 // through the palette, the entrance copied upward (#duplicate-up) and
 // given its Toukungs and eaves roof, the whole group copied sideways
 // (#duplicate), clipped roofs on the outer pillars; then one side
-// entrance's own ratio (its `side[1]` slider). Every step is checked for
+// entrance's own ratio (its `side[1]` slider) and one component's own size
+// at its entrance (the central upper Toukungs' `tk[1,2]`). Every step is checked for
 // structural warnings; the result must have `lsys pailou --style 4-3-7`'s
 // layout chart, and the relation matrix must mark the active pair.
 // Screenshot: docs/images/studio-pailou-437.png. Prints "N passed, N failed".
@@ -88,6 +89,21 @@ try {
   s = await state();
   check("the side entrances take a ratio of their own (side[1] = 0.7) with no structural warning", s.defines["side[1]"] === 0.7 && s.problems.length === 0,
     JSON.stringify(s.problems.slice(0, 2)));
+  // A component's own sizes at its entrance (α^XW_ij ...): the central
+  // upper entrance's middle Toukungs larger, which raises the main roof.
+  const toukung = s.components.find((c) => c.kind === "middle_toukung" && JSON.stringify(s.entrance_of[c.id]) === "[1,2]");
+  const top0 = s.bounds[1][1];
+  await select(toukung.id);
+  await page.waitForSelector('#entrance-params input[data-entrance="tk[1,2]"]');
+  const fields = await page.$$eval("#entrance-params input", (l) => l.map((i) => i.dataset.entrance));
+  check("a middle Toukung shows its entrance's ratio and its kind's sizes there", fields.join(" ") === "up[1,2] tk[1,2] lw[1,2]", fields.join(" "));
+  const e2 = await edits();
+  await page.$eval('#entrance-params input[data-entrance="tk[1,2]"]', (i) => { i.value = "0.15"; i.dispatchEvent(new Event("change")); });
+  await page.waitForFunction((e) => window.studio.edits > e, e2, { timeout: 120000 });
+  s = await state();
+  check("the central upper Toukungs take a size of their own (tk[1,2] = 0.15): the main roof rises, no structural warning",
+    s.defines["tk[1,2]"] === 0.15 && s.problems.length === 0 && s.bounds[1][1] > top0 + 0.1,
+    `${top0} -> ${s.bounds[1][1]} ${JSON.stringify(s.problems.slice(0, 2))}`);
   check(`the 4-3-7 has ${s.components.length} components`, s.components.length === 57);
   await page.click('#views button[data-view="front"]');
   await page.waitForTimeout(500);
