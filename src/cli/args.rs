@@ -45,7 +45,7 @@ pub enum Command {
     Commands,
     /// Build a Pailou from a component graph or a style: lsys pailou --style 4-3-7 --type ridge -o p.glb
     Pailou(PailouArgs),
-    /// Infer a hall's shape grammar from an elevation line drawing (PNG or SVG): lsys infer front.png -o hall.lsys
+    /// Infer a hall's shape grammar (or a Pailou's style and proportions) from an elevation line drawing (PNG or SVG): lsys infer front.png -o hall.lsys
     Infer(InferArgs),
     /// Explore a grammar step by step: step, go back, show, edit rules, set defines, export.
     Repl(ReplArgs),

@@ -20,11 +20,14 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
     if let Err(e) = driver::write_inference(&inference, &a.output, a.tree.as_deref()) {
         return failed(e, color);
     }
-    let counts: Vec<String> = inference
+    let mut counts: Vec<String> = inference
         .counts()
         .iter()
         .map(|(_, plural, n)| format!("{n} {plural}"))
         .collect();
+    if let Some(summary) = &inference.summary {
+        counts.insert(0, summary.clone());
+    }
     eprintln!(
         "lsys: {}: {}; wrote {}{}",
         a.drawing.display(),
@@ -34,6 +37,18 @@ pub(super) fn infer_cmd(a: &InferArgs, color: bool) -> i32 {
             .as_ref()
             .map_or(String::new(), |t| format!(" and {}", t.display()))
     );
+    if !inference.build_defines.is_empty() {
+        let d: Vec<String> = inference
+            .build_defines
+            .iter()
+            .map(|(k, v)| format!("-D {k}={v}"))
+            .collect();
+        eprintln!(
+            "lsys: build it with `lsys build {} {}`",
+            a.output.display(),
+            d.join(" ")
+        );
+    }
     for &i in &inference.missed {
         let c = &a.labels[i];
         let [x0, y0, x1, y1] = c.bbox;

@@ -1,5 +1,7 @@
 //! A drawing as a job (`lsys infer`, the studio's drawing page): a line
-//! drawing's path (and its separator strokes') -> the [`Inference`] (shape tree, grammar), the grammar
+//! drawing's path (and its separator strokes') -> the [`Inference`] (shape
+//! tree, grammar; a hall's by seed 003's reading, a Pailou's front by
+//! synthesis, `infer_pailou.rs`), the grammar
 //! compiled once to prove it builds, and both written atomically: the
 //! grammar and the tree appear together or not at all.
 
@@ -52,10 +54,30 @@ pub fn infer_drawing(
         let (lines, strokes_shown) = read(strokes).map_err(InferFailure::Drawing)?;
         infer::add_strokes(&mut ink, &lines, &strokes_shown).map_err(InferFailure::Drawing)?;
     }
-    let inference =
-        infer::infer_corrected(&ink, &shown, opts, corrections).map_err(InferFailure::Drawing)?;
+    let inference = infer_ink(&ink, &shown, opts, corrections)?;
     crate::Grammar::from_str("inferred.lsys", &inference.grammar).map_err(InferFailure::Grammar)?;
     Ok(inference)
+}
+
+/// A Pailou's front is read by synthesis (`infer_pailou`), anything else
+/// as a hall (seed 003's reading). A Pailou's tree takes no label
+/// corrections: each is reported as missed.
+fn infer_ink(
+    ink: &Ink,
+    shown: &str,
+    opts: &InferOptions,
+    corrections: &[Correction],
+) -> Result<Inference, InferFailure> {
+    let gap = opts.gap.min(8);
+    if let Some(front) = infer::pailou_front(ink, &infer::outside(ink, gap)) {
+        let regions = infer::regions(ink, gap);
+        let mut inference =
+            super::infer_pailou::read_pailou(ink, &front, regions, shown, opts.scale, gap)
+                .map_err(InferFailure::Drawing)?;
+        inference.missed = (0..corrections.len()).collect();
+        return Ok(inference);
+    }
+    infer::infer_corrected(ink, shown, opts, corrections).map_err(InferFailure::Drawing)
 }
 
 /// Reads a drawing's `bytes` (PNG or SVG), named `shown` in messages: an
@@ -81,7 +103,7 @@ pub fn infer_edited(
         let strokes = infer::stroke_lines(ink.width, ink.height, lines);
         infer::add_strokes(&mut ink, &strokes, "the strokes").map_err(InferFailure::Drawing)?;
     }
-    infer::infer_corrected(&ink, shown, opts, corrections).map_err(InferFailure::Drawing)
+    infer_ink(&ink, shown, opts, corrections)
 }
 
 /// Writes the grammar to `grammar` and, when asked, the tree to `tree`.

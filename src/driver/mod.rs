@@ -30,6 +30,7 @@ pub mod batch;
 mod empty;
 mod guided;
 mod infer;
+mod infer_pailou;
 mod job;
 mod pailou;
 mod painting;

@@ -57,6 +57,13 @@ pub enum InferError {
     )]
     NoRegions { path: String },
 
+    #[error("{path}: read as a Pailou front, but {reason}")]
+    #[diagnostic(
+        code(lsys::infer::not_a_pailou),
+        help("the drawing's ground pillars stand free, so it was read as a Pailou; draw a hall's bays closed (walls, doors, windows) to have it read as a hall")
+    )]
+    NotPailou { path: String, reason: String },
+
     #[error("\"{label}\" is not a label of the shape tree")]
     #[diagnostic(code(lsys::infer::unknown_label), help("a node is one of: {known}"))]
     UnknownLabel { label: String, known: String },

@@ -21,6 +21,7 @@
 mod correct;
 mod drawing;
 mod error;
+mod front;
 mod label;
 mod outline;
 mod regions;
@@ -32,7 +33,8 @@ use serde_json::{json, Value};
 pub use correct::{known_label, Correction, LABELS};
 pub use drawing::{binarize, is_svg, read_png, read_svg, stroke_lines, Ink, STROKE_WIDTH};
 pub use error::InferError;
-pub use regions::Region;
+pub use front::{pailou_front, PailouFront};
+pub use regions::{outside, regions, Region};
 pub use tree::{Axis, Node};
 
 /// How to read a drawing.
@@ -65,6 +67,12 @@ pub struct Inference {
     /// Indices of the corrections whose box is no node's (not applied).
     pub missed: Vec<usize>,
     pub grammar: String,
+    /// What kind of front was read, when not a hall's (a Pailou's: its
+    /// style and type), for the reader.
+    pub summary: Option<String>,
+    /// Defines the grammar is to be built with that it cannot say itself
+    /// (a Pailou's Toukung levels, `TM.NTL` and `TS.NTL`); empty for a hall.
+    pub build_defines: Vec<(String, String)>,
 }
 
 /// Reads the drawing `bytes` (PNG or SVG), named `path` in messages and in
@@ -158,6 +166,8 @@ pub fn infer_corrected(
         unlabelled,
         missed,
         grammar,
+        summary: None,
+        build_defines: Vec::new(),
     })
 }
 

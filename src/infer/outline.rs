@@ -173,15 +173,7 @@ mod tests {
     use super::*;
 
     fn leaf(label: &'static str, bbox: [i32; 4]) -> Node {
-        Node {
-            label,
-            bbox,
-            split: None,
-            repeat: false,
-            children: Vec::new(),
-            regions: Vec::new(),
-            fills: Vec::new(),
-        }
+        Node::leaf(label, bbox)
     }
 
     /// Vertical lines at the given columns, rows 0..40, in a 60-wide page.

@@ -40,6 +40,40 @@ pub fn regions(ink: &Ink, gap: usize) -> Vec<Region> {
     label(&thick, gap as i32)
 }
 
+/// The drawing's outside: the paper reachable from the picture's border
+/// without crossing a line (lines thickened by `gap`, as [`regions`]
+/// does), one flag per pixel.
+pub fn outside(ink: &Ink, gap: usize) -> Vec<bool> {
+    let thick = thicken(&erase_specks(ink, gap), gap);
+    let (w, h) = (ink.width, ink.height);
+    let mut out = vec![false; w * h];
+    let mut stack: Vec<usize> = (0..w * h)
+        .filter(|&i| {
+            let (x, y) = (i % w, i / w);
+            (x == 0 || y == 0 || x + 1 == w || y + 1 == h) && !thick.ink[i]
+        })
+        .collect();
+    for &i in &stack {
+        out[i] = true;
+    }
+    while let Some(i) = stack.pop() {
+        let (x, y) = (i % w, i / w);
+        let near = [
+            (x > 0).then(|| i - 1),
+            (x + 1 < w).then(|| i + 1),
+            (y > 0).then(|| i - w),
+            (y + 1 < h).then(|| i + w),
+        ];
+        for j in near.into_iter().flatten() {
+            if !thick.ink[j] && !out[j] {
+                out[j] = true;
+                stack.push(j);
+            }
+        }
+    }
+    out
+}
+
 /// Removes 8-connected ink components of at most [`SPECK`] pixels that
 /// stand alone: a piece of a line left between two breaks (a scan's gaps
 /// right beside a junction) has other ink within a bridgeable break

@@ -64,6 +64,19 @@ pub struct Node {
 }
 
 impl Node {
+    /// A node with no children and no regions.
+    pub fn leaf(label: &'static str, bbox: [i32; 4]) -> Node {
+        Node {
+            label,
+            bbox,
+            split: None,
+            repeat: false,
+            children: Vec::new(),
+            regions: Vec::new(),
+            fills: Vec::new(),
+        }
+    }
+
     pub fn w(&self) -> i32 {
         self.bbox[2] - self.bbox[0]
     }

@@ -94,7 +94,15 @@ impl DrawingSession {
                     name: "inferred.lsys".into(),
                     text: inference.grammar.clone(),
                 };
-                let job = model::job(input, "inferred.lsys", &[], None, false, self.max_triangles);
+                let defines = &inference.build_defines;
+                let job = model::job(
+                    input,
+                    "inferred.lsys",
+                    defines,
+                    None,
+                    false,
+                    self.max_triangles,
+                );
                 match model::build(&job) {
                     Ok((m, _)) => {
                         self.model = Some(m);

@@ -274,6 +274,39 @@ impl PixelFrame {
         let q = self.camera.project(p);
         Vec2::new(q.x, q.y) / self.supersample
     }
+
+    /// Each placed component of `scene` as (its symbol, the box `[x0, y0,
+    /// x1, y1]` in pixels around its geometry's box projected), in the
+    /// scene's order; placements smaller than a pixel either way left out.
+    pub fn instance_boxes<'s>(&self, scene: &'s Scene) -> Vec<(&'s str, [f64; 4])> {
+        let mut out = Vec::new();
+        for inst in &scene.instances {
+            let c = &scene.components[inst.component];
+            let Some((lo, hi)) = c
+                .parts()
+                .iter()
+                .filter_map(|p| p.mesh.bounds())
+                .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+            else {
+                continue;
+            };
+            let mut b = [f64::MAX, f64::MAX, f64::MIN, f64::MIN];
+            for k in 0..8 {
+                let corner = Vec3::new(
+                    if k & 1 == 0 { lo.x } else { hi.x },
+                    if k & 2 == 0 { lo.y } else { hi.y },
+                    if k & 4 == 0 { lo.z } else { hi.z },
+                );
+                let p = self.project(inst.transform.transform_point3(corner));
+                let (x, y) = (f64::from(p.x), f64::from(p.y));
+                b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+            }
+            if b[2] - b[0] >= 1.0 && b[3] - b[1] >= 1.0 {
+                out.push((c.name.as_str(), b));
+            }
+        }
+        out
+    }
 }
 
 /// Renders `scene` as seen from `opts.view`, framed to fill the image less

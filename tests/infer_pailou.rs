@@ -1,0 +1,155 @@
+//! `lsys infer` on Pailou fronts: elevations drawn by `lsys render --style
+//! lines` from `lsys pailou` styles of both types, read back by synthesis
+//! (src/driver/infer_pailou.rs): the style and type must be the
+//! generator's, each entrance's measured width ratio its `side[i]`, its
+//! passage's proportion αEW, its Toukung levels NTL, the
+//! tree must hold one bay per ground entrance and only the vocabulary's
+//! labels, and the written grammar must build.
+
+mod common;
+
+use std::path::Path;
+
+use common::lsys_in;
+use serde_json::Value;
+
+fn run(dir: &Path, args: &[&str]) -> String {
+    let out = lsys_in(dir, args);
+    assert!(
+        out.status.success(),
+        "lsys {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn leaves<'a>(n: &'a Value, out: &mut Vec<&'a Value>) {
+    let children = n["children"].as_array().unwrap();
+    if children.is_empty() {
+        out.push(n);
+    }
+    for c in children {
+        leaves(c, out);
+    }
+}
+
+#[test]
+fn pailou_fronts_are_read_as_their_style() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // (style, type, side[1], αEW) drawn; the defaults are 0.8 and 10/12.
+    for (style, kind, side, ew) in [
+        ("2-1-2", "pillar", 0.8, 10.0 / 12.0),
+        ("4-3-7", "ridge", 0.7, 0.78),
+        ("4-3-10", "pillar", 0.8, 0.9),
+    ] {
+        let stem = format!("{style}-{kind}");
+        let grammar = lsys_in(
+            d,
+            &["pailou", "--style", style, "--type", kind, "--emit-lsys"],
+        );
+        assert!(grammar.status.success());
+        std::fs::write(d.join(format!("{stem}.lsys")), &grammar.stdout).unwrap();
+        let (lsys, png) = (format!("{stem}.lsys"), format!("{stem}.png"));
+        let mut args = vec!["render", &lsys, "--view", "front", "--style", "lines"];
+        args.extend(["--size", "1000x600", "-o", &png]);
+        let defines = [format!("side[1]={side}"), format!("αEW={ew}")];
+        for d in &defines {
+            args.extend(["-D", d]);
+        }
+        run(d, &args);
+        let said = run(d, &["infer", &png, "-o", "out.lsys", "--tree", "out.json"]);
+        assert!(
+            said.contains(&format!("style {style}, {kind} type")),
+            "{stem}: {said}"
+        );
+        let tree: Value =
+            serde_json::from_slice(&std::fs::read(d.join("out.json")).unwrap()).unwrap();
+        let mut all = Vec::new();
+        leaves(&tree["root"], &mut all);
+        let ne: usize = style.split('-').nth(1).unwrap().parse().unwrap();
+        let bays = all.iter().filter(|n| n["label"] == "bay").count();
+        assert_eq!(bays, ne, "{stem}: one bay per ground entrance");
+        let known = [
+            "column", "bay", "lintel", "wall", "bracket", "roof", "ornament", "other",
+        ];
+        for n in &all {
+            let label = n["label"].as_str().unwrap();
+            assert!(known.contains(&label), "{stem}: {label}");
+            let b: Vec<i64> = n["box"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_i64().unwrap())
+                .collect();
+            assert!(
+                b[0] >= 0 && b[1] >= 0 && b[2] <= 1000 && b[3] <= 600 && b[0] < b[2],
+                "{stem}: {b:?}"
+            );
+        }
+        let columns = all.iter().filter(|n| n["label"] == "column").count();
+        assert!(columns > ne, "{stem}: {columns} columns for {ne} entrances");
+        assert!(all.iter().any(|n| n["label"] == "roof"), "{stem}: roofs");
+        // The measured ratios, written into the grammar, within 0.02 of
+        // the generator's: the entrance's width over its height, and the
+        // side entrances' width over the central one's; drawn with
+        // std:pailou's 5 Toukung levels, read as 5.
+        let text = std::fs::read_to_string(d.join("out.lsys")).unwrap();
+        let define = |prefix: &str| {
+            text.lines()
+                .find(|l| l.starts_with(prefix))
+                .unwrap_or_else(|| panic!("{stem}: no {prefix}"))
+                .to_string()
+        };
+        assert!(
+            define("#define NTL").starts_with("#define NTL 5,"),
+            "{stem}"
+        );
+        let line = define("#define αPW");
+        let got: f64 = line
+            .split("αEW ")
+            .nth(1)
+            .unwrap()
+            .split(',')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!((got - ew).abs() < 0.02, "{stem}: {line}");
+        if ne > 1 {
+            let want = side;
+            let line = text
+                .lines()
+                .find(|l| l.starts_with("#define side[1..6]"))
+                .unwrap();
+            let first: f64 = line
+                .split(['{', ','])
+                .nth(1)
+                .unwrap()
+                .trim()
+                .parse()
+                .unwrap();
+            assert!((first - want).abs() < 0.02, "{stem}: {line}");
+        }
+        run(d, &["build", "out.lsys", "-o", "out.glb"]);
+    }
+}
+
+/// The hall drawings of examples/drawings are not taken for Pailous.
+#[test]
+fn hall_drawings_stay_halls() {
+    let dir = tempfile::tempdir().unwrap();
+    let drawings = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/drawings");
+    for name in [
+        "three-bay-hall.svg",
+        "gatehouse.svg",
+        "seven-bay-palace.svg",
+    ] {
+        let path = drawings.join(name);
+        let said = run(
+            dir.path(),
+            &["infer", path.to_str().unwrap(), "-o", "out.lsys"],
+        );
+        assert!(!said.contains("Pailou"), "{name}: {said}");
+    }
+}
