@@ -7,7 +7,7 @@
 import { mkdtempSync, writeFileSync, existsSync, readFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
+import { check, images, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-studio-"));
 const { server, url } = await startStudio(dir);
@@ -17,7 +17,7 @@ try {
   const page = await newPage(browser);
   let saveAs = "fig6.toml";
   page.on("dialog", (d) => d.accept(d.message().startsWith("Save") ? saveAs : undefined));
-  await page.goto(url);
+  await openPage(page, url);
   const loads = () => page.evaluate(() => window.studio.loads);
   // Applies a style and waits for that edit's own answer and model (a
   // pushed update's reload may land before or after it).

@@ -10,7 +10,7 @@
 import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, repo, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
+import { check, images, repo, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-drawing-"));
 // The five-bay hall (examples/drawings) without the line that quarters
@@ -24,7 +24,7 @@ let browser, profile;
 try {
   ({ browser, profile } = await launchBrowser());
   const page = await newPage(browser);
-  await page.goto(url + "drawing");
+  await openPage(page, url + "drawing");
   const state = () => page.evaluate(() => window.drawingPage.state);
   const after = (key, n) => page.waitForFunction(([k, n]) => window.drawingPage[k] > n, [key, n], { timeout: 30000 });
 

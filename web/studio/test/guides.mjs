@@ -13,7 +13,7 @@ import { copyFileSync, mkdtempSync, readFileSync } from "node:fs";
 import { execFileSync } from "node:child_process";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
+import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-guides-"));
 for (const f of ["palm.toml", "palm_trunk.lsys", "palm_crown.lsys", "palm_leaf.lsys", "line.lsys",
@@ -25,7 +25,7 @@ let browser, profile;
 try {
   ({ browser, profile } = await launchBrowser());
   const page = await newPage(browser);
-  await page.goto(url + "guides");
+  await openPage(page, url + "guides");
   const state = () => page.evaluate(() => window.guidesPage.state);
   const doc = () => page.evaluate(() => window.guidesPage.doc());
   const count = (k) => page.evaluate((k) => window.guidesPage[k], k);

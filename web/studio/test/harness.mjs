@@ -57,6 +57,23 @@ export async function newPage(browser) {
   return page;
 }
 
+// Opens `url` in `page`. It waits for the document, not for every module
+// and image ("load"): each test then waits for the page's own state. On
+// CI a page opened right after another test's browser closed twice missed
+// "load" within 30 s (guides.mjs, paint.mjs), so the wait is 90 s and a
+// failed one is tried again once.
+export async function openPage(page, url) {
+  for (let attempt = 1; ; attempt++) {
+    try {
+      await page.goto(url, { waitUntil: "domcontentloaded", timeout: 90000 });
+      return;
+    } catch (e) {
+      if (attempt >= 2) throw e;
+      console.log(`(opening ${url} failed: ${e.message.split("\n")[0]}; once more)`);
+    }
+  }
+}
+
 // Closes what a test opened and exits with its count.
 export async function finish({ browser, profile, server, dirs }) {
   if (browser) await browser.close();

@@ -15,7 +15,7 @@ import { mkdtempSync } from "node:fs";
 import { execFileSync } from "node:child_process";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, lsys, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
+import { check, images, lsys, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-pailou437-"));
 const { server, url } = await startStudio(dir);
@@ -23,7 +23,7 @@ let browser, profile;
 try {
   ({ browser, profile } = await launchBrowser());
   const page = await newPage(browser);
-  await page.goto(url);
+  await openPage(page, url);
   await page.waitForFunction(() => window.studio.state && window.studio.state.components.length === 3, null, { timeout: 60000 });
   const state = () => page.evaluate(() => window.studio.state);
   const edits = () => page.evaluate(() => window.studio.edits);

@@ -14,7 +14,7 @@ import { copyFileSync, mkdtempSync, readFileSync } from "node:fs";
 import { execFileSync } from "node:child_process";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish } from "./harness.mjs";
+import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-paint-"));
 for (const f of ["house.rules", "veranda.lsys", "villa.lsys", "villa_front.png"]) copyFileSync(join(repo, "examples/painting", f), join(dir, f));
@@ -27,7 +27,7 @@ let browser, profile;
 try {
   ({ browser, profile } = await launchBrowser());
   const page = await newPage(browser);
-  await page.goto(url + "paint");
+  await openPage(page, url + "paint");
   const state = () => page.evaluate(() => window.paintPage.state);
   const count = () => page.evaluate(() => window.paintPage.edits);
   const settled = async (n) => {
