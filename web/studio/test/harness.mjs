@@ -57,15 +57,16 @@ export async function newPage(browser) {
   return page;
 }
 
-// Opens `url` in `page`. It waits for the document, not for every module
-// and image ("load"): each test then waits for the page's own state. On
-// CI a page opened right after another test's browser closed twice missed
-// "load" within 30 s (guides.mjs, paint.mjs), so the wait is 90 s and a
-// failed one is tried again once.
+// Opens `url` in `page` and waits for its "load" (the tests count model
+// loads from there; waiting only for the document let browser.mjs count
+// the first model's second load as its edit's). On CI a page opened right
+// after another test's browser closed missed "load" within 30 s
+// (guides.mjs; paint.mjs twice locally), so the wait is 90 s and a failed
+// one is tried again once.
 export async function openPage(page, url) {
   for (let attempt = 1; ; attempt++) {
     try {
-      await page.goto(url, { waitUntil: "domcontentloaded", timeout: 90000 });
+      await page.goto(url, { waitUntil: "load", timeout: 90000 });
       return;
     } catch (e) {
       if (attempt >= 2) throw e;
