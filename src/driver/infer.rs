@@ -69,15 +69,16 @@ fn infer_ink(
     corrections: &[Correction],
 ) -> Result<Inference, InferFailure> {
     let gap = opts.gap.min(8);
-    if let Some(front) = infer::pailou_front(ink, &infer::outside(ink, gap)) {
-        let regions = infer::regions(ink, gap);
+    let paper = infer::paper(ink, gap);
+    if let Some(front) = infer::pailou_front(ink, &paper.outside) {
         let mut inference =
-            super::infer_pailou::read_pailou(ink, &front, regions, shown, opts.scale, gap)
+            super::infer_pailou::read_pailou(ink, &front, paper.regions, shown, opts.scale, gap)
                 .map_err(InferFailure::Drawing)?;
         inference.missed = (0..corrections.len()).collect();
         return Ok(inference);
     }
-    infer::infer_corrected(ink, shown, opts, corrections).map_err(InferFailure::Drawing)
+    infer::infer_regions(ink, paper.regions, shown, opts, corrections)
+        .map_err(InferFailure::Drawing)
 }
 
 /// Reads a drawing's `bytes` (PNG or SVG), named `shown` in messages: an

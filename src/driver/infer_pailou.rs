@@ -73,7 +73,7 @@ pub(super) fn read_pailou(
     }
     let target = grid_of_ink(ink, GRID);
     let ne = np - 1;
-    let mut best: Option<(f64, String, PailouType, crate::Scene)> = None;
+    let mut best: Option<(f64, String, PailouType, Pailou, crate::Scene)> = None;
     for nr in [0, ne, ne + 1, 2 * ne, 2 * ne + 1, 3 * ne, 3 * ne + 1] {
         for kind in [PailouType::Ridge, PailouType::Pillar] {
             let style = format!("{np}-{ne}-{nr}");
@@ -83,31 +83,25 @@ pub(super) fn read_pailou(
             let Some(scene) = build(&p, &defines) else {
                 continue;
             };
-            let score = similarity(&target, &grid_of_scene(scene.mesh(), ink, DRAWN, GRID));
+            let score = similarity(&target, &grid_of_scene(scene.mesh(), ink, DRAWN, &target));
             if best.as_ref().map_or(true, |b| score > b.0) {
-                best = Some((score, style, kind, scene));
+                best = Some((score, style, kind, p, scene));
             }
         }
     }
-    let (score, style, kind, default_scene) = best.ok_or_else(|| InferError::NotPailou {
+    let (score, style, kind, p, default_scene) = best.ok_or_else(|| InferError::NotPailou {
         path: path.to_string(),
         reason: format!("no style of {np} pillars builds"),
-    })?;
-    let p = Pailou::style(&style, kind).map_err(|e| InferError::NotPailou {
-        path: path.to_string(),
-        reason: e.to_string(),
     })?;
     // αEW: the central passage's height over its width is 1/αEW times a
     // constant of the style (every length of a ground entrance is a ratio
     // of its pillar height), so the chosen style drawn with the default
     // αEW, measured the same way, gives it.
-    let measured = passage_ratio(ink, front, gap);
-    let drawn = full_size(default_scene.mesh(), ink)
-        .and_then(|c| {
-            crate::infer::pailou_front(&c, &crate::infer::outside(&c, gap)).map(|f| (c, f))
-        })
-        .and_then(|(c, f)| passage_ratio(&c, &f, gap));
-    let alpha_ew = match (measured, drawn) {
+    let in_drawing = passage_ratio(front);
+    let drawn = full_size(default_scene.mesh(), ink);
+    let in_drawn = crate::infer::pailou_front(&drawn, &crate::infer::paper(&drawn, gap).outside)
+        .and_then(|f| passage_ratio(&f));
+    let alpha_ew = match (in_drawing, in_drawn) {
         (Some(m), Some(d)) if m > 0.0 => {
             ((ALPHA_EW * d / m).clamp(0.3, 3.0) * 1000.0).round() / 1000.0
         }
@@ -125,7 +119,7 @@ pub(super) fn read_pailou(
         let Some(scene) = build(&p, &with) else {
             continue;
         };
-        let score = similarity(&fine, &grid_of_scene(scene.mesh(), ink, FINE_DRAWN, FINE));
+        let score = similarity(&fine, &grid_of_scene(scene.mesh(), ink, FINE_DRAWN, &fine));
         if levels.as_ref().map_or(true, |l| score > l.0) {
             levels = Some((score, ntl, scene));
         }
@@ -138,10 +132,7 @@ pub(super) fn read_pailou(
     let name = std::path::Path::new(path)
         .file_name()
         .map_or(path.to_string(), |n| n.to_string_lossy().into_owned());
-    let kind_name = match kind {
-        PailouType::Ridge => "ridge",
-        PailouType::Pillar => "pillar",
-    };
+    let kind_name = kind.name();
     let summary = format!(
         "a Pailou front: style {style}, {kind_name} type, {ntl} Toukung levels (its drawing matches the drawing's lines to {score:.2}); entrance widths {}",
         widths.iter().map(|w| format!("{w:.0}")).collect::<Vec<_>>().join(", ")
@@ -154,7 +145,7 @@ pub(super) fn read_pailou(
         sides,
     };
     let grammar = grammar_text(&p, &name, &summary, &measured);
-    let tree = tree_of(ink, front, scene.mesh(), gap);
+    let tree = tree_of(ink, front, scene.mesh());
     Ok(Inference {
         width: ink.width,
         height: ink.height,
@@ -177,8 +168,7 @@ fn build(p: &Pailou, defines: &[(String, String)]) -> Option<crate::Scene> {
     super::run(&job, &mut |_| {}).ok().map(|d| d.scene)
 }
 
-/// Ink cells of a `GRID`-wide grid over the ink's box (rows in
-/// proportion), one flag per cell.
+/// Ink cells of a grid over the ink's box, one flag per cell.
 struct Grid {
     w: usize,
     h: usize,
@@ -237,8 +227,8 @@ fn grid_of_ink(ink: &Ink, cols: usize) -> Grid {
 }
 
 /// `scene` drawn as the drawing would be (front, lines), `drawn` pixels
-/// wide at most, on a grid `cols` wide.
-fn grid_of_scene(scene: &Scene, ink: &Ink, drawn: u32, cols: usize) -> Grid {
+/// wide at most, on a grid of `like`'s size (the drawing's).
+fn grid_of_scene(scene: &Scene, ink: &Ink, drawn: u32, like: &Grid) -> Grid {
     let k = (f64::from(drawn) / ink.width as f64).min(1.0);
     let opts = RenderOptions {
         width: ((ink.width as f64 * k) as u32).max(16),
@@ -248,7 +238,7 @@ fn grid_of_scene(scene: &Scene, ink: &Ink, drawn: u32, cols: usize) -> Grid {
     let img = render(scene, &opts);
     let (w, h) = (img.width as usize, img.height as usize);
     let dark = |x: usize, y: usize| img.rgb[(y * w + x) * 3] < 128;
-    grid(w, h, dark, cols, rows_for(ink, cols))
+    grid(w, h, dark, like.w, like.h)
 }
 
 /// How near two grids' lines lie: the share of each one's cells with a
@@ -294,40 +284,26 @@ fn front_lines(ink: &Ink, supersample: u32) -> RenderOptions {
 }
 
 /// `scene` drawn as the drawing is (front, lines, its size), as ink.
-fn full_size(scene: &crate::mesh::Scene, ink: &Ink) -> Option<Ink> {
+fn full_size(scene: &Scene, ink: &Ink) -> Ink {
     let img = render(scene, &front_lines(ink, 2));
-    let ink = Ink {
+    Ink {
         width: img.width as usize,
         height: img.height as usize,
         ink: img.rgb.chunks(3).map(|p| p[0] < 128).collect(),
-    };
-    Some(ink)
+    }
 }
 
 /// The central passage's height (the ink's bottom to the first line above
 /// the ground between the two middle pillars) over its width (pillar
 /// centre to centre).
-fn passage_ratio(ink: &Ink, front: &PailouFront, gap: usize) -> Option<f64> {
+fn passage_ratio(front: &PailouFront) -> Option<f64> {
     let half = front.pillars.len() / 2;
     let (l, r) = (front.pillars.get(half - 1)?, front.pillars.get(half)?);
     let width = (r[0] + r[1]) as f64 / 2.0 - (l[0] + l[1]) as f64 / 2.0;
-    let x = (l[1] + r[0]) / 2;
-    let outside = crate::infer::outside(ink, gap);
-    let mut top = front.row;
-    while top > 0 && outside[(top - 1) * ink.width + x] {
-        top -= 1;
-    }
-    let bottom = (0..ink.height).rev().find(|&y| {
-        ink.ink[y * ink.width..(y + 1) * ink.width]
-            .iter()
-            .any(|&i| i)
-    })?;
-    (width > 0.0).then(|| (bottom - top) as f64 / width)
+    let [_, top, _, end] = *front.passages.get(half - 1)?;
+    (width > 0.0).then(|| (end - 1 - top) as f64 / width)
 }
 
-/// The grammar `lsys pailou --emit-lsys` writes for `p`, with the
-/// measured ω and side ratios written into its defines and a heading
-/// saying where it came from.
 /// What was measured on the drawing, written into the grammar.
 struct Measured {
     omega: f64,
@@ -337,6 +313,9 @@ struct Measured {
     sides: Vec<f64>,
 }
 
+/// The grammar `lsys pailou --emit-lsys` writes for `p`, with what was
+/// measured written into its defines and a heading saying where it came
+/// from.
 fn grammar_text(p: &Pailou, name: &str, summary: &str, m: &Measured) -> String {
     let mut side_table: Vec<String> = m.sides.iter().map(|s| s.to_string()).collect();
     side_table.resize(6, "αSide".to_string());
@@ -392,7 +371,7 @@ fn label_of(component: &str) -> &'static str {
 /// middle is in it, top to bottom: the chosen model's parts projected
 /// onto the drawing (its box mapped onto the drawing's ink box), and each
 /// passage between two ground pillars a bay.
-fn tree_of(ink: &Ink, front: &PailouFront, scene: &Scene, gap: usize) -> Node {
+fn tree_of(ink: &Ink, front: &PailouFront, scene: &Scene) -> Node {
     let b = ink_box(ink.width, ink.height, |x, y| ink.at(x, y)).unwrap_or([0, 0, 1, 1]);
     let bbox = [b[0] as i32, b[1] as i32, b[2] as i32, b[3] as i32];
     let leaves: Vec<(&'static str, [f64; 4])> = PixelFrame::of(scene, &front_lines(ink, 1))
@@ -428,19 +407,8 @@ fn tree_of(ink: &Ink, front: &PailouFront, scene: &Scene, gap: usize) -> Node {
             (*l, [x(b[0]), y(b[1]), x(b[2]), y(b[3])])
         })
         .collect();
-    // The passages: between two ground pillars, from the ground up to
-    // where the drawing stops being the outside above the row read.
-    let outside = crate::infer::outside(ink, gap);
-    for pair in front.pillars.windows(2) {
-        let x = (pair[0][1] + pair[1][0]) / 2;
-        let mut top = front.row;
-        while top > 0 && outside[(top - 1) * ink.width + x] {
-            top -= 1;
-        }
-        parts.push((
-            "bay",
-            [pair[0][1] as i32, top as i32, pair[1][0] as i32, bbox[3]],
-        ));
+    for p in &front.passages {
+        parts.push(("bay", p.map(|v| v as i32)));
     }
     // Slices along x.
     let mut cuts = vec![bbox[0]];

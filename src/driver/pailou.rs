@@ -73,10 +73,7 @@ impl Pailou {
             style: style.to_string(),
             error,
         })?;
-        let k = match kind {
-            PailouType::Ridge => "ridge",
-            PailouType::Pillar => "pillar",
-        };
+        let k = kind.name();
         Ok(Pailou {
             layout,
             kind,

@@ -30,6 +30,10 @@ pub struct PailouFront {
     pub pillars: Vec<[usize; 2]>,
     /// The row read (pixels, y down).
     pub row: usize,
+    /// The passage between each two pillars, left to right, `[x0, y0, x1,
+    /// y1)`: from one pillar to the next, and from the first line above
+    /// the row read (at the passage's middle) down to the ink's bottom.
+    pub passages: Vec<[usize; 4]>,
 }
 
 /// The Pailou front drawn in `ink` (`outside`: its outside, per pixel), or
@@ -101,5 +105,20 @@ pub fn pailou_front(ink: &Ink, outside: &[bool]) -> Option<PailouFront> {
             return None;
         }
     }
-    Some(PailouFront { pillars, row })
+    let passages = pillars
+        .windows(2)
+        .map(|pair| {
+            let x = (pair[0][1] + pair[1][0]) / 2;
+            let mut top = row;
+            while top > 0 && outside[(top - 1) * w + x] {
+                top -= 1;
+            }
+            [pair[0][1], top, pair[1][0], bottom + 1]
+        })
+        .collect();
+    Some(PailouFront {
+        pillars,
+        row,
+        passages,
+    })
 }

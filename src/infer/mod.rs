@@ -34,7 +34,7 @@ pub use correct::{known_label, Correction, LABELS};
 pub use drawing::{binarize, is_svg, read_png, read_svg, stroke_lines, Ink, STROKE_WIDTH};
 pub use error::InferError;
 pub use front::{pailou_front, PailouFront};
-pub use regions::{outside, regions, Region};
+pub use regions::{paper, regions, Paper, Region};
 pub use tree::{Axis, Node};
 
 /// How to read a drawing.
@@ -125,8 +125,26 @@ pub fn infer_corrected(
     opts: &InferOptions,
     corrections: &[Correction],
 ) -> Result<Inference, InferError> {
+    infer_regions(
+        ink,
+        regions::regions(ink, opts.gap.min(8)),
+        path,
+        opts,
+        corrections,
+    )
+}
+
+/// As [`infer_corrected`], with the drawing's `regions` read already (the
+/// driver cleans a drawing once, to tell a Pailou's front from a hall's
+/// and to read either).
+pub fn infer_regions(
+    ink: &Ink,
+    regions: Vec<Region>,
+    path: &str,
+    opts: &InferOptions,
+    corrections: &[Correction],
+) -> Result<Inference, InferError> {
     let gap = opts.gap.min(8);
-    let regions = regions::regions(ink, gap);
     if regions.is_empty() {
         return Err(InferError::NoRegions {
             path: path.to_string(),

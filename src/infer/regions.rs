@@ -33,45 +33,28 @@ const SPECK: usize = 4;
 /// slivers between doubled lines.
 const MIN_AREA: u32 = 6;
 
-/// The regions of `ink`, lines thickened by `gap` pixels (0 to 8).
-pub fn regions(ink: &Ink, gap: usize) -> Vec<Region> {
-    let cleaned = erase_specks(ink, gap);
-    let thick = thicken(&cleaned, gap);
-    label(&thick, gap as i32)
+/// A drawing's paper, cleaned once: its closed areas and its outside.
+#[derive(Clone, Debug)]
+pub struct Paper {
+    pub regions: Vec<Region>,
+    /// The paper reachable from the picture's border without crossing a
+    /// line, one flag per pixel (a Pailou's passages are outside).
+    pub outside: Vec<bool>,
 }
 
-/// The drawing's outside: the paper reachable from the picture's border
-/// without crossing a line (lines thickened by `gap`, as [`regions`]
-/// does), one flag per pixel.
-pub fn outside(ink: &Ink, gap: usize) -> Vec<bool> {
+/// The paper of `ink`, lines thickened by `gap` pixels (0 to 8).
+pub fn paper(ink: &Ink, gap: usize) -> Paper {
     let thick = thicken(&erase_specks(ink, gap), gap);
-    let (w, h) = (ink.width, ink.height);
-    let mut out = vec![false; w * h];
-    let mut stack: Vec<usize> = (0..w * h)
-        .filter(|&i| {
-            let (x, y) = (i % w, i / w);
-            (x == 0 || y == 0 || x + 1 == w || y + 1 == h) && !thick.ink[i]
-        })
-        .collect();
-    for &i in &stack {
-        out[i] = true;
+    Paper {
+        regions: label(&thick, gap as i32),
+        outside: outside(&thick),
     }
-    while let Some(i) = stack.pop() {
-        let (x, y) = (i % w, i / w);
-        let near = [
-            (x > 0).then(|| i - 1),
-            (x + 1 < w).then(|| i + 1),
-            (y > 0).then(|| i - w),
-            (y + 1 < h).then(|| i + w),
-        ];
-        for j in near.into_iter().flatten() {
-            if !thick.ink[j] && !out[j] {
-                out[j] = true;
-                stack.push(j);
-            }
-        }
-    }
-    out
+}
+
+/// The regions of `ink`, lines thickened by `gap` pixels (0 to 8).
+pub fn regions(ink: &Ink, gap: usize) -> Vec<Region> {
+    let thick = thicken(&erase_specks(ink, gap), gap);
+    label(&thick, gap as i32)
 }
 
 /// Removes 8-connected ink components of at most [`SPECK`] pixels that
@@ -238,6 +221,38 @@ fn label(ink: &Ink, grow: i32) -> Vec<Region> {
             ],
             area,
         });
+    }
+    out
+}
+
+/// The paper reachable from the picture's border without crossing a line
+/// of `ink` (4-connected), one flag per pixel.
+fn outside(ink: &Ink) -> Vec<bool> {
+    let (w, h) = (ink.width, ink.height);
+    let mut out = vec![false; w * h];
+    let mut stack: Vec<usize> = (0..w * h)
+        .filter(|&i| {
+            let (x, y) = (i % w, i / w);
+            (x == 0 || y == 0 || x + 1 == w || y + 1 == h) && !ink.ink[i]
+        })
+        .collect();
+    for &i in &stack {
+        out[i] = true;
+    }
+    while let Some(i) = stack.pop() {
+        let (x, y) = (i % w, i / w);
+        let near = [
+            (x > 0).then(|| i - 1),
+            (x + 1 < w).then(|| i + 1),
+            (y > 0).then(|| i - w),
+            (y + 1 < h).then(|| i + w),
+        ];
+        for j in near.into_iter().flatten() {
+            if !ink.ink[j] && !out[j] {
+                out[j] = true;
+                stack.push(j);
+            }
+        }
     }
     out
 }

@@ -129,11 +129,7 @@ pub fn document(layout: &Layout, kind: PailouType) -> GraphDocument {
         }
     }
     GraphDocument {
-        kind: match kind {
-            PailouType::Ridge => "ridge",
-            PailouType::Pillar => "pillar",
-        }
-        .to_string(),
+        kind: kind.name().to_string(),
         centre: "L11".to_string(),
         components: comps
             .into_iter()

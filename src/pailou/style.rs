@@ -38,6 +38,16 @@ pub enum PailouType {
     Pillar,
 }
 
+impl PailouType {
+    /// How graphs, styles and messages spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            PailouType::Ridge => "ridge",
+            PailouType::Pillar => "pillar",
+        }
+    }
+}
+
 /// Which entrances exist and what each carries, for one half (the grammar
 /// mirrors it). Indices are 0-based here; the grammar's are 1-based.
 #[derive(Clone, Debug, PartialEq, Eq)]
