@@ -10,7 +10,7 @@ mod common;
 
 use std::path::Path;
 
-use common::lsys_in;
+use common::{lsys_in, lsys_ok};
 use lsys::internals::lang::scope_commands::Axis;
 use lsys::internals::turtle::scope::{repeat, symmetric};
 use serde_json::Value;
@@ -65,12 +65,7 @@ fn counts(tree: &Value) -> Counts {
 }
 
 fn run(dir: &Path, args: &[&str]) {
-    let out = lsys_in(dir, args);
-    assert!(
-        out.status.success(),
-        "lsys {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    lsys_ok(dir, args);
 }
 
 /// Draws `grammar` with `defines` as a 1000 x 600 front elevation.

@@ -3,6 +3,8 @@
 //! the folder, Host/Origin checks, body limit, bad input never crashes).
 #![cfg(feature = "studio")]
 
+mod common;
+
 use std::io::{Read, Write};
 use std::net::TcpStream;
 use std::path::Path;
@@ -195,16 +197,7 @@ fn clicks_build_a_2_1_1_pailou_and_save_it() {
     // The saved graph is one `lsys pailou` reads, and it reopens alike.
     let (code, r) = post(&h, "/api/save", json!({"path": "fig6.toml"}));
     assert_eq!(code, 200, "{r}");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(["pailou", "fig6.toml", "--chart"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = common::lsys_ok(dir.path(), &["pailou", "fig6.toml", "--chart"]);
     assert_eq!(
         String::from_utf8_lossy(&out.stdout),
         s["chart"].as_str().unwrap()
@@ -249,11 +242,10 @@ fn illegal_attachment_diagnostic_is_the_clis() {
     std::fs::write(dir.path().join("bad.toml"), graph).unwrap();
     let h = studio(&dir.path().join("bad.toml"));
     let (_, s) = get(&h, "/api/state");
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(["--color", "never", "pailou", "bad.toml", "-o", "x.glb"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
+    let out = common::lsys_in(
+        dir.path(),
+        &["--color", "never", "pailou", "bad.toml", "-o", "x.glb"],
+    );
     assert_eq!(out.status.code(), Some(65));
     assert_eq!(
         s["error"]["rendered"].as_str().unwrap(),
@@ -1168,16 +1160,7 @@ fn a_component_has_sizes_of_its_own_at_its_entrance() {
     let saved = std::fs::read_to_string(dir.path().join("sized.toml")).unwrap();
     assert!(saved.contains("\"tk[1,2]\" = 0.16"), "{saved}");
     // The saved graph builds the page's model from the command line.
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
-        .args(["pailou", "sized.toml", "-o", "sized.obj"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::lsys_ok(dir.path(), &["pailou", "sized.toml", "-o", "sized.obj"]);
     h.stop();
 }
 

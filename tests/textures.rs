@@ -5,6 +5,8 @@
 //! errors for images that are missing, outside the folder, not images,
 //! given twice, or never declared.
 
+mod common;
+
 use std::path::Path;
 
 const PNG: &[u8] = include_bytes!("../examples/painting/villa_front.png");
@@ -189,17 +191,7 @@ fn a_wrong_texture_is_a_located_error() {
 #[test]
 fn a_grammar_given_by_its_bare_name_finds_its_texture() {
     let dir = folder(WALL);
-    let lsys = env!("CARGO_BIN_EXE_lsys");
-    let out = std::process::Command::new(lsys)
-        .current_dir(dir.path())
-        .args(["build", "g.lsys", "-o", "g.glb"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    common::lsys_ok(dir.path(), &["build", "g.lsys", "-o", "g.glb"]);
     let gltf = gltf::Gltf::open(dir.path().join("g.glb")).unwrap();
     assert_eq!(gltf.images().count(), 1);
 }

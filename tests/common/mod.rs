@@ -25,6 +25,18 @@ pub fn lsys_in(dir: &std::path::Path, args: &[&str]) -> Output {
         .expect("lsys runs")
 }
 
+/// As [`lsys_in`], failing the test with lsys's diagnostics unless it
+/// succeeds.
+pub fn lsys_ok(dir: &std::path::Path, args: &[&str]) -> Output {
+    let out = lsys_in(dir, args);
+    assert!(
+        out.status.success(),
+        "lsys {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// A folder of our own cpfg models under tests/fixtures/cpfg/.
 pub fn cpfg_fixture(name: &str) -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
