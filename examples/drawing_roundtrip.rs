@@ -23,21 +23,19 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
 use glam::Vec3;
-use lsys::driver::{infer_edited, read_drawing, InferFailure, InferOptions, Inference};
+use lsys::driver::{InferOptions, Inference};
 use lsys::internals::export::render::{render, Image, PixelFrame, RenderOptions, Style, View};
 use lsys::internals::infer::Node;
 use lsys::internals::lang::scope_commands::Axis;
 use lsys::internals::turtle::scope::{repeat, symmetric, Role};
 use lsys::Grammar;
 
-#[path = "common/damage.rs"]
-mod damage;
-use damage::{damaged, ink_box, png_bytes, SplitMix, CONDITIONS};
+#[path = "common/roundtrip.rs"]
+mod roundtrip;
+use roundtrip::{damaged, ink_box, measure_all, png_bytes, read, Mask, SplitMix, CONDITIONS};
 
 const HALL: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/shapes/hall.lsys");
 /// Where the hall's sizes (`#define`s) are: the parts it includes.
@@ -323,16 +321,10 @@ impl Frame {
     }
 }
 
-/// `lsys infer`'s reading of a picture, as the command line reads it: the
-/// driver's, which reads a Pailou's front by synthesis; a hall taken for
-/// a Pailou counts as unread.
-fn read(bytes: &[u8], name: &str) -> Result<Inference, String> {
-    let why = |e: InferFailure| match e {
-        InferFailure::Drawing(e) => e.to_string(),
-        other => format!("{other:?}"),
-    };
-    let ink = read_drawing(bytes, name).map_err(why)?;
-    let inference = infer_edited(&ink, name, &[], &[], &InferOptions::default()).map_err(why)?;
+/// `lsys infer`'s reading of a picture; a hall taken for a Pailou's front
+/// (read by synthesis) counts as unread.
+fn read_hall(bytes: &[u8], name: &str) -> Result<Inference, String> {
+    let inference = read(bytes, name)?;
     match &inference.summary {
         Some(s) => Err(format!("read as {s}")),
         None => Ok(inference),
@@ -568,45 +560,6 @@ fn counts(root: &Node) -> Counts {
     }
 }
 
-/// A pixel mask of the picture.
-struct Mask {
-    w: usize,
-    h: usize,
-    on: Vec<bool>,
-}
-
-impl Mask {
-    fn new(w: usize, h: usize) -> Mask {
-        Mask {
-            w,
-            h,
-            on: vec![false; w * h],
-        }
-    }
-    /// Marks the pixels whose centres lie in `[x0, x1) x [y0, y1)`.
-    fn add(&mut self, b: [f64; 4]) {
-        let span = |lo: f64, hi: f64, n: usize| {
-            let a = (lo - 0.5).ceil().clamp(0.0, n as f64) as usize;
-            let z = (hi - 0.5).ceil().clamp(0.0, n as f64) as usize;
-            a..z.max(a)
-        };
-        for y in span(b[1], b[3], self.h) {
-            for x in span(b[0], b[2], self.w) {
-                self.on[y * self.w + x] = true;
-            }
-        }
-    }
-    /// Intersection over union; `None` when both are empty.
-    fn iou(&self, other: &Mask) -> Option<f64> {
-        let (mut both, mut any) = (0usize, 0usize);
-        for (a, b) in self.on.iter().zip(&other.on) {
-            both += usize::from(*a && *b);
-            any += usize::from(*a || *b);
-        }
-        (any > 0).then(|| both as f64 / any as f64)
-    }
-}
-
 /// Pixel masks of the truth's boxes, by label.
 fn truth_masks(boxes: &[(&str, [f64; 4])], frame: &Frame) -> Vec<Mask> {
     IOU_LABELS
@@ -666,7 +619,7 @@ fn measure(k: usize, hall: Hall, fixed: &Fixed, overlay: Option<&Path>) -> Resul
     for condition in CONDITIONS {
         let picture = damaged(&image, condition, SEED ^ k as u64);
         let name = format!("hall-{k}-{condition}.png");
-        let inference = match read(&png_bytes(&picture), &name) {
+        let inference = match read_hall(&png_bytes(&picture), &name) {
             Ok(i) => i,
             Err(e) => {
                 readings.push(Reading {
@@ -1587,39 +1540,14 @@ fn main() {
     let mut rng = SplitMix(seed);
     let halls: Vec<Hall> = (0..count).map(|_| Hall::sample(&mut rng)).collect();
     let started = Instant::now();
-    // Plain threads over a shared counter: each drawing is independent and
-    // its result goes to its own slot, so the report does not depend on
-    // the order they finish in.
-    let next = AtomicUsize::new(0);
-    let done = AtomicUsize::new(0);
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let results: Mutex<Vec<Option<Result<Outcome, String>>>> =
-        Mutex::new((0..count).map(|_| None).collect());
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= count {
-                    break;
-                }
-                let pictures = overlay.as_deref().filter(|_| k == shown);
-                let r = measure(k, halls[k], &fixed, pictures);
-                results.lock().expect("the results")[k] = Some(r);
-                let n = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if n % 20 == 0 || n == count {
-                    eprintln!(
-                        "drawing_roundtrip: {n}/{count} drawings, {:.0} s",
-                        started.elapsed().as_secs_f64()
-                    );
-                }
-            });
-        }
+    let results = measure_all("drawing_roundtrip", count, |k| {
+        let pictures = overlay.as_deref().filter(|_| k == shown);
+        measure(k, halls[k], &fixed, pictures)
     });
-    let results = results.into_inner().expect("the results");
     let mut outcomes = Vec::new();
     let mut skipped = Vec::new();
     for (k, r) in results.into_iter().enumerate() {
-        match r.expect("every drawing measured") {
+        match r {
             Ok(o) => outcomes.push((k, o)),
             // A framing mismatch means the truth cannot be placed: stop.
             Err(e) if e.contains("framing") => panic!("drawing {k}: {e}"),

@@ -20,20 +20,16 @@
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::Mutex;
 use std::time::Instant;
 
-use lsys::driver::{
-    infer_edited, read_drawing, run, InferFailure, InferOptions, Inference, Pailou, PailouType,
-};
+use lsys::driver::{run, Pailou, PailouType};
 use lsys::internals::export::render::{render, Image, PixelFrame, RenderOptions, Style, View};
 use lsys::internals::infer::Node;
 use lsys::Grammar;
 
-#[path = "common/damage.rs"]
-mod damage;
-use damage::{damaged, png_bytes, SplitMix, CONDITIONS};
+#[path = "common/roundtrip.rs"]
+mod roundtrip;
+use roundtrip::{damaged, measure_all, png_bytes, read, Mask, SplitMix, CONDITIONS};
 
 const DOC: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
@@ -185,16 +181,6 @@ fn draw(s: &Sample) -> Result<Drawn, String> {
     Ok((image, counts, boxes))
 }
 
-/// `lsys infer`'s reading of a picture.
-fn read(bytes: &[u8], name: &str) -> Result<Inference, String> {
-    let why = |e: InferFailure| match e {
-        InferFailure::Drawing(e) => e.to_string(),
-        other => format!("{other:?}"),
-    };
-    let ink = read_drawing(bytes, name).map_err(why)?;
-    infer_edited(&ink, name, &[], &[], &InferOptions::default()).map_err(why)
-}
-
 fn count(n: &Node, label: &str) -> usize {
     usize::from(n.children.is_empty() && n.label == label)
         + n.children.iter().map(|c| count(c, label)).sum::<usize>()
@@ -211,27 +197,12 @@ fn leaf_boxes(n: &Node, label: &str, out: &mut Vec<[f64; 4]>) {
 
 /// IoU of the unions of two sets of boxes, over the picture's pixels.
 fn iou(a: &[[f64; 4]], b: &[[f64; 4]]) -> Option<f64> {
-    if a.is_empty() && b.is_empty() {
-        return None;
-    }
-    let (w, h) = (SIZE.0 as usize, SIZE.1 as usize);
     let mask = |boxes: &[[f64; 4]]| {
-        let mut m = vec![false; w * h];
-        for b in boxes {
-            let x0 = b[0].round().clamp(0.0, w as f64) as usize;
-            let x1 = b[2].round().clamp(0.0, w as f64) as usize;
-            let y0 = b[1].round().clamp(0.0, h as f64) as usize;
-            let y1 = b[3].round().clamp(0.0, h as f64) as usize;
-            for y in y0..y1 {
-                m[y * w + x0..y * w + x1].fill(true);
-            }
-        }
+        let mut m = Mask::new(SIZE.0 as usize, SIZE.1 as usize);
+        boxes.iter().for_each(|b| m.add(*b));
         m
     };
-    let (ma, mb) = (mask(a), mask(b));
-    let inter = ma.iter().zip(&mb).filter(|(x, y)| **x && **y).count();
-    let union = ma.iter().zip(&mb).filter(|(x, y)| **x || **y).count();
-    (union > 0).then(|| inter as f64 / union as f64)
+    mask(a).iou(&mask(b))
 }
 
 /// One drawing read in one condition.
@@ -383,36 +354,11 @@ fn main() {
     let out = out.or_else(|| (!quick).then(|| PathBuf::from(DOC)));
     let mut rng = SplitMix(seed);
     let samples: Vec<Sample> = (0..n).map(|_| Sample::draw_from(&mut rng)).collect();
-    let started = Instant::now();
-    let next = AtomicUsize::new(0);
-    let done = AtomicUsize::new(0);
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let results: Mutex<Vec<Option<Result<Outcome, String>>>> =
-        Mutex::new((0..n).map(|_| None).collect());
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| loop {
-                let k = next.fetch_add(1, Ordering::Relaxed);
-                if k >= n {
-                    break;
-                }
-                let r = measure(k, samples[k].clone());
-                results.lock().expect("the results")[k] = Some(r);
-                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
-                if d % 20 == 0 || d == n {
-                    eprintln!(
-                        "pailou_roundtrip: {d}/{n} drawings, {:.0} s",
-                        started.elapsed().as_secs_f64()
-                    );
-                }
-            });
-        }
-    });
-    let results = results.into_inner().expect("the results");
+    let results = measure_all("pailou_roundtrip", n, |k| measure(k, samples[k].clone()));
     let mut outcomes = Vec::new();
     let mut unbuilt = Vec::new();
     for (k, r) in results.into_iter().enumerate() {
-        match r.expect("every drawing measured") {
+        match r {
             Ok(o) => outcomes.push((k, o)),
             Err(e) => unbuilt.push((k, e)),
         }

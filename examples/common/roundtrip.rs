@@ -1,12 +1,104 @@
 //! What the drawing round trips share (`drawing_roundtrip.rs`,
 //! `pailou_roundtrip.rs`): a seeded generator, the ink's box, the damage
 //! a drawing is read after (gaps, jitter, blur, as `tests/infer.rs` damages
-//! its drawings), and a picture as PNG bytes.
+//! its drawings), a picture as PNG bytes, the reading `lsys infer` makes,
+//! pixel masks for IoU, and the threads that measure every drawing.
 
 // Each round trip uses part of this file.
 #![allow(dead_code)]
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use lsys::driver::{infer_edited, read_drawing, InferFailure, InferOptions, Inference};
 use lsys::internals::export::render::{write_png, Image};
+
+/// `measure(k)` for every k in 0..n, on plain threads over a shared
+/// counter: each drawing is independent and its result goes to its own
+/// slot, so the report does not depend on the order they finish in.
+/// Progress goes to stderr as `name: k/n drawings, s`.
+pub fn measure_all<T: Send>(name: &str, n: usize, measure: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    let started = Instant::now();
+    let next = AtomicUsize::new(0);
+    let done = AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let results: Mutex<Vec<Option<T>>> = Mutex::new((0..n).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                if k >= n {
+                    break;
+                }
+                let r = measure(k);
+                results.lock().expect("the results")[k] = Some(r);
+                let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                if d % 20 == 0 || d == n {
+                    eprintln!(
+                        "{name}: {d}/{n} drawings, {:.0} s",
+                        started.elapsed().as_secs_f64()
+                    );
+                }
+            });
+        }
+    });
+    let results = results.into_inner().expect("the results");
+    results
+        .into_iter()
+        .map(|r| r.expect("every drawing measured"))
+        .collect()
+}
+
+/// `lsys infer`'s reading of a picture's PNG or SVG `bytes` (the driver's,
+/// with its defaults), or why it gave none.
+pub fn read(bytes: &[u8], name: &str) -> Result<Inference, String> {
+    let why = |e: InferFailure| match e {
+        InferFailure::Drawing(e) => e.to_string(),
+        other => format!("{other:?}"),
+    };
+    let ink = read_drawing(bytes, name).map_err(why)?;
+    infer_edited(&ink, name, &[], &[], &InferOptions::default()).map_err(why)
+}
+
+/// A pixel mask of the picture.
+pub struct Mask {
+    pub w: usize,
+    pub h: usize,
+    pub on: Vec<bool>,
+}
+
+impl Mask {
+    pub fn new(w: usize, h: usize) -> Mask {
+        Mask {
+            w,
+            h,
+            on: vec![false; w * h],
+        }
+    }
+    /// Marks the pixels whose centres lie in `[x0, x1) x [y0, y1)`.
+    pub fn add(&mut self, b: [f64; 4]) {
+        let span = |lo: f64, hi: f64, n: usize| {
+            let a = (lo - 0.5).ceil().clamp(0.0, n as f64) as usize;
+            let z = (hi - 0.5).ceil().clamp(0.0, n as f64) as usize;
+            a..z.max(a)
+        };
+        for y in span(b[1], b[3], self.h) {
+            for x in span(b[0], b[2], self.w) {
+                self.on[y * self.w + x] = true;
+            }
+        }
+    }
+    /// Intersection over union; `None` when both are empty.
+    pub fn iou(&self, other: &Mask) -> Option<f64> {
+        let (mut both, mut any) = (0usize, 0usize);
+        for (a, b) in self.on.iter().zip(&other.on) {
+            both += usize::from(*a && *b);
+            any += usize::from(*a || *b);
+        }
+        (any > 0).then(|| both as f64 / any as f64)
+    }
+}
 
 /// splitmix64: small, seeded, the same on every machine.
 pub struct SplitMix(pub u64);
