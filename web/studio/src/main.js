@@ -218,7 +218,7 @@ const SIZES_OF = {
 
 function drawEntranceParams(s) {
   const box = $("entrance-params");
-  const at = (s.entrance_of || {})[s.active] || (s.lintels || {})[s.active];
+  const at = (s.entrance_of || {})[s.active];
   box.replaceChildren();
   if (!at) { box.textContent = "select a component for its entrance's ratios and sizes"; return; }
   const [i, j] = at;
