@@ -180,6 +180,11 @@ impl Counts {
             self.brackets,
         ]
     }
+    /// The five, and the rafters.
+    fn six(&self) -> [usize; 6] {
+        let [b, c, d, w, s] = self.five();
+        [b, c, d, w, s, self.rafters]
+    }
 }
 
 const COUNT_NAMES: [&str; 5] = ["bays", "columns", "doors", "windows", "bracket sets"];
@@ -739,28 +744,32 @@ fn rebuilt_counts(grammar: &str, w: f64) -> Result<Counts, String> {
         };
         defines.contains_key(format!("{p}_{kind}").as_str())
     };
-    // On all four faces (`@Comp [BrkFace] [BrkFace] ...`), a side's first
-    // set shows end-on at each end.
-    let corners = if grammar.contains("@Comp [BrkFace] [BrkFace]") {
-        2
-    } else {
-        0
-    };
-    let brackets = if grammar.contains("\nBrackets -->") {
-        repeat(w, get("BRK_PITCH")?, Axis::X)
+    // A row of `rule` (`Brackets`, `Rafters`) repeats its element every
+    // `pitch`; on all four faces (`@Comp [BrkFace] [BrkFace] ...`), a side's
+    // first shows end-on at each end. No rule: none.
+    let row = |rule: &str, face: &str, pitch: &str| -> Result<usize, String> {
+        if !grammar.contains(&format!("\n{rule} -->")) {
+            return Ok(0);
+        }
+        let corners = if grammar.contains(&format!("@Comp [{face}] [{face}]")) {
+            2
+        } else {
+            0
+        };
+        Ok(repeat(w, get(pitch)?, Axis::X)
             .map_err(|e| e.problem)?
             .len()
-            + corners
-    } else {
-        0
+            + corners)
     };
+    let brackets = row("Brackets", "BrkFace", "BRK_PITCH")?;
+    let rafters = row("Rafters", "RafFace", "RAF_PITCH")?;
     Ok(Counts {
         bays: pieces.len(),
         columns: pieces.len() + 1,
         doors: pieces.iter().filter(|p| fill(p.0, "DOOR")).count(),
         windows: pieces.iter().filter(|p| fill(p.0, "WIN")).count(),
         brackets,
-        rafters: 0,
+        rafters,
     })
 }
 
@@ -824,6 +833,22 @@ fn picture_range(h: &Hall, factor: f64) -> Result<(Counts, Counts), String> {
         }
         sets.push(truth_pitched(&at, pitch)?.brackets);
     }
+    // The rafters: every pitch in (W/(r+1), W/r] for r on the front lays
+    // them out alike; the generator's rafters are the front's and a side
+    // face's first at each end.
+    let r = t.rafters - 2;
+    let mut rafters = Vec::new();
+    for pitch in inside(w / (r + 1) as f64, w / r as f64) {
+        if repeat(w, pitch, Axis::X).map_err(|e| e.problem)?.len() != r {
+            return Err(format!("rafter pitch {pitch} draws another picture"));
+        }
+        rafters.push(
+            repeat(w * factor, pitch, Axis::X)
+                .map_err(|e| e.problem)?
+                .len()
+                + 2,
+        );
+    }
     let least = |f: fn(&Counts) -> usize| built.iter().map(f).min().unwrap_or(0);
     let most = |f: fn(&Counts) -> usize| built.iter().map(f).max().unwrap_or(0);
     let lo = Counts {
@@ -832,7 +857,7 @@ fn picture_range(h: &Hall, factor: f64) -> Result<(Counts, Counts), String> {
         doors: least(|c| c.doors),
         windows: least(|c| c.windows),
         brackets: sets.iter().copied().min().unwrap_or(0),
-        rafters: 0,
+        rafters: rafters.iter().copied().min().unwrap_or(0),
     };
     let hi = Counts {
         bays: most(|c| c.bays),
@@ -840,7 +865,7 @@ fn picture_range(h: &Hall, factor: f64) -> Result<(Counts, Counts), String> {
         doors: most(|c| c.doors),
         windows: most(|c| c.windows),
         brackets: sets.iter().copied().max().unwrap_or(0),
-        rafters: 0,
+        rafters: rafters.iter().copied().max().unwrap_or(0),
     };
     Ok((lo, hi))
 }
@@ -1084,13 +1109,15 @@ fn report(run: &Run) -> String {
          drawings that were read and whose generator builds at all four widths, built at `W` = \
          its inferred W × factor, against the generator at the sampled W × factor. What the \
          inferred grammar builds is counted by the same `symmetric` and `repeat` applied to \
-         its `#define`s (W, END, BAY, CENTRE, BRK_PITCH; each bay kind's fill from its `E_`, \
-         `B_`, `C_` `DOOR` or `WIN`), which is what its `@RSX` and `@RX` splits compute when \
-         built; a grammar without a `Brackets` rule builds 0 bracket sets. A drawing shows \
+         its `#define`s (W, END, BAY, CENTRE, BRK_PITCH, RAF_PITCH; each bay kind's fill from \
+         its `E_`, `B_`, `C_` `DOOR` or `WIN`), which is what its `@RSX` and `@RX` splits \
+         compute when built; a grammar without a `Brackets` (`Rafters`) rule builds 0 bracket \
+         sets (rafters). A drawing shows \
          the bays stretched to inner/(2n) (inner = W − 2 END − CENTRE, n bays a side), and \
          every hall that differs from the sampled one only in a nominal BAY' in \
          (inner/(2n+2), inner/(2n)] (above inner/2 when n = 0) draws the same picture; so \
-         does every bracket pitch in (W/(m+1), W/m] for m sets on the front. The *range* \
+         does every bracket pitch in (W/(m+1), W/m] for m sets on the front, and every rafter \
+         pitch in (W/(r+1), W/r] for r rafters on the front. The *range* \
          [lo, hi] of a count is the least and most the generator builds at W × factor over \
          those halls (its own `symmetric` and `repeat` on {RANGE_SAMPLES} values strictly \
          inside each interval and its closed end, each checked to draw the same picture). A \
@@ -1308,12 +1335,13 @@ fn report(run: &Run) -> String {
         "| factor | count | exact | consistent | determined | exact when determined |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|");
-    // Bays, columns, windows, bracket sets: their places in `five()`.
-    let ranged: [(&str, &[usize]); 5] = [
+    // Bays, columns, windows, bracket sets, rafters: their places in `six()`.
+    let ranged: [(&str, &[usize]); 6] = [
         ("bays", &[0]),
         ("columns", &[1]),
         ("windows", &[3]),
         ("bracket sets", &[4]),
+        ("rafters", &[5]),
         ("all four", &[0, 1, 3, 4]),
     ];
     for f in FACTORS {
@@ -1322,17 +1350,17 @@ fn report(run: &Run) -> String {
             let exact = |c: &WidthCase| {
                 c.got
                     .as_ref()
-                    .is_ok_and(|g| idx.iter().all(|&i| g.five()[i] == c.want.five()[i]))
+                    .is_ok_and(|g| idx.iter().all(|&i| g.six()[i] == c.want.six()[i]))
             };
             let within = |c: &&&WidthCase| {
                 c.got.as_ref().is_ok_and(|g| {
                     idx.iter()
-                        .all(|&i| (c.lo.five()[i]..=c.hi.five()[i]).contains(&g.five()[i]))
+                        .all(|&i| (c.lo.six()[i]..=c.hi.six()[i]).contains(&g.six()[i]))
                 })
             };
             let determined: Vec<&&WidthCase> = cases
                 .iter()
-                .filter(|c| idx.iter().all(|&i| c.lo.five()[i] == c.hi.five()[i]))
+                .filter(|c| idx.iter().all(|&i| c.lo.six()[i] == c.hi.six()[i]))
                 .collect();
             let right = determined.iter().filter(|c| exact(c)).count();
             let _ = writeln!(

@@ -1,7 +1,9 @@
 //! The bracket and rafter layers: a band between the body and the roof
 //! -> its pieces labelled, each drawn element one leaf, the layer's back
-//! `other`. Sets drawn as stacked parts, quartered blocks, plain outlines
-//! or hanging arms are each read here (see `docs/drawing.md`).
+//! `other`. Sets drawn as stacked parts, quartered blocks, plain outlines,
+//! hanging arms or blocks hanging between closed back, and rafter ends
+//! drawn with an inside or closed up into posts of ink by `--gap`, are
+//! each read here (see `docs/drawing.md`).
 
 use super::super::regions::Region;
 use super::super::tree::{Axis, Node};
@@ -67,6 +69,12 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         }
         return;
     }
+    if kind == "rafter" {
+        if let Some(n) = posts(band, regions, kind) {
+            band.repeat = n >= 3;
+            return;
+        }
+    }
     // Corner sets: a side face's first set seen end-on at each end of the
     // row, narrow, with a narrow piece of back beside it (the front row's
     // margin). The sets are set aside (their regions hidden from the rules
@@ -95,13 +103,22 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     // the sets: the run's end pieces are margins of back when they are
     // not as wide as the others of their parity (a margin is whatever was
     // left at the layer's end), sets otherwise (sets repeat exactly).
-    // (Rafters are left alone.)
+    // (Rafter rows were read by `posts` above.)
     let drawn: Vec<usize> = (0..band.children.len())
         .filter(|&k| !band.children[k].regions.is_empty())
         .collect();
     let unbroken = drawn.windows(2).all(|w| w[1] == w[0] + 1);
-    let mut alternate = None;
-    if kind == "bracket" && unbroken && drawn.len() >= 5 && drawn.len() % 2 == 1 {
+    let mut alternate: Option<Vec<bool>> = if kind == "bracket" {
+        hanging_sets(band, &drawn, regions)
+    } else {
+        None
+    };
+    if kind == "bracket"
+        && alternate.is_none()
+        && unbroken
+        && drawn.len() >= 5
+        && drawn.len() % 2 == 1
+    {
         let even: Vec<i32> = drawn
             .iter()
             .step_by(2)
@@ -112,15 +129,27 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         let med = inner[inner.len() / 2] as f64;
         let off = |w: i32| (w as f64 - med).abs() > 0.2 * med + 1.0;
         let ends_are_back = off(even[0]) || off(even[even.len() - 1]);
-        let back_parity = usize::from(!ends_are_back);
-        let backs_plain = drawn
-            .iter()
-            .skip(back_parity)
-            .step_by(2)
-            .all(|&k| is_plain(&band.children[k], regions));
-        if backs_plain {
-            alternate = Some((drawn[0], back_parity));
-        }
+        // The ends' parity, unless its pieces are not all plain and the
+        // other parity's are: sets hanging from the layer's top (a block
+        // under the rafters) leave the back between them closed, as wide
+        // as a set, and the row's margins are then as wide as the back.
+        let preferred = usize::from(!ends_are_back);
+        let backs_plain = |parity: usize| {
+            drawn
+                .iter()
+                .skip(parity)
+                .step_by(2)
+                .all(|&k| is_plain(&band.children[k], regions))
+        };
+        alternate = [preferred, 1 - preferred]
+            .into_iter()
+            .find(|&p| backs_plain(p))
+            .map(|p| {
+                let f = drawn[0];
+                (0..band.children.len())
+                    .map(|k| k >= f && (k - f) % 2 == p)
+                    .collect()
+            });
     }
     // Bracket sets drawn with inner lines (a block quartered by its arms)
     // are cut into several pieces, each with something drawn inside; the
@@ -151,8 +180,7 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     };
     let mut n = 0;
     for (k, c) in band.children.iter_mut().enumerate() {
-        let back =
-            sliver(k, c) || alternate.is_some_and(|(f, parity)| k >= f && (k - f) % 2 == parity);
+        let back = sliver(k, c) || alternate.as_ref().is_some_and(|back| back[k]);
         if c.regions.is_empty() || back {
             collapse(c, "other");
             // The layer's back, not something left unrecognised.
@@ -171,6 +199,229 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
         }
     }
     band.repeat = n >= 3;
+}
+
+/// Bracket sets hanging from the layer's top (a block under the rafters,
+/// as `hall.lsys` draws them) leave the back between them closed, from
+/// the layer's top to its bottom, and about as wide as a set: which pieces
+/// are back is then seen from their height, not their parity (the corner
+/// set seen end-on at each end of the row hangs too, next to the front's
+/// first set). When every drawn piece either hangs (its regions start at
+/// the layer's top and stop short of its bottom by more than an eighth of
+/// its height) or reaches from top to bottom, at least two of each, and
+/// those reaching are all plain, they are the back: one flag per piece,
+/// or None.
+fn hanging_sets(band: &Node, drawn: &[usize], regions: &[Region]) -> Option<Vec<bool>> {
+    let [_, y0, _, y1] = band.bbox;
+    let slack = (f64::from(y1 - y0) / 8.0).max(1.5);
+    let reach = |k: usize, bottom: bool| {
+        band.children[k].regions.iter().map(move |&r| {
+            let b = regions[r].bbox;
+            f64::from(b[1] - y0) <= slack && (f64::from(y1 - b[3]) <= slack) == bottom
+        })
+    };
+    // Every region of a piece reaching from top to bottom, or every one
+    // hanging from the top (a set drawn in parts one above the other, a
+    // quartered block, is neither: the rule is not for that row).
+    let full = |k: usize| reach(k, true).all(|ok| ok);
+    let hangs = |k: usize| reach(k, false).all(|ok| ok);
+    if !drawn.iter().all(|&k| full(k) || hangs(k)) {
+        return None;
+    }
+    let (backs, sets): (Vec<usize>, Vec<usize>) = drawn.iter().partition(|&&k| full(k));
+    let plain = backs.iter().all(|&k| is_plain(&band.children[k], regions));
+    if backs.len() < 2 || sets.len() < 2 || !plain {
+        return None;
+    }
+    Some(
+        (0..band.children.len())
+            .map(|k| backs.contains(&k))
+            .collect(),
+    )
+}
+
+/// Elements drawn too small to keep an inside: when lines are thickened
+/// (`--gap`) a rafter end a few pixels wide closes up into a post of ink,
+/// and what the row's regions are is the back between the posts. Read
+/// so, a row of n rafters gave n - 1 + its margins "rafters", the gaps.
+///
+/// The row's longest run of drawn pieces side by side (at least 4, and
+/// four in five of the drawn pieces) is of posts when the ink between
+/// each two pieces' regions (boxes reach the middle of a plain line, so a
+/// line drawn between two pieces leaves a pixel or two) has a median of
+/// at least 3 pixels and 0.4 of the regions' median width, and four in
+/// five of them are within half of that median. Those are the elements;
+/// so is ink of at least half a post between the run's end regions and
+/// the nearest drawn region beyond them (or the row's end): the first and
+/// last posts have no region of the run on their outer side. Drawn pieces
+/// outside the run (a side face's element seen end-on at each corner)
+/// are elements too; the pieces of the run are the layer's back.
+/// Returns how many elements, or None when the row is not of posts.
+fn posts(band: &mut Node, regions: &[Region], kind: &'static str) -> Option<usize> {
+    let is_drawn = |c: &Node| !c.regions.is_empty();
+    let drawn = band.children.iter().filter(|c| is_drawn(c)).count();
+    // The longest run of adjacent drawn pieces: [first, last].
+    let count = band.children.len();
+    let (mut first, mut last, mut start) = (None, 0, None);
+    for k in 0..=count {
+        let d = k < count && is_drawn(&band.children[k]);
+        match (d, start) {
+            (true, None) => start = Some(k),
+            (false, Some(a)) => {
+                if first.map_or(true, |f| k - a > last + 1 - f) {
+                    (first, last) = (Some(a), k - 1);
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    let first = first?;
+    let run = last + 1 - first;
+    if run < 4 || run * 5 < drawn * 4 {
+        return None;
+    }
+    let span = |c: &Node| {
+        let lo = c.regions.iter().map(|&r| regions[r].bbox[0]).min();
+        let hi = c.regions.iter().map(|&r| regions[r].bbox[2]).max();
+        (lo.unwrap_or(c.bbox[0]), hi.unwrap_or(c.bbox[2]))
+    };
+    let spans: Vec<(i32, i32)> = band.children[first..=last].iter().map(span).collect();
+    let widths: Vec<i32> = spans.windows(2).map(|w| w[1].0 - w[0].1).collect();
+    let median = |v: &[i32]| {
+        let mut v = v.to_vec();
+        v.sort_unstable();
+        v[v.len() / 2] as f64
+    };
+    // Pieces of two widths (a rafter's inside and the back between two):
+    // the narrow ones are elements. Split at the geometric mean of the
+    // lower and upper quartile widths when those differ by a third.
+    let piece_widths: Vec<i32> = spans.iter().map(|s| s.1 - s.0).collect();
+    let mut sorted = piece_widths.clone();
+    sorted.sort_unstable();
+    let (q1, q3) = (sorted[run / 4] as f64, sorted[3 * run / 4] as f64);
+    let split = (q3 >= 1.3 * q1).then(|| (q1 * q3).sqrt());
+    let narrow: Vec<bool> = piece_widths
+        .iter()
+        .map(|&w| split.is_some_and(|t| (w as f64) < t))
+        .collect();
+    let wide: Vec<i32> = (0..run)
+        .filter(|&k| !narrow[k])
+        .map(|k| piece_widths[k])
+        .collect();
+    // Ink between two pieces as wide as 0.4 of a wide piece is a post.
+    let floor = (0.4 * median(&wide)).max(3.0);
+    let thick: Vec<i32> = widths
+        .iter()
+        .copied()
+        .filter(|&w| w as f64 >= floor)
+        .collect();
+    let post = if thick.is_empty() {
+        0.0
+    } else {
+        median(&thick)
+    };
+    // A rafter does not touch a rafter: ink beside a narrow piece is its
+    // outline (and an open strip beyond), not a post.
+    let is_post: Vec<bool> = (0..widths.len())
+        .map(|i| {
+            let w = widths[i] as f64;
+            post > 0.0 && w >= 0.5 * post && w <= 1.8 * post && !narrow[i] && !narrow[i + 1]
+        })
+        .collect();
+    let posts = is_post.iter().filter(|&&p| p).count();
+    let narrows = narrow.iter().filter(|&&n| n).count();
+    // A row of posts (four in five of the gaps between pieces), or of
+    // narrow and wide pieces by turns (a third of the pieces narrow at
+    // least, no two side by side).
+    let of_posts = posts * 5 >= widths.len() * 4;
+    let by_turns = narrows * 3 >= run && narrow.windows(2).all(|w| !(w[0] && w[1]));
+    if !(of_posts || by_turns) {
+        return None;
+    }
+    // The run's end pieces much wider than its back (1.6 times the median)
+    // are a side face's first element seen end-on, at the corner.
+    let back = median(&wide);
+    let corner = |k: usize| (k == 0 || k + 1 == run) && piece_widths[k] as f64 > 1.6 * back;
+    let element_width = if of_posts {
+        post
+    } else {
+        let w: Vec<i32> = (0..run)
+            .filter(|&k| narrow[k])
+            .map(|k| piece_widths[k])
+            .collect();
+        median(&w)
+    };
+    let [x0, y0, x1, y1] = band.bbox;
+    let edge = (0.5 * element_width).max(2.5).ceil() as i32;
+    let before = band.children[..first]
+        .iter()
+        .rev()
+        .find(|c| is_drawn(c))
+        .map_or(x0, |c| span(c).1);
+    let after = band.children[last + 1..]
+        .iter()
+        .find(|c| is_drawn(c))
+        .map_or(x1, |c| span(c).0);
+    let lead = spans[0].0 - before >= edge;
+    let trail = after - spans[run - 1].1 >= edge;
+    // An undrawn piece beside the run holds its outer post (the strip
+    // between it and the corner is open): it is the element.
+    let undrawn = |k: usize| !is_drawn(&band.children[k]);
+    let lead_piece = lead && first > 0 && undrawn(first - 1);
+    let trail_piece = trail && last + 1 < count && undrawn(last + 1);
+    let mut out: Vec<Node> = Vec::new();
+    let mut n = 0;
+    for (k, mut c) in std::mem::take(&mut band.children).into_iter().enumerate() {
+        let in_run = (first..=last).contains(&k);
+        let element = (is_drawn(&c) && !in_run)
+            || (in_run && (narrow[k - first] || corner(k - first)))
+            || (lead_piece && k + 1 == first)
+            || (trail_piece && k == last + 1);
+        collapse(&mut c, if element { kind } else { "other" });
+        if !element {
+            // The layer's back, not something left unrecognised.
+            c.regions.clear();
+            c.fills.clear();
+        }
+        let mut tail = None;
+        if in_run {
+            let (lo, hi) = spans[k - first];
+            let post_before = if k > first {
+                is_post[k - first - 1]
+            } else {
+                lead && !lead_piece
+            };
+            if post_before {
+                let from = match out.last() {
+                    Some(p) if k > first => p.bbox[2],
+                    _ => c.bbox[0],
+                };
+                out.push(Node::leaf(kind, [from, y0, lo, y1]));
+                n += 1;
+                c.bbox[0] = lo;
+            }
+            let post_after = if k < last {
+                is_post[k - first]
+            } else {
+                trail && !trail_piece
+            };
+            if post_after {
+                // The post after is cut off the next piece, or at the
+                // run's end off this one.
+                if k == last {
+                    tail = Some(Node::leaf(kind, [hi, y0, c.bbox[2], y1]));
+                    n += 1;
+                }
+                c.bbox[2] = hi;
+            }
+        }
+        n += usize::from(element);
+        out.push(c);
+        out.extend(tail);
+    }
+    band.children = out;
+    Some(n)
 }
 
 /// The two corner sets of a bracket row and the margins of back beside
@@ -284,4 +535,117 @@ fn by_columns(band: &mut Node, regions: &[Region]) {
     }
     band.children = pieces;
     band.split = Some(Axis::X);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A layer `y0..y1` from x 0 to a pixel past the last of the regions
+    /// `boxes` (its end lines), cut between them
+    /// (left to right) at the middle of the ink between each two, one
+    /// region to a piece; regions reaching from top to bottom fill their
+    /// piece, as the shape tree has it.
+    fn row(y0: i32, y1: i32, boxes: &[[i32; 2]], hang: &[usize]) -> (Node, Vec<Region>) {
+        let regions: Vec<Region> = boxes
+            .iter()
+            .enumerate()
+            .map(|(k, b)| Region {
+                bbox: [
+                    b[0],
+                    y0,
+                    b[1],
+                    if hang.contains(&k) {
+                        y0 + (y1 - y0) * 7 / 10
+                    } else {
+                        y1
+                    },
+                ],
+                area: 1,
+            })
+            .collect();
+        let mut cuts = vec![0];
+        cuts.extend(boxes.windows(2).map(|w| (w[0][1] + w[1][0]) / 2));
+        let end = boxes.last().map_or(1, |b| b[1] + 1);
+        cuts.push(end);
+        let mut band = Node::leaf("other", [0, y0, end, y1]);
+        band.split = Some(Axis::X);
+        band.children = cuts
+            .windows(2)
+            .enumerate()
+            .map(|(k, c)| Node {
+                regions: vec![k],
+                fills: if hang.contains(&k) { vec![] } else { vec![k] },
+                ..Node::leaf("other", [c[0], y0, c[1], y1])
+            })
+            .collect();
+        (band, regions)
+    }
+
+    fn leaves(band: &Node, kind: &str) -> Vec<[i32; 4]> {
+        band.leaves()
+            .into_iter()
+            .filter(|n| n.label == kind)
+            .map(|n| n.bbox)
+            .collect()
+    }
+
+    #[test]
+    fn rafters_closed_into_posts_are_the_ink_between_the_gaps() {
+        // Eleven gaps 8 wide between ten posts 5 wide; the row's own lines
+        // at its two ends.
+        let gaps: Vec<[i32; 2]> = (0..11).map(|k| [1 + 13 * k, 9 + 13 * k]).collect();
+        let (mut band, regions) = row(0, 10, &gaps, &[]);
+        row_of(&mut band, "rafter", &regions);
+        let posts = leaves(&band, "rafter");
+        assert_eq!(posts.len(), 10, "{posts:?}");
+        assert_eq!(posts[0], [9, 0, 14, 10]);
+        assert!(band.repeat);
+        // Pieces of one width with plain lines between them are the
+        // rafters themselves, each drawn piece one.
+        let drawn: Vec<[i32; 2]> = (0..11).map(|k| [1 + 9 * k, 9 + 9 * k]).collect();
+        let (mut band, regions) = row(0, 10, &drawn, &[]);
+        row_of(&mut band, "rafter", &regions);
+        assert_eq!(leaves(&band, "rafter").len(), 11);
+    }
+
+    #[test]
+    fn rafters_with_an_inside_are_the_narrow_pieces() {
+        // Back 9 wide and rafters 4 wide by turns, back at both ends.
+        let mut boxes = Vec::new();
+        let mut x = 1;
+        for k in 0..13 {
+            let w = if k % 2 == 0 { 9 } else { 4 };
+            boxes.push([x, x + w]);
+            x += w + 1;
+        }
+        let (mut band, regions) = row(0, 10, &boxes, &[]);
+        row_of(&mut band, "rafter", &regions);
+        let rafters = leaves(&band, "rafter");
+        assert_eq!(rafters.len(), 6, "{rafters:?}");
+        assert!(rafters.iter().all(|b| b[2] - b[0] <= 6));
+    }
+
+    #[test]
+    fn hanging_sets_are_told_from_the_back_by_height_with_their_corners() {
+        // corner, set, back, set, back, set, back, set, corner: the sets
+        // and corners hang from the layer's top, the back reaches its
+        // bottom; the corners are as narrow as a margin.
+        let widths = [6, 12, 12, 12, 12, 12, 12, 12, 6];
+        let mut boxes = Vec::new();
+        let mut x = 10;
+        for w in widths {
+            boxes.push([x, x + w]);
+            x += w + 1;
+        }
+        let hang = [0, 1, 3, 5, 7, 8];
+        let (mut band, regions) = row(0, 20, &boxes, &hang);
+        row_of(&mut band, "bracket", &regions);
+        assert_eq!(leaves(&band, "bracket").len(), 6);
+        // Without the heights (every piece reaching the bottom) the parity
+        // of the ends decides, and the narrow ends are margins.
+        let (mut band, regions) = row(0, 20, &boxes, &[1, 3, 5, 7]);
+        row_of(&mut band, "bracket", &regions);
+        assert_eq!(leaves(&band, "bracket").len(), 4);
+    }
 }

@@ -19,7 +19,9 @@
 //!   the **roof**, and between the
 //!   body and the roof the first band is the **bracket** layer and the
 //!   second the **rafter** layer, each piece with something drawn in it one
-//!   bracket set or rafter;
+//!   bracket set or rafter (unless the pieces are the back between the
+//!   elements: sets hanging between closed back, rafters closed into posts
+//!   of ink or narrow between wider back; `layers.rs`);
 //! - in the body, pieces that are a column are **columns**, the pieces
 //!   between them **bays**; a bay's top piece under 0.3 of its height is its
 //!   **lintel**; under it, what is drawn inside the wall is a **door** when
