@@ -126,6 +126,20 @@ fn pailou_fronts_are_read_as_their_style() {
             assert!((first - want).abs() < 0.02, "{stem}: {line}");
         }
         run(d, &["build", "out.lsys", "-o", "out.glb"]);
+        // The candidates are drawn on every core; the reading must not
+        // depend on how many.
+        let alone = std::process::Command::new(env!("CARGO_BIN_EXE_lsys"))
+            .current_dir(d)
+            .env("RAYON_NUM_THREADS", "1")
+            .args(["infer", &png, "-o", "one.lsys", "--tree", "one.json"])
+            .output()
+            .unwrap();
+        assert!(alone.status.success(), "{stem}: {alone:?}");
+        for (a, b) in [("out.lsys", "one.lsys"), ("out.json", "one.json")] {
+            let read = |f: &str| std::fs::read_to_string(d.join(f)).unwrap();
+            let (many, one) = (read(a), read(b).replace("one.lsys", "out.lsys"));
+            assert!(many == one, "{stem}: {a} differs on one thread");
+        }
     }
 }
 

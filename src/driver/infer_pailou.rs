@@ -15,7 +15,9 @@
 //! type) with the lsys renderer, and keeping the one whose lines lie
 //! nearest the drawing's; then αEW from the central passage's proportion
 //! (measured on the drawing and on the chosen style drawn), and the
-//! Toukung levels NTL by drawing 3 to 7. The tree's leaves are the chosen
+//! Toukung levels NTL by drawing 3 to 7 (each set of candidates drawn on
+//! every core, the first best kept in the candidates' order, so the answer
+//! does not depend on the threads). The tree's leaves are the chosen
 //! model's parts, projected onto the drawing.
 
 use super::pailou::{Pailou, PailouType};
@@ -73,20 +75,26 @@ pub(super) fn read_pailou(
     }
     let target = grid_of_ink(ink, GRID);
     let ne = np - 1;
+    let candidates: Vec<(String, PailouType, Pailou)> =
+        [0, ne, ne + 1, 2 * ne, 2 * ne + 1, 3 * ne, 3 * ne + 1]
+            .into_iter()
+            .flat_map(|nr| [PailouType::Ridge, PailouType::Pillar].map(|kind| (nr, kind)))
+            .filter_map(|(nr, kind)| {
+                let style = format!("{np}-{ne}-{nr}");
+                let p = Pailou::style(&style, kind).ok()?;
+                Some((style, kind, p))
+            })
+            .collect();
+    let scored = in_parallel(candidates, |(style, kind, p)| {
+        let scene = build(&p, &defines)?;
+        let score = similarity(&target, &grid_of_scene(scene.mesh(), ink, DRAWN, &target));
+        Some((score, style, kind, p, scene))
+    });
+    // The first best in the candidates' order, whatever order they finished in.
     let mut best: Option<(f64, String, PailouType, Pailou, crate::Scene)> = None;
-    for nr in [0, ne, ne + 1, 2 * ne, 2 * ne + 1, 3 * ne, 3 * ne + 1] {
-        for kind in [PailouType::Ridge, PailouType::Pillar] {
-            let style = format!("{np}-{ne}-{nr}");
-            let Ok(p) = Pailou::style(&style, kind) else {
-                continue;
-            };
-            let Some(scene) = build(&p, &defines) else {
-                continue;
-            };
-            let score = similarity(&target, &grid_of_scene(scene.mesh(), ink, DRAWN, &target));
-            if best.as_ref().map_or(true, |b| score > b.0) {
-                best = Some((score, style, kind, p, scene));
-            }
+    for c in scored.into_iter().flatten() {
+        if best.as_ref().map_or(true, |b| c.0 > b.0) {
+            best = Some(c);
         }
     }
     let (score, style, kind, p, default_scene) = best.ok_or_else(|| InferError::NotPailou {
@@ -112,16 +120,17 @@ pub(super) fn read_pailou(
     // the roofs on it by a tenth of a Toukung unit, and a side Toukung's
     // reach (where a row ends) with it; a finer grid tells them apart.
     let fine = grid_of_ink(ink, FINE);
-    let mut levels: Option<(f64, f64, crate::Scene)> = None;
-    for ntl in [3.0, 4.0, 5.0, 6.0, 7.0] {
+    let tried = in_parallel(vec![3.0, 4.0, 5.0, 6.0, 7.0], |ntl| {
         let mut with = defines.clone();
         with.push(("NTL".to_string(), ntl.to_string()));
-        let Some(scene) = build(&p, &with) else {
-            continue;
-        };
+        let scene = build(&p, &with)?;
         let score = similarity(&fine, &grid_of_scene(scene.mesh(), ink, FINE_DRAWN, &fine));
-        if levels.as_ref().map_or(true, |l| score > l.0) {
-            levels = Some((score, ntl, scene));
+        Some((score, ntl, scene))
+    });
+    let mut levels: Option<(f64, f64, crate::Scene)> = None;
+    for l in tried.into_iter().flatten() {
+        if levels.as_ref().map_or(true, |b| l.0 > b.0) {
+            levels = Some(l);
         }
     }
     let (ntl, scene) = match levels {
@@ -159,6 +168,58 @@ pub(super) fn read_pailou(
             .map(|n| (n.to_string(), ntl.to_string()))
             .to_vec(),
     })
+}
+
+/// `f` of each item, in the items' order, on as many threads as the
+/// machine has cores (each with the compiler's deep stack): the
+/// candidates are independent builds and drawings.
+fn in_parallel<T: Send, R: Send>(items: Vec<T>, f: impl Fn(T) -> R + Sync) -> Vec<R> {
+    let threads = crate::derive::threads().min(items.len());
+    if threads < 2 {
+        return items.into_iter().map(f).collect();
+    }
+    let n = items.len();
+    let todo: Vec<std::sync::Mutex<Option<T>>> = items
+        .into_iter()
+        .map(|t| std::sync::Mutex::new(Some(t)))
+        .collect();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let (todo, next, f) = (&todo, &next, &f);
+    let mut done: Vec<(usize, R)> = std::thread::scope(|s| {
+        let workers: Vec<_> = (0..threads)
+            .filter_map(|w| {
+                std::thread::Builder::new()
+                    .name(format!("lsys infer {w}"))
+                    .stack_size(super::WORKER_STACK)
+                    .spawn_scoped(s, move || {
+                        let mut mine = Vec::new();
+                        loop {
+                            let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                            let Some(slot) = todo.get(k) else { break };
+                            let item = slot.lock().ok().and_then(|mut t| t.take());
+                            if let Some(item) = item {
+                                mine.push((k, f(item)));
+                            }
+                        }
+                        mine
+                    })
+                    .ok()
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    });
+    // A worker that could not start leaves its items here.
+    for (k, slot) in todo.iter().enumerate() {
+        if let Some(item) = slot.lock().ok().and_then(|mut t| t.take()) {
+            done.push((k, f(item)));
+        }
+    }
+    done.sort_by_key(|d| d.0);
+    debug_assert_eq!(done.len(), n);
+    done.into_iter().map(|d| d.1).collect()
 }
 
 /// The scene of `p` with `defines`, components as boxes and bare roofs
