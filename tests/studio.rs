@@ -797,6 +797,7 @@ fn the_drawing_page_reads_strokes_and_corrections() {
 
     let (code, s) = post(&h, "/api/drawing/open", json!({"path": "lost.svg"}));
     assert_eq!(code, 200, "{s}");
+    assert_eq!(s["summary"], Value::Null, "a hall has no Pailou summary");
     let counts = |s: &Value, l: &str| s["counts"][l].as_u64().unwrap();
     assert_eq!(
         ["column", "bay", "door", "window", "bracket"].map(|l| counts(&s, l)),
@@ -888,6 +889,47 @@ fn the_drawing_page_reads_strokes_and_corrections() {
         String::from_utf8(body).unwrap(),
         s["grammar"].as_str().unwrap()
     );
+    h.stop();
+}
+
+/// A Pailou's front opened on the drawing page says which style, type
+/// and Toukung levels it was read as (the counts of columns and bays do
+/// not), and its hall is built with those levels.
+#[test]
+fn the_drawing_page_says_what_pailou_it_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let grammar = common::lsys_ok(
+        d,
+        &[
+            "pailou",
+            "--style",
+            "2-1-2",
+            "--type",
+            "pillar",
+            "--emit-lsys",
+        ],
+    );
+    std::fs::write(d.join("p.lsys"), &grammar.stdout).unwrap();
+    common::lsys_ok(
+        d,
+        &[
+            "render", "p.lsys", "--view", "front", "--style", "lines", "--size", "1000x600", "-o",
+            "gate.png",
+        ],
+    );
+    std::fs::remove_file(d.join("p.lsys")).unwrap();
+    let h = studio(d);
+    let (code, s) = post(&h, "/api/drawing/open", json!({"path": "gate.png"}));
+    assert_eq!(code, 200, "{s}");
+    let summary = s["summary"].as_str().unwrap_or_default();
+    assert!(
+        summary.contains("style 2-1-2, pillar type, 5 Toukung levels"),
+        "{s}"
+    );
+    assert_eq!(s["counts"]["bay"], 1, "{s}");
+    let (code, glb) = request(&h, "GET", "/api/drawing/model.glb", &[], b"");
+    assert_eq!((code, &glb[..4]), (200, &b"glTF"[..]));
     h.stop();
 }
 

@@ -153,6 +153,9 @@ impl DrawingSession {
             v["missed"] = json!(i.missed);
             v["grammar"] = json!(i.grammar);
             v["counts"] = Value::Object(counts);
+            // A Pailou's front: its style, type and Toukung levels (the
+            // counts alone say nothing of them); null for a hall.
+            v["summary"] = json!(i.summary);
         }
         if let Some(m) = &self.model {
             v["triangles"] = json!(m.triangles);

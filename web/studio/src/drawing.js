@@ -61,7 +61,8 @@ async function show(s, newDrawing) {
   $("problem").textContent = message(s.problem) + (s.current ? "" : "\n(the tree and hall shown are the last good reading)");
   const c = s.counts || {};
   $("counts").textContent = s.counts
-    ? `${c.column} columns, ${c.bay} bays, ${c.door} doors, ${c.window} windows, ${c.bracket} bracket sets, ${c.rafter} rafters` +
+    ? (s.summary ? `${s.summary} · ` : "") +
+      `${c.column} columns, ${c.bay} bays, ${c.door} doors, ${c.window} windows, ${c.bracket} bracket sets, ${c.rafter} rafters` +
       (s.triangles ? ` · ${s.triangles} triangles` : "")
     : "";
   $("grammar").textContent = s.grammar || "";

@@ -3,14 +3,16 @@
 // the folder; its shape tree is drawn over it and the 3D hall and the
 // grammar appear; a separator stroke drawn with the mouse where the line
 // was restores the lost bracket set; a window corrected to a wall changes
-// the grammar; undo and redo walk the edits. Screenshot:
-// docs/images/studio-drawing.png. Prints "N passed, N failed".
+// the grammar; undo and redo walk the edits; a Pailou's front uploaded
+// says the style it was read as. Screenshots: docs/images/studio-drawing.png,
+// studio-drawing-pailou.png. Prints "N passed, N failed".
 //
 //   LSYS=path/to/lsys node test/drawing.mjs     (default: target/debug/lsys)
+import { execFileSync } from "node:child_process";
 import { mkdtempSync, readFileSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { check, images, repo, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
+import { check, images, lsys, repo, startStudio, launchBrowser, newPage, finish, openPage } from "./harness.mjs";
 
 const dir = mkdtempSync(join(tmpdir(), "lsys-drawing-"));
 // The five-bay hall (examples/drawings) without the line that quarters
@@ -104,6 +106,19 @@ try {
   const problem = await page.textContent("#problem");
   check("a filled picture is refused with the reader's diagnostic", problem.includes("not a line drawing") && problem.includes("lsys::infer::not_a_line_drawing"), problem.slice(0, 200));
   check("the drawing before it stays open", (await page.textContent("#file")) === "lost-line.svg");
+
+  // A Pailou's front (std:pailou's 4-3-7, drawn by lsys): the page says
+  // which style, type and Toukung levels it read, beside the counts.
+  const gate = join(dir, "gate.png");
+  const grammar = execFileSync(lsys, ["pailou", "--style", "4-3-7", "--type", "ridge", "--emit-lsys"]);
+  writeFileSync(join(dir, "gate.lsys"), grammar);
+  execFileSync(lsys, ["render", join(dir, "gate.lsys"), "--view", "front", "--style", "lines", "--size", "1000x600", "-o", gate]);
+  const before = await page.evaluate(() => window.drawingPage.loads);
+  await page.setInputFiles("#upload", gate);
+  await after("loads", before);
+  const said = await page.textContent("#counts");
+  check("a Pailou's front says its style: 4-3-7, ridge type, 5 Toukung levels", said.includes("style 4-3-7, ridge type, 5 Toukung levels") && said.includes("3 bays"), said);
+  await page.screenshot({ path: join(images, "studio-drawing-pailou.png") });
 } catch (e) {
   check("the scenario ran to its end", false, e.stack);
 } finally {
