@@ -143,6 +143,44 @@ fn pailou_fronts_are_read_as_their_style() {
     }
 }
 
+/// A Pailou's front drawn by hand (examples/drawings/three-roof-gateway.svg)
+/// standing on a ground line, which closes its passages: read as the
+/// 4-3-3 ridge style it was drawn as, with its side entrances' ratio; the
+/// same drawing without the ground line reads alike.
+#[test]
+fn a_hand_drawn_gateway_on_a_ground_line_is_read_as_its_style() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let svg = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/drawings/three-roof-gateway.svg"),
+    )
+    .unwrap();
+    let ground = r#"<line x1="60" y1="540" x2="940" y2="540"/>"#;
+    assert!(svg.contains(ground), "the drawing's ground line moved");
+    std::fs::write(d.join("ground.svg"), &svg).unwrap();
+    std::fs::write(d.join("air.svg"), svg.replace(ground, "")).unwrap();
+    for name in ["ground", "air"] {
+        let (svg, out) = (format!("{name}.svg"), format!("{name}.lsys"));
+        let said = run(d, &["infer", &svg, "-o", &out, "--tree", "t.json"]);
+        assert!(said.contains("style 4-3-3, ridge type"), "{name}: {said}");
+        let tree: Value =
+            serde_json::from_slice(&std::fs::read(d.join("t.json")).unwrap()).unwrap();
+        let mut all = Vec::new();
+        leaves(&tree["root"], &mut all);
+        let bays = all.iter().filter(|n| n["label"] == "bay").count();
+        assert_eq!(bays, 3, "{name}: one bay per entrance");
+        let text = std::fs::read_to_string(d.join(&out)).unwrap();
+        let side = text
+            .lines()
+            .find(|l| l.starts_with("#define side[1..6]"))
+            .unwrap_or_default()
+            .to_string();
+        // Pillar centres 140, 330, 670, 860: 190 / 340.
+        assert!(side.contains("{ 0.559,"), "{name}: {side}");
+    }
+    run(d, &["build", "ground.lsys", "-o", "g.glb"]);
+}
+
 /// The hall drawings of examples/drawings are not taken for Pailous.
 #[test]
 fn hall_drawings_stay_halls() {

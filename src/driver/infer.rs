@@ -70,12 +70,22 @@ fn infer_ink(
 ) -> Result<Inference, InferFailure> {
     let gap = opts.gap.min(8);
     let paper = infer::paper(ink, gap);
-    if let Some(front) = infer::pailou_front(ink, &paper.outside) {
+    let pailou = |ink: &Ink, front: &infer::PailouFront, regions| {
         let mut inference =
-            super::infer_pailou::read_pailou(ink, &front, paper.regions, shown, opts.scale, gap)
+            super::infer_pailou::read_pailou(ink, front, regions, shown, opts.scale, gap)
                 .map_err(InferFailure::Drawing)?;
         inference.missed = (0..corrections.len()).collect();
-        return Ok(inference);
+        Ok(inference)
+    };
+    if let Some(front) = infer::pailou_front(ink, &paper.outside) {
+        return pailou(ink, &front, paper.regions);
+    }
+    // A Pailou drawn standing on a ground line: its passages are closed.
+    if let Some(open) = infer::without_ground_line(ink, &paper.regions, gap) {
+        let cleared = infer::paper(&open, gap);
+        if let Some(front) = infer::pailou_front(&open, &cleared.outside) {
+            return pailou(&open, &front, cleared.regions);
+        }
     }
     infer::infer_regions(ink, paper.regions, shown, opts, corrections)
         .map_err(InferFailure::Drawing)

@@ -12,6 +12,7 @@
 //! row crossing the bases has as many.
 
 use super::drawing::Ink;
+use super::regions::Region;
 
 /// The rows looked at: from this part of the ink's height above its
 /// bottom (bases are separate runs too) ...
@@ -121,4 +122,60 @@ pub fn pailou_front(ink: &Ink, outside: &[bool]) -> Option<PailouFront> {
         row,
         passages,
     })
+}
+
+/// A line across the bottom of the drawing under a Pailou's pillars (the
+/// ground, as an architect draws it) closes the passages, so that they are
+/// not the outside and [`pailou_front`] sees a hall. When two closed areas
+/// at least stand on the ink's bottom (within `gap` and two pixels), each
+/// a quarter of the ink's height or taller and plain (their area 0.7 of
+/// their box: an open passage, not a bay with a door in it, which stands
+/// on a platform above the ground), this is `ink` with that line erased:
+/// in each of the bottom rows up to twice the pen's reach, every run of
+/// ink 0.6 of the ink's width or longer. `None` otherwise (a hall: its
+/// doors stand on the platform, not on the drawing's bottom).
+pub fn without_ground_line(ink: &Ink, regions: &[Region], gap: usize) -> Option<Ink> {
+    let (w, h) = (ink.width, ink.height);
+    let rows: Vec<usize> = (0..h)
+        .filter(|&y| ink.ink[y * w..(y + 1) * w].iter().any(|&i| i))
+        .collect();
+    let (top, bottom) = (*rows.first()?, *rows.last()?);
+    let (height, reach) = ((bottom - top) as f64, gap as i32 + 2);
+    let passages = regions
+        .iter()
+        .filter(|r| {
+            let box_area = (r.w().max(0) * r.h().max(0)) as f64;
+            bottom as i32 + 1 - r.bbox[3] <= reach + 2 * gap as i32 + 4
+                && f64::from(r.h()) >= 0.25 * height
+                && f64::from(r.area) >= 0.7 * box_area
+        })
+        .count();
+    if passages < 2 {
+        return None;
+    }
+    let span = (0..w)
+        .filter(|&x| (top..=bottom).any(|y| ink.at(x, y)))
+        .count();
+    let long = (0.6 * span as f64) as usize;
+    let mut open = ink.clone();
+    let mut erased = false;
+    for y in bottom.saturating_sub(2 * reach as usize + 4)..=bottom {
+        let row = &mut open.ink[y * w..(y + 1) * w];
+        let mut x = 0;
+        while x < w {
+            if !row[x] {
+                x += 1;
+                continue;
+            }
+            let start = x;
+            while x < w && row[x] {
+                x += 1;
+            }
+            if x - start >= long {
+                row[start..x].fill(false);
+                erased = true;
+            }
+        }
+    }
+    erased.then_some(open)
 }

@@ -33,7 +33,7 @@ use serde_json::{json, Value};
 pub use correct::{known_label, Correction, LABELS};
 pub use drawing::{binarize, is_svg, read_png, read_svg, stroke_lines, Ink, STROKE_WIDTH};
 pub use error::InferError;
-pub use front::{pailou_front, PailouFront};
+pub use front::{pailou_front, without_ground_line, PailouFront};
 pub use regions::{paper, regions, Paper, Region};
 pub use tree::{Axis, Node};
 
