@@ -40,7 +40,7 @@ def test_a_pickled_grammar_is_rebuilt_in_another_process():
     assert glbs == [g.build().to_glb() for g in grammars[:2]]
 
 
-BUSHY = "derivation length: 9\nangle: 22.5\nAxiom: A\nA --> F [+A] [-A] [&A] F A\nF --> F F\n"
+BUSHY = "derivation length: 10\nangle: 22.5\nAxiom: A\nA --> F [+A] [-A] [&A] F A\nF --> F F\n"
 
 
 def test_builds_release_the_gil():
