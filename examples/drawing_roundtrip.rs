@@ -635,7 +635,7 @@ fn measure(k: usize, hall: Hall, fixed: &Fixed, overlay: Option<&Path>) -> Resul
             }
         };
         let root = &inference.tree;
-        let iou = IOU_LABELS
+        let iou: Vec<Option<f64>> = IOU_LABELS
             .iter()
             .zip(&masks)
             .map(|(label, want)| {
@@ -775,6 +775,8 @@ fn rebuilt_counts(grammar: &str, w: f64) -> Result<Counts, String> {
 
 struct WidthCase {
     drawing: usize,
+    /// Which of [`CONDITIONS`] the grammar was read from.
+    condition: usize,
     factor: f64,
     inferred_w: f64,
     got: Result<Counts, String>,
@@ -879,13 +881,6 @@ fn width_test(outcomes: &[(usize, Outcome)]) -> Vec<WidthCase> {
                 .all(|f| truth(&o.hall.with_width(o.hall.get("W") * f)).is_ok())
     });
     for (k, o) in eligible.take(WIDTH_DRAWINGS) {
-        let grammar = &o.readings[0].grammar;
-        let inferred_w = grammar
-            .lines()
-            .find_map(|l| l.strip_prefix("#define W "))
-            .and_then(|l| l.split_whitespace().next())
-            .and_then(|v| v.parse::<f64>().ok())
-            .unwrap_or(f64::NAN);
         for f in FACTORS {
             let want = truth(&o.hall.with_width(o.hall.get("W") * f))
                 .expect("checked above")
@@ -896,15 +891,30 @@ fn width_test(outcomes: &[(usize, Outcome)]) -> Vec<WidthCase> {
                 (0..5).all(|i| (lo.five()[i]..=hi.five()[i]).contains(&want.five()[i])),
                 "drawing {k} at {f}: the generator's own count outside its range"
             );
-            cases.push(WidthCase {
-                drawing: *k,
-                factor: f,
-                inferred_w,
-                got: rebuilt_counts(grammar, inferred_w * f),
-                want,
-                lo,
-                hi,
-            });
+            // The same drawing read clean and damaged: each reading's grammar.
+            for (condition, reading) in o.readings.iter().enumerate() {
+                let grammar = &reading.grammar;
+                let inferred_w = grammar
+                    .lines()
+                    .find_map(|l| l.strip_prefix("#define W "))
+                    .and_then(|l| l.split_whitespace().next())
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .unwrap_or(f64::NAN);
+                let got = match &reading.error {
+                    Some(e) => Err(format!("unread: {e}")),
+                    None => rebuilt_counts(grammar, inferred_w * f),
+                };
+                cases.push(WidthCase {
+                    drawing: *k,
+                    condition,
+                    factor: f,
+                    inferred_w,
+                    got,
+                    want,
+                    lo,
+                    hi,
+                });
+            }
         }
     }
     cases
@@ -1280,7 +1290,8 @@ fn report(run: &Run) -> String {
 
     // Width test.
     let _ = writeln!(s, "\n## Width test\n");
-    let drawings: std::collections::BTreeSet<usize> = run.width.iter().map(|c| c.drawing).collect();
+    let clean: Vec<&WidthCase> = run.width.iter().filter(|c| c.condition == 0).collect();
+    let drawings: std::collections::BTreeSet<usize> = clean.iter().map(|c| c.drawing).collect();
     let _ = writeln!(
         s,
         "{} grammars (drawings {}), each rebuilt at four widths. Share of rebuilds with the \
@@ -1298,7 +1309,7 @@ fn report(run: &Run) -> String {
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for f in FACTORS {
-        let cases: Vec<&WidthCase> = run.width.iter().filter(|c| c.factor == f).collect();
+        let cases: Vec<&WidthCase> = clean.iter().copied().filter(|c| c.factor == f).collect();
         let share = |p: &dyn Fn(&Counts, &Counts) -> bool| {
             pct(
                 cases
@@ -1345,7 +1356,7 @@ fn report(run: &Run) -> String {
         ("all four", &[0, 1, 3, 4]),
     ];
     for f in FACTORS {
-        let cases: Vec<&WidthCase> = run.width.iter().filter(|c| c.factor == f).collect();
+        let cases: Vec<&WidthCase> = clean.iter().copied().filter(|c| c.factor == f).collect();
         for (name, idx) in ranged {
             let exact = |c: &WidthCase| {
                 c.got
@@ -1372,6 +1383,60 @@ fn report(run: &Run) -> String {
                 determined.len(),
                 pct(right, determined.len()),
                 determined.len()
+            );
+        }
+    }
+
+    // The width test on the damaged drawings' grammars.
+    let _ = writeln!(
+        s,
+        "\nThe same {} drawings read after each damage (How, *Damage*), their grammars rebuilt \
+         the same way: share of rebuilds consistent with the picture (the count within [lo, hi]; \
+         an unread drawing counts as not), and in brackets exact (the generator's count).\n",
+        drawings.len()
+    );
+    let _ = writeln!(
+        s,
+        "| drawing | factor | n | bays | columns | windows | bracket sets | rafters | all four |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    for (condition, name) in CONDITIONS.iter().enumerate() {
+        for f in FACTORS {
+            let cases: Vec<&WidthCase> = run
+                .width
+                .iter()
+                .filter(|c| c.condition == condition && c.factor == f)
+                .collect();
+            let cell = |idx: &[usize]| {
+                let within = cases
+                    .iter()
+                    .filter(|c| {
+                        c.got.as_ref().is_ok_and(|g| {
+                            idx.iter()
+                                .all(|&i| (c.lo.six()[i]..=c.hi.six()[i]).contains(&g.six()[i]))
+                        })
+                    })
+                    .count();
+                let exact = cases
+                    .iter()
+                    .filter(|c| {
+                        c.got
+                            .as_ref()
+                            .is_ok_and(|g| idx.iter().all(|&i| g.six()[i] == c.want.six()[i]))
+                    })
+                    .count();
+                format!("{} ({})", pct(within, cases.len()), pct(exact, cases.len()))
+            };
+            let _ = writeln!(
+                s,
+                "| {name} | {f} | {} | {} | {} | {} | {} | {} | {} |",
+                cases.len(),
+                cell(&[0]),
+                cell(&[1]),
+                cell(&[3]),
+                cell(&[4]),
+                cell(&[5]),
+                cell(&[0, 1, 3, 4]),
             );
         }
     }
@@ -1467,6 +1532,7 @@ fn report(run: &Run) -> String {
     let failed: Vec<&WidthCase> = run
         .width
         .iter()
+        .filter(|c| c.condition == 0)
         .filter(|c| match &c.got {
             Ok(g) => {
                 g.five()[..4] != c.want.five()[..4]

@@ -13,6 +13,9 @@ use super::{collapse, is_plain, placeholder};
 /// element; the others are the layer's back.
 pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     band.label = "other";
+    if kind == "bracket" {
+        broken_back(band, regions);
+    }
     // A layer narrower than the band (the bracket layer under a wider
     // roof) is the one drawn piece between two empty margins.
     let mut band = band;
@@ -201,6 +204,65 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
     band.repeat = n >= 3;
 }
 
+/// The back of a row of hanging sets broken into pieces: the channel
+/// under each set, between its bottom and the beam, is a few pixels high,
+/// and a shaky line (a scan's jitter) pinches it shut where the two come
+/// close, so that the one region around every set (the layer's back)
+/// falls into several, each around a set or a few, and the shape tree cut
+/// the layer between them, through the sets. Each such piece reaches from
+/// the layer's top to its bottom and holds a set (a region at most half
+/// its width, inside it along x). When two such pieces or more reach from
+/// top to bottom and one holds a set, every region reaching from top to
+/// bottom is back: they become the band's fills, and the band is cut again
+/// without them, as the tree cuts an unbroken back: a row of the sets over
+/// an empty strip when they all hang, the row by columns.
+fn broken_back(band: &mut Node, regions: &[Region]) {
+    let [x0, y0, x1, y1] = band.bbox;
+    let slack = reach_slack(band);
+    let full = |r: usize| {
+        let b = regions[r].bbox;
+        f64::from(b[1] - y0) <= slack && f64::from(y1 - b[3]) <= slack
+    };
+    let holds_set = |r: usize| {
+        let b = regions[r].bbox;
+        band.content().any(|s| {
+            let c = regions[s].bbox;
+            s != r && !full(s) && c[0] >= b[0] && c[2] <= b[2] && 2 * (c[2] - c[0]) <= b[2] - b[0]
+        })
+    };
+    let backs: Vec<usize> = band.content().filter(|&r| full(r)).collect();
+    if backs.len() < 2 || !backs.iter().any(|&r| holds_set(r)) {
+        return;
+    }
+    band.fills.extend(backs);
+    let sets: Vec<usize> = band.content().collect();
+    let bottom = sets.iter().map(|&r| regions[r].bbox[3]).max().unwrap_or(y1);
+    if f64::from(y1 - bottom) <= slack {
+        by_columns(band, regions);
+        return;
+    }
+    let mut row = Node {
+        bbox: [x0, y0, x1, bottom],
+        regions: sets,
+        ..placeholder()
+    };
+    by_columns(&mut row, regions);
+    let strip = Node {
+        bbox: [x0, bottom, x1, y1],
+        ..placeholder()
+    };
+    band.children = vec![row, strip];
+    band.split = Some(Axis::Y);
+}
+
+/// How far (pixels) a region's box may stop from the layer's top or bottom
+/// and still reach it: an eighth of the layer's height, and at least 2.5,
+/// as a line that wobbles a pixel (a scan's jitter) moves a box's edge by
+/// one and the line next to it the other way.
+fn reach_slack(band: &Node) -> f64 {
+    (f64::from(band.h()) / 8.0).max(2.5)
+}
+
 /// Bracket sets hanging from the layer's top (a block under the rafters,
 /// as `hall.lsys` draws them) leave the back between them closed, from
 /// the layer's top to its bottom, and about as wide as a set: which pieces
@@ -213,7 +275,7 @@ pub(super) fn row_of(band: &mut Node, kind: &'static str, regions: &[Region]) {
 /// or None.
 fn hanging_sets(band: &Node, drawn: &[usize], regions: &[Region]) -> Option<Vec<bool>> {
     let [_, y0, _, y1] = band.bbox;
-    let slack = (f64::from(y1 - y0) / 8.0).max(1.5);
+    let slack = reach_slack(band);
     let reach = |k: usize, bottom: bool| {
         band.children[k].regions.iter().map(move |&r| {
             let b = regions[r].bbox;
@@ -647,5 +709,41 @@ mod tests {
         let (mut band, regions) = row(0, 20, &boxes, &[1, 3, 5, 7]);
         row_of(&mut band, "bracket", &regions);
         assert_eq!(leaves(&band, "bracket").len(), 4);
+    }
+
+    #[test]
+    fn a_back_broken_round_its_sets_still_leaves_one_set_a_piece() {
+        // Eight sets 12 wide hanging 0..14 in a layer 0..20, every 20
+        // pixels; the back around them broken in three by a shaky line
+        // closing the channel under a set: 0..61, 61..121, 121..170.
+        let sets: Vec<[i32; 4]> = (0..8).map(|k| [4 + 20 * k, 0, 16 + 20 * k, 14]).collect();
+        let backs = [[0, 0, 62, 20], [60, 0, 122, 20], [120, 0, 170, 20]];
+        let regions: Vec<Region> = sets
+            .iter()
+            .chain(&backs)
+            .map(|&bbox| Region { bbox, area: 100 })
+            .collect();
+        // The tree cut the layer between the back's pieces, through a set.
+        let mut band = Node::leaf("other", [0, 0, 170, 20]);
+        band.regions = (0..regions.len()).collect();
+        band.split = Some(Axis::X);
+        band.children = [(0, 61), (61, 121), (121, 170)]
+            .iter()
+            .map(|&(x0, x1)| Node {
+                regions: (0..regions.len())
+                    .filter(|&r| {
+                        let b = regions[r].bbox;
+                        (x0..x1).contains(&((b[0] + b[2]) / 2))
+                    })
+                    .collect(),
+                ..Node::leaf("other", [x0, 0, x1, 20])
+            })
+            .collect();
+        row_of(&mut band, "bracket", &regions);
+        let got = leaves(&band, "bracket");
+        assert_eq!(got.len(), 8, "{got:?}");
+        // Each set its own piece, over the empty strip under the row.
+        assert!(got.iter().all(|b| b[1] == 0 && b[3] == 14), "{got:?}");
+        assert_eq!(got[0], [4, 0, 16, 14]);
     }
 }

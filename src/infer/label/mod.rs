@@ -375,46 +375,117 @@ fn bay(node: &mut Node, regions: &[Region]) {
         }
         return;
     }
+    // A piece under the lintel with no region in it, and no region of the
+    // bay's around it, is ink (`inked`); next to a door or window it is
+    // part of it: a shaky hand closed a fine lattice's cells in some rows.
+    let inked: Vec<bool> = node
+        .children
+        .iter()
+        .map(|c| inked(node, c, regions))
+        .collect();
     for c in &mut node.children[rest_from..] {
         elements(c, regions, floor, height, false);
     }
     // Pieces with a door or window in them, one above the other under the
     // lintel, are one element: a shaky hand pinches a lattice's cells shut
-    // along a line, and the window comes in two rows.
-    let rest: Vec<Node> = node.children.drain(rest_from..).collect();
-    let mut run: Vec<Node> = Vec::new();
-    let flush = |run: &mut Vec<Node>, children: &mut Vec<Node>| match run.len() {
+    // along a line, and the window comes in two rows (or in rows of ink).
+    let found: Vec<bool> = node
+        .children
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            k >= rest_from
+                && c.leaves()
+                    .iter()
+                    .any(|l| matches!(l.label, "door" | "window"))
+        })
+        .collect();
+    let mut ink_beside = ink_beside(&inked[rest_from..], &found[rest_from..]);
+    ink_beside.splice(0..0, vec![false; rest_from]);
+    let element: Vec<bool> = found
+        .iter()
+        .zip(&ink_beside)
+        .map(|(f, i)| *f || *i)
+        .collect();
+    let rest: Vec<(Node, bool, bool)> = node
+        .children
+        .drain(rest_from..)
+        .zip(element.into_iter().skip(rest_from))
+        .zip(inked.into_iter().skip(rest_from))
+        .map(|((c, e), i)| (c, e, i))
+        .collect();
+    let mut run: Vec<(Node, bool)> = Vec::new();
+    let flush = |run: &mut Vec<(Node, bool)>, children: &mut Vec<Node>| match run.len() {
         0 => {}
-        1 => children.append(run),
-        _ => children.push(merged(&std::mem::take(run), regions, floor, height)),
+        1 if !run[0].1 => children.push(run.remove(0).0),
+        _ => children.push(merged(
+            &std::mem::take(run),
+            Axis::Y,
+            regions,
+            floor,
+            height,
+        )),
     };
-    for c in rest {
-        let element = c
-            .leaves()
-            .iter()
-            .any(|l| matches!(l.label, "door" | "window"));
-        if !element {
+    for (c, is_element, ink) in rest {
+        if !is_element {
             flush(&mut run, &mut node.children);
             node.children.push(c);
         } else {
-            run.push(c);
+            run.push((c, ink));
         }
     }
     flush(&mut run, &mut node.children);
 }
 
-/// One door or window, a leaf, of the pieces `run` (side by side or one
-/// above the other).
-fn merged(run: &[Node], regions: &[Region], floor: i32, height: i32) -> Node {
-    let mut m = run[0].clone();
-    for r in &run[1..] {
+/// Whether `piece`, a child of `node`, is ink: nothing drawn in it, and
+/// no region of `node`'s around it (a wall drawn as one ring round its
+/// window covers the strips beside the window). A lattice so fine that
+/// thickening the lines by `--gap` closed its cells leaves such pieces,
+/// and a shaky line closes more of them.
+fn inked(node: &Node, piece: &Node, regions: &[Region]) -> bool {
+    let b = piece.bbox;
+    let (cx, cy) = ((b[0] + b[2]) / 2, (b[1] + b[3]) / 2);
+    piece.regions.is_empty()
+        && !node.regions.iter().any(|&r| {
+            let o = regions[r].bbox;
+            o[0] <= cx && cx < o[2] && o[1] <= cy && cy < o[3]
+        })
+}
+
+/// The pieces that are ink (`inked`) in an unbroken run of ink between an
+/// element (`found`) and another piece: not the first or last piece,
+/// where ink is the strip between two lines close together (a window's
+/// frame and the column beside it), closed up by `--gap`.
+fn ink_beside(inked: &[bool], found: &[bool]) -> Vec<bool> {
+    let n = inked.len();
+    let mut out = vec![false; n];
+    for k in (1..n.saturating_sub(1)).filter(|&k| inked[k]) {
+        let up = (0..k).rev().find(|&j| !inked[j]).is_some_and(|j| found[j]);
+        let down = (k + 1..n).find(|&j| !inked[j]).is_some_and(|j| found[j]);
+        out[k] = up || down;
+    }
+    out
+}
+
+/// One door or window, a leaf, of the pieces `run`, side by side (`axis`
+/// x) or one above the other (y); those flagged are ink, and only add
+/// their extent along `axis`.
+fn merged(run: &[(Node, bool)], axis: Axis, regions: &[Region], floor: i32, height: i32) -> Node {
+    let mut m = run[0].0.clone();
+    for (r, _) in &run[1..] {
         m.bbox = union(m.bbox, r.bbox);
         m.regions.extend(r.regions.iter().copied());
     }
     m.fills.clear();
     m.children.clear();
     m.split = None;
-    element(&mut m, regions, floor, height);
+    let mut b = content_box(&m, regions);
+    let (lo, hi) = if axis == Axis::X { (0, 2) } else { (1, 3) };
+    for (r, _) in run.iter().filter(|(_, ink)| *ink) {
+        b[lo] = b[lo].min(r.bbox[lo]);
+        b[hi] = b[hi].max(r.bbox[hi]);
+    }
+    element_at(&mut m, b, floor, height);
     m
 }
 
@@ -460,7 +531,15 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested
         })
         .collect();
     let drawn: Vec<usize> = (0..n).filter(|&k| !wall[k]).collect();
-    if drawn.len() == 1 {
+    // Ink beside a drawn piece is part of it (`inked`).
+    let inked: Vec<bool> = node
+        .children
+        .iter()
+        .map(|c| inked(node, c, regions))
+        .collect();
+    let found: Vec<bool> = wall.iter().map(|w| !w).collect();
+    let ink = ink_beside(&inked, &found);
+    if drawn.len() == 1 && !ink.contains(&true) {
         for (k, c) in node.children.iter_mut().enumerate() {
             if wall[k] {
                 collapse(c, "wall");
@@ -474,10 +553,10 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested
     // Several drawn pieces next to each other make one element; a wall
     // between them separates two.
     let mut children = Vec::new();
-    let mut run: Vec<Node> = Vec::new();
-    let flush = |run: &mut Vec<Node>, children: &mut Vec<Node>| {
+    let mut run: Vec<(Node, bool)> = Vec::new();
+    let flush = |run: &mut Vec<(Node, bool)>, children: &mut Vec<Node>| {
         if !run.is_empty() {
-            children.push(merged(run, regions, floor, height));
+            children.push(merged(run, axis, regions, floor, height));
             run.clear();
         }
     };
@@ -496,12 +575,12 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested
         })
         .collect();
     for (k, mut c) in std::mem::take(&mut node.children).into_iter().enumerate() {
-        if wall[k] && !joint[k] {
+        if wall[k] && !joint[k] && !ink[k] {
             flush(&mut run, &mut children);
             collapse(&mut c, "wall");
             children.push(c);
         } else {
-            run.push(c);
+            run.push((c, ink[k]));
         }
     }
     flush(&mut run, &mut children);
@@ -515,7 +594,11 @@ fn elements(node: &mut Node, regions: &[Region], floor: i32, height: i32, nested
 
 /// A door or a window, by where it stands.
 fn element(node: &mut Node, regions: &[Region], floor: i32, height: i32) {
-    let b = content_box(node, regions);
+    element_at(node, content_box(node, regions), floor, height);
+}
+
+/// A door or a window drawn over `b`, by where it stands.
+fn element_at(node: &mut Node, b: [i32; 4], floor: i32, height: i32) {
     let on_floor = (floor - b[3]) as f64 <= 0.04 * height as f64;
     let tall = (b[3] - b[1]) as f64 >= 0.4 * height as f64;
     collapse(node, if on_floor && tall { "door" } else { "window" });
@@ -590,5 +673,93 @@ mod tests {
         let mut r = root(vec![band(0, 10, &tiles), band(10, 25, &rafters)]);
         rejoin_pinched_bands(&mut r, &[]);
         assert_eq!(r.children.len(), 2);
+    }
+
+    /// A bay 0..60 x 0..100 under a lintel 0..10: a wall strip with its
+    /// own region 10..20, then the window's pieces one above the other,
+    /// `rows` (with or without a cell of the lattice left open in them),
+    /// then a wall strip with its own region down to the floor.
+    fn bay_of(rows: &[(i32, i32, bool)]) -> (Node, Vec<Region>) {
+        let mut regions = vec![
+            Region {
+                bbox: [0, 10, 60, 20],
+                area: 400,
+            },
+            Region {
+                bbox: [0, 80, 60, 100],
+                area: 800,
+            },
+        ];
+        let mut b = placeholder();
+        b.bbox = [0, 0, 60, 100];
+        b.split = Some(Axis::Y);
+        b.regions = vec![0, 1];
+        b.children = vec![
+            Node {
+                bbox: [0, 0, 60, 10],
+                ..placeholder()
+            },
+            Node {
+                bbox: [0, 10, 60, 20],
+                regions: vec![0],
+                fills: vec![0],
+                ..placeholder()
+            },
+        ];
+        for &(y0, y1, open) in rows {
+            let mut piece = Node {
+                bbox: [0, y0, 60, y1],
+                ..placeholder()
+            };
+            if open {
+                // Three cells of the lattice, side by side.
+                for x in [10, 25, 40] {
+                    piece.regions.push(regions.len());
+                    b.regions.push(regions.len());
+                    regions.push(Region {
+                        bbox: [x, y0, x + 10, y1],
+                        area: 40,
+                    });
+                }
+            }
+            b.children.push(piece);
+        }
+        b.children.push(Node {
+            bbox: [0, 80, 60, 100],
+            regions: vec![1],
+            fills: vec![1],
+            ..placeholder()
+        });
+        (b, regions)
+    }
+
+    fn windows(n: &Node) -> Vec<[i32; 4]> {
+        n.leaves()
+            .into_iter()
+            .filter(|l| l.label == "window")
+            .map(|l| l.bbox)
+            .collect()
+    }
+
+    #[test]
+    fn rows_of_ink_beside_a_window_are_part_of_it() {
+        // A shaky hand closed the lattice's cells but in the middle row.
+        let (mut b, regions) = bay_of(&[(20, 40, false), (40, 60, true), (60, 80, false)]);
+        bay(&mut b, &regions);
+        assert_eq!(windows(&b), vec![[10, 20, 50, 80]]);
+        // Every row open: the same window, from its cells.
+        let (mut b, regions) = bay_of(&[(20, 40, true), (40, 60, true), (60, 80, true)]);
+        bay(&mut b, &regions);
+        assert_eq!(windows(&b), vec![[10, 20, 50, 80]]);
+        // A wall drawn as one region round the window covers the strips
+        // next to it: they stay wall, and the window is its cells.
+        let (mut b, mut regions) = bay_of(&[(20, 40, false), (40, 60, true), (60, 80, false)]);
+        b.regions.push(regions.len());
+        regions.push(Region {
+            bbox: [0, 10, 60, 100],
+            area: 2000,
+        });
+        bay(&mut b, &regions);
+        assert_eq!(windows(&b), vec![[10, 40, 50, 60]]);
     }
 }
