@@ -9,6 +9,8 @@
 //! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
 //! label/       shape tree -> labelled tree (the seed's priors as rules;
 //!              layers.rs: the bracket and rafter layers)
+//! pitch.rs     labelled tree + ink -> the rafter row re-cut at the pitch
+//!              its ink repeats at (rafters too small to keep a region)
 //! outline.rs   labelled tree + ink -> doors and windows out to their drawn
 //!              outlines (lines that gap bridging closed up)
 //! correct.rs   labelled tree + the user's labels -> corrected tree
@@ -24,6 +26,7 @@ mod error;
 mod front;
 mod label;
 mod outline;
+mod pitch;
 mod regions;
 mod rules;
 mod tree;
@@ -165,6 +168,11 @@ pub fn infer_regions(
     let tolerance = ((bbox[2] - bbox[0]).max(bbox[3] - bbox[1]) / 100).max(2 * gap as i32 + 2);
     let mut tree = tree::shape_tree(&regions, bbox, tolerance);
     let mut unlabelled = label::recognise(&mut tree, &regions);
+    // Rafters are read from the ink's rhythm where it repeats: thickened
+    // lines close them (pitch.rs).
+    if pitch::rafters(&mut tree, ink).is_some() {
+        unlabelled = label::unlabelled(&tree, &regions);
+    }
     outline::snap(&mut tree, ink);
     // After the snap: the boxes are those the user saw in the tree.
     let missed = correct::apply(&mut tree, corrections)?;

@@ -194,22 +194,33 @@ pub fn measure(root: &Node, scale: Option<f64>, ink: &Ink) -> Measured {
             .map(|b| (b, all(b, label)))
             .find(|(_, items)| !items.is_empty())?;
         items.sort_by_key(|n| n.bbox[0]);
-        // A side face's rafters or bracket sets seen end-on: the first
+        // Rafters read by their pitch go on under the eaves past the
+        // front (pitch.rs): the front's are those between the end bays'
+        // edges, and a row that goes on past both ends goes round.
+        let (lo, hi) = match (edges.first(), edges.last()) {
+            (Some(&a), Some(&b)) if label == "rafter" => (a - 1.0, b + 1.0),
+            _ => (f64::MIN, f64::MAX),
+        };
+        let past_both = items.first().is_some_and(|n| centre(n) < lo)
+            && items.last().is_some_and(|n| centre(n) > hi);
+        // Else a side face's rafters or bracket sets seen end-on: the first
         // and the last element, both more than a quarter narrower or wider
         // than the others, or both closer to their neighbour than three
         // quarters of the pitch (an end-on set stands at the corner, half
         // a pitch from the front's first: the widths can be alike).
-        let corners = items.len() >= 4 && {
-            let k = items.len();
-            let m = median(items[1..k - 1].iter().map(|n| n.w() as f64).collect());
-            let unlike = |n: &Node| (n.w() as f64 - m).abs() > 0.25 * m;
-            let centre = |n: &Node| (n.bbox[0] + n.bbox[2]) as f64 / 2.0;
-            let gap = |i: usize| centre(items[i + 1]) - centre(items[i]);
-            let pitch = median((1..k - 2).map(gap).collect());
-            let close = |i: usize| gap(i) < 0.75 * pitch;
-            (unlike(items[0]) && unlike(items[k - 1])) || (k >= 5 && close(0) && close(k - 2))
-        };
-        if corners {
+        let corners = past_both
+            || items.len() >= 4 && {
+                let k = items.len();
+                let m = median(items[1..k - 1].iter().map(|n| n.w() as f64).collect());
+                let unlike = |n: &Node| (n.w() as f64 - m).abs() > 0.25 * m;
+                let gap = |i: usize| centre(items[i + 1]) - centre(items[i]);
+                let pitch = median((1..k - 2).map(gap).collect());
+                let close = |i: usize| gap(i) < 0.75 * pitch;
+                (unlike(items[0]) && unlike(items[k - 1])) || (k >= 5 && close(0) && close(k - 2))
+            };
+        if past_both {
+            items.retain(|n| (lo..=hi).contains(&centre(n)));
+        } else if corners {
             items = items[1..items.len() - 1].to_vec();
         }
         Some(Row {
