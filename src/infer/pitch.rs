@@ -209,18 +209,17 @@ pub fn rafters(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
     columns.sort_by_key(|b| b[0]);
     let centre = |b: &[i32; 4]| (b[0] + b[2]) as f64 / 2.0;
     let (front0, front1) = (centre(columns.first()?), centre(columns.last()?));
-    let band_at = rafter_band(root)?;
-    let band = &mut root.children[band_at];
-    let [bx0, y0, bx1, y1] = band.bbox;
     let (x0, x1) = (front0.round() as i32, front1.round() as i32);
-    if x1 - x0 < (MIN_COUNT * MIN_PITCH) as i32 || y1 - y0 < 3 {
+    if x1 - x0 < (MIN_COUNT * MIN_PITCH) as i32 || x0 < 0 || x1 as usize > ink.width {
         return None;
     }
-    // The layer's inner rows: its boxes reach the middle of its top and
-    // bottom lines, which run the row's length and would only add a
-    // constant.
-    let inset = if y1 - y0 >= 7 { 2 } else { 1 };
-    let rows = (y0 + inset).max(0) as usize..((y1 - inset).max(0) as usize).min(ink.height);
+    let band_at = rafter_band(root).or_else(|| cut_joined_row(root, ink, x0, x1))?;
+    let band = &mut root.children[band_at];
+    let [bx0, y0, bx1, y1] = band.bbox;
+    if y1 - y0 < 3 {
+        return None;
+    }
+    let rows = inner_rows(y0, y1, ink);
     // Two pixels past the band's ends: its boxes end in the middle of its
     // outermost lines.
     let (ux0, ux1) = (
@@ -319,6 +318,114 @@ pub fn rafters(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
     band.split = Some(super::tree::Axis::X);
     band.repeat = true;
     Some(rhythm)
+}
+
+/// The layer's inner rows: its boxes reach the middle of its top and
+/// bottom lines, which run the row's length and would only add a
+/// constant.
+fn inner_rows(y0: i32, y1: i32, ink: &Ink) -> std::ops::Range<usize> {
+    let inset = if y1 - y0 >= 7 { 2 } else { 1 };
+    (y0 + inset).max(0) as usize..((y1 - inset).max(0) as usize).min(ink.height)
+}
+
+/// A row of ink is a line across the front when it covers this much of it.
+const ACROSS: f64 = 0.8;
+
+/// A rafter layer the shape tree did not cut off (a layer 5 pixels high, or
+/// blurred): the strip at the top of the bracket layer, down to the first
+/// line drawn across it, or at the bottom of the roof, up to the first
+/// line across above the eaves' line. Taken when its ink repeats at
+/// least [`MIN_COUNT`] times, and half as often again as the bracket
+/// sets: it is cut from its band as a band of its own. Returns its index.
+fn cut_joined_row(root: &mut Node, ink: &Ink, x0: i32, x1: i32) -> Option<usize> {
+    let bands = &root.children;
+    let roof = bands.iter().position(|b| b.label == "roof")?;
+    let brackets = roof + 1;
+    let mut sets = Vec::new();
+    collect(bands.get(brackets)?, "bracket", &mut sets);
+    if sets.is_empty() {
+        return None;
+    }
+    // Over two rows: a line drawn between two rows of pixels is split
+    // between them where it was smoothed.
+    let drawn = |y: i32, rows: i32| {
+        let ys = y.max(0) as usize..((y + rows).max(0) as usize).min(ink.height);
+        let n = (x0..x1)
+            .filter(|&x| ys.clone().any(|y| ink.at(x as usize, y)))
+            .count();
+        n as f64 / (x1 - x0) as f64
+    };
+    let across = |y: i32| drawn(y, 2) >= ACROSS;
+    // From `from` towards `to` (excluded): past the line at `from`, rows
+    // not drawn across, then the middle of the next line.
+    let next_line = |from: i32, to: i32| -> Option<i32> {
+        let step = (to - from).signum();
+        let inside = |y: i32| y != to && y >= 0 && (y as usize) < ink.height;
+        // The band's edge is the middle of its line, or a row or two off
+        // it where the line is thick or blurred; or there is no line there.
+        let mut y = (0..3)
+            .map(|k| from + k * step)
+            .find(|&y| inside(y) && across(y))
+            .unwrap_or(from);
+        while inside(y) && across(y) {
+            y += step;
+        }
+        let open = y;
+        while inside(y) && !across(y) {
+            y += step;
+        }
+        if !inside(y) || (y - open).abs() < 2 {
+            return None;
+        }
+        let start = y;
+        while inside(y + step) && across(y + step) {
+            y += step;
+        }
+        // The line's own rows: those of the pairs drawn half across alone.
+        let (lo, hi) = (start.min(y), start.max(y) + 1);
+        let own: Vec<i32> = (lo..=hi).filter(|&y| drawn(y, 1) >= ACROSS / 2.0).collect();
+        let (first, last) = (own.first().copied()?, own.last().copied()?);
+        Some((first + last) / 2)
+    };
+    let (r, b) = (bands[roof].bbox, bands[brackets].bbox);
+    // At the top of the bracket layer (index `brackets`), or at the
+    // bottom of the roof.
+    let candidates = [
+        next_line(b[1], b[1] + (b[3] - b[1]) / 2).map(|cut| (b[1], cut, true)),
+        next_line(r[3], r[3] - (r[3] - r[1]) / 3).map(|cut| (cut, r[3], false)),
+    ];
+    for (ya, yb, in_brackets) in candidates.into_iter().flatten() {
+        if yb - ya < 3 {
+            continue;
+        }
+        let f = profile(ink, x0 as usize, x1 as usize, inner_rows(ya, yb, ink));
+        let Some(rhythm) = rhythm(&f) else {
+            continue;
+        };
+        let n = (x1 - x0) as f64 / rhythm.pitch;
+        if n < MIN_COUNT as f64 || n < 1.5 * sets.len() as f64 {
+            continue;
+        }
+        let [bx0, _, bx1, _] = b;
+        let band = Node::leaf("other", [bx0, ya, bx1, yb]);
+        if in_brackets {
+            clip_top(&mut root.children[brackets], yb);
+            root.children.insert(brackets, band);
+            return Some(brackets);
+        }
+        root.children[roof].bbox[3] = ya;
+        root.children.insert(roof + 1, band);
+        return Some(roof + 1);
+    }
+    None
+}
+
+/// `n` and everything in it start at `y` at the earliest.
+fn clip_top(n: &mut Node, y: i32) {
+    n.bbox[1] = n.bbox[1].max(y).min(n.bbox[3]);
+    for c in &mut n.children {
+        clip_top(c, y);
+    }
 }
 
 /// The top-level band holding the rafters: the one with rafter leaves, or
@@ -486,5 +593,25 @@ mod tests {
         let mut root = hall();
         rafters(&mut root, &ink).expect("read by its pitch");
         assert_eq!(rafter_boxes(&root).len(), 98);
+    }
+
+    #[test]
+    fn a_rafter_row_the_tree_left_in_the_bracket_layer_is_cut_off() {
+        // The rafters, 5 rows high, over a line across the front at row
+        // 45, all in the bracket layer's band (rows 40..60): no cut was
+        // found between them and the sets.
+        let mut ink = row_and(100.0, 8.9, 3.5, 90, (40, 46), &[61.0, 938.0]);
+        for x in 60..940 {
+            ink.ink[59 * ink.width + x] = true;
+        }
+        let mut root = hall();
+        let sets = root.children.remove(2);
+        root.children[1] = sets;
+        root.children[1].bbox[1] = 40;
+        rafters(&mut root, &ink).expect("cut off and read by its pitch");
+        let bands: Vec<[i32; 4]> = root.children.iter().map(|b| b.bbox).collect();
+        assert_eq!(bands[1], [60, 40, 940, 45], "{bands:?}");
+        assert_eq!(bands[2][1], 45, "the bracket layer starts under the line");
+        assert_eq!(rafter_boxes(&root).len(), 92);
     }
 }
