@@ -11,6 +11,8 @@
 //!              layers.rs: the bracket and rafter layers)
 //! pitch.rs     labelled tree + ink -> the rafter row re-cut at the pitch
 //!              its ink repeats at (rafters too small to keep a region)
+//! brackets.rs  labelled tree + ink -> the bracket layer re-cut at its
+//!              sets' pitch, where the regions' count disagrees with it
 //! outline.rs   labelled tree + ink -> doors and windows out to their drawn
 //!              outlines (lines that gap bridging closed up)
 //! correct.rs   labelled tree + the user's labels -> corrected tree
@@ -20,6 +22,7 @@
 //! `docs/drawing.md` describes the method, its choices and the round trip
 //! that measures it.
 
+mod brackets;
 mod correct;
 mod drawing;
 mod error;
@@ -170,7 +173,10 @@ pub fn infer_regions(
     let mut unlabelled = label::recognise(&mut tree, &regions);
     // Rafters are read from the ink's rhythm where it repeats: thickened
     // lines close them (pitch.rs).
-    if pitch::rafters(&mut tree, ink).is_some() {
+    // So are bracket sets whose regions a shaky or blurred scan broke up
+    // or closed, when the count they give is not the ink's (brackets.rs).
+    let by_pitch = pitch::rafters(&mut tree, ink).is_some();
+    if brackets::brackets(&mut tree, ink).is_some() || by_pitch {
         unlabelled = label::unlabelled(&tree, &regions);
     }
     outline::snap(&mut tree, ink);

@@ -23,7 +23,7 @@ use super::tree::Node;
 /// The shortest pitch read: 3 pixels (a line, a gap, a line).
 const MIN_PITCH: usize = 3;
 /// A row is read by its pitch when it has at least this many elements.
-const MIN_COUNT: usize = 8;
+pub(super) const MIN_COUNT: usize = 8;
 /// The profile's autocorrelation at the pitch, at least: below, the ink
 /// does not repeat (0 is noise, 1 a perfect repeat).
 const MIN_PERIODICITY: f64 = 0.3;
@@ -204,15 +204,7 @@ fn fold(f: &[f64], pitch: f64) -> (f64, f64) {
 /// between the end columns' centres repeats at least [`MIN_COUNT`] times.
 /// Returns the row's rhythm, if it was read so.
 pub fn rafters(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
-    let mut columns: Vec<[i32; 4]> = Vec::new();
-    collect(root, "column", &mut columns);
-    columns.sort_by_key(|b| b[0]);
-    let centre = |b: &[i32; 4]| (b[0] + b[2]) as f64 / 2.0;
-    let (front0, front1) = (centre(columns.first()?), centre(columns.last()?));
-    let (x0, x1) = (front0.round() as i32, front1.round() as i32);
-    if x1 - x0 < (MIN_COUNT * MIN_PITCH) as i32 || x0 < 0 || x1 as usize > ink.width {
-        return None;
-    }
+    let (x0, x1) = front(root, ink)?;
     let band_at = rafter_band(root).or_else(|| cut_joined_row(root, ink, x0, x1))?;
     let band = &mut root.children[band_at];
     let [bx0, y0, bx1, y1] = band.bbox;
@@ -291,33 +283,60 @@ pub fn rafters(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
         && bx1 - end > pitch as i32
         && drawn(bx0, start)
         && drawn(end, bx1);
+    let boxes: Vec<(i32, i32)> = (first..=last).map(box_of).collect();
+    lay_out(band, "rafter", &boxes, corners.then_some((start, end)));
+    Some(rhythm)
+}
+
+/// Re-cuts `band` into back and `kind` elements, one over each of
+/// `boxes` (x ranges, left to right), and an element seen end-on at each
+/// end when `corners` gives where they stop: from the band's left end to
+/// the first, and from the second to its right end.
+pub(super) fn lay_out(
+    band: &mut Node,
+    kind: &'static str,
+    boxes: &[(i32, i32)],
+    corners: Option<(i32, i32)>,
+) {
+    let [bx0, y0, bx1, y1] = band.bbox;
     let mut children = Vec::new();
     let mut at = bx0;
-    if corners {
-        children.push(Node::leaf("rafter", [bx0, y0, start, y1]));
+    if let Some((start, _)) = corners {
+        children.push(Node::leaf(kind, [bx0, y0, start, y1]));
         at = start;
     }
-    for i in first..=last {
-        let (lo, hi) = box_of(i);
+    for &(lo, hi) in boxes {
         let (lo, hi) = (lo.max(at), hi.min(bx1).max(lo.max(at) + 1));
         if lo > at {
             children.push(Node::leaf("other", [at, y0, lo, y1]));
         }
-        children.push(Node::leaf("rafter", [lo, y0, hi, y1]));
+        children.push(Node::leaf(kind, [lo, y0, hi, y1]));
         at = hi;
     }
-    let stop = if corners { end } else { bx1 };
+    let stop = corners.map_or(bx1, |(_, end)| end.max(at));
     if stop > at {
         children.push(Node::leaf("other", [at, y0, stop, y1]));
         at = stop;
     }
-    if corners {
-        children.push(Node::leaf("rafter", [at, y0, bx1, y1]));
+    if corners.is_some() && bx1 > at {
+        children.push(Node::leaf(kind, [at, y0, bx1, y1]));
     }
     band.children = children;
     band.split = Some(super::tree::Axis::X);
     band.repeat = true;
-    Some(rhythm)
+}
+
+/// The front: from the first column's centre to the last's, where a
+/// row's elements on the front face run; None when it is too short to
+/// repeat [`MIN_COUNT`] times or lies off the drawing.
+pub(super) fn front(root: &Node, ink: &Ink) -> Option<(i32, i32)> {
+    let mut columns: Vec<[i32; 4]> = Vec::new();
+    collect(root, "column", &mut columns);
+    columns.sort_by_key(|b| b[0]);
+    let centre = |b: &[i32; 4]| ((b[0] + b[2]) as f64 / 2.0).round() as i32;
+    let (x0, x1) = (centre(columns.first()?), centre(columns.last()?));
+    let long = x1 - x0 >= (MIN_COUNT * MIN_PITCH) as i32;
+    (long && x0 >= 0 && x1 as usize <= ink.width).then_some((x0, x1))
 }
 
 /// The layer's inner rows: its boxes reach the middle of its top and
@@ -445,7 +464,7 @@ fn rafter_band(root: &Node) -> Option<usize> {
     (brackets == roof + 2).then_some(roof + 1)
 }
 
-fn collect(n: &Node, label: &str, out: &mut Vec<[i32; 4]>) {
+pub(super) fn collect(n: &Node, label: &str, out: &mut Vec<[i32; 4]>) {
     if n.label == label {
         out.push(n.bbox);
     }
