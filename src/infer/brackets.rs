@@ -19,7 +19,7 @@
 //! drawings clean, with gaps, with jitter and with a blur.
 
 use super::drawing::Ink;
-use super::pitch::{collect, front, lay_out, rhythm, Rhythm, MIN_COUNT};
+use super::pitch::{collect, folded, front, lay_out, rhythm, Rhythm, MIN_COUNT};
 use super::tree::Node;
 
 /// Rows of a strip: a line shaken by a row stays in it.
@@ -122,18 +122,7 @@ pub fn brackets(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
 /// start), and the run's width.
 fn square(f: &[f64], pitch: f64) -> (f64, f64) {
     let bins = (pitch.round() as usize).max(2);
-    let mut sum = vec![0.0; bins];
-    let mut seen = vec![0usize; bins];
-    for (x, v) in f.iter().enumerate() {
-        let b = (((x as f64 + 0.5) / pitch).fract() * bins as f64) as usize % bins;
-        sum[b] += v;
-        seen[b] += 1;
-    }
-    let inked: Vec<bool> = sum
-        .iter()
-        .zip(&seen)
-        .map(|(s, &k)| k > 0 && s / k as f64 >= 0.5)
-        .collect();
+    let inked: Vec<bool> = folded(f, pitch, bins).iter().map(|&h| h >= 0.5).collect();
     // The longest circular run of inked bins: start and length.
     let (mut best, mut run) = ((0, 0), None);
     for k in 0..2 * bins {

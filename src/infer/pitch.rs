@@ -139,12 +139,9 @@ pub fn rhythm(f: &[f64]) -> Option<Rhythm> {
     })
 }
 
-/// The profile folded at `pitch`: where in a period an element's centre
-/// stands and how wide it is. An element is drawn as two lines (its
-/// edges) nearer to each other than to the next element's; closed into
-/// one post of ink, it is that post.
-fn fold(f: &[f64], pitch: f64) -> (f64, f64) {
-    let bins = (pitch.round() as usize).max(MIN_PITCH);
+/// The mean of `f` in each of `bins` equal parts of a period `pitch` long
+/// (the period starting at `f`'s start); 0 where no sample falls.
+pub(super) fn folded(f: &[f64], pitch: f64, bins: usize) -> Vec<f64> {
     let mut sum = vec![0.0; bins];
     let mut seen = vec![0usize; bins];
     for (x, v) in f.iter().enumerate() {
@@ -152,11 +149,19 @@ fn fold(f: &[f64], pitch: f64) -> (f64, f64) {
         sum[b] += v;
         seen[b] += 1;
     }
-    let h: Vec<f64> = sum
-        .iter()
+    sum.iter()
         .zip(&seen)
         .map(|(s, &k)| if k == 0 { 0.0 } else { s / k as f64 })
-        .collect();
+        .collect()
+}
+
+/// The profile folded at `pitch`: where in a period an element's centre
+/// stands and how wide it is. An element is drawn as two lines (its
+/// edges) nearer to each other than to the next element's; closed into
+/// one post of ink, it is that post.
+fn fold(f: &[f64], pitch: f64) -> (f64, f64) {
+    let bins = (pitch.round() as usize).max(MIN_PITCH);
+    let h = folded(f, pitch, bins);
     let circ = |a: usize, b: usize| {
         let d = (b + bins - a) % bins;
         d.min(bins - d)
