@@ -29,8 +29,9 @@ const STRIP: i32 = 3;
 const INKED: std::ops::RangeInclusive<f64> = 0.2..=0.8;
 
 /// Re-cuts the bracket layer of `root` at the pitch its ink repeats at,
-/// when its sets are fewer than the front's count by that pitch or more
-/// than that and the two corners. Returns the rhythm when it re-cut.
+/// when the sets read from its regions are more than two off the front's
+/// count by that pitch and the corner sets drawn, or have lost corner
+/// sets drawn at both ends. Returns the rhythm when it re-cut.
 pub fn brackets(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
     let (x0, x1) = front(root, ink)?;
     let holds = |b: &Node| {
