@@ -9,10 +9,10 @@
 //! tree.rs      regions -> shape tree (alternating y/x cuts, top down)
 //! label/       shape tree -> labelled tree (the seed's priors as rules;
 //!              layers.rs: the bracket and rafter layers)
-//! pitch.rs     labelled tree + ink -> the rafter row re-cut at the pitch
-//!              its ink repeats at (rafters too small to keep a region)
-//! brackets.rs  labelled tree + ink -> the bracket layer re-cut at its
-//!              sets' pitch, where the regions' count disagrees with it
+//! pitch/       labelled tree + ink -> the rafter row re-cut at the pitch
+//!              its ink repeats at (rafters too small to keep a region;
+//!              rafters.rs), and the bracket layer at its sets' pitch
+//!              where the regions' count disagrees with it (brackets.rs)
 //! outline.rs   labelled tree + ink -> doors and windows out to their drawn
 //!              outlines (lines that gap bridging closed up)
 //! correct.rs   labelled tree + the user's labels -> corrected tree
@@ -22,7 +22,6 @@
 //! `docs/drawing.md` describes the method, its choices and the round trip
 //! that measures it.
 
-mod brackets;
 mod correct;
 mod drawing;
 mod error;
@@ -172,11 +171,11 @@ pub fn infer_regions(
     let mut tree = tree::shape_tree(&regions, bbox, tolerance);
     let mut unlabelled = label::recognise(&mut tree, &regions);
     // Rafters are read from the ink's rhythm where it repeats: thickened
-    // lines close them (pitch.rs).
+    // lines close them (pitch/rafters.rs).
     // So are bracket sets whose regions a shaky or blurred scan broke up
-    // or closed, when the count they give is not the ink's (brackets.rs).
+    // or closed, when the count they give is not the ink's (pitch/brackets.rs).
     let by_pitch = pitch::rafters(&mut tree, ink).is_some();
-    if brackets::brackets(&mut tree, ink).is_some() || by_pitch {
+    if pitch::brackets(&mut tree, ink).is_some() || by_pitch {
         unlabelled = label::unlabelled(&tree, &regions);
     }
     outline::snap(&mut tree, ink);

@@ -195,7 +195,7 @@ pub fn measure(root: &Node, scale: Option<f64>, ink: &Ink) -> Measured {
             .find(|(_, items)| !items.is_empty())?;
         items.sort_by_key(|n| n.bbox[0]);
         // Rafters read by their pitch go on under the eaves past the
-        // front (pitch.rs): the front's are those between the end bays'
+        // front (pitch/rafters.rs): the front's are those between the end bays'
         // edges, and a row that goes on past both ends goes round.
         let (lo, hi) = match (edges.first(), edges.last()) {
             (Some(&a), Some(&b)) if label == "rafter" => (a - 1.0, b + 1.0),

@@ -18,9 +18,9 @@
 //! best gives the pitch. The front's count is right so in 200 of 200
 //! drawings clean, with gaps, with jitter and with a blur.
 
-use super::drawing::Ink;
-use super::pitch::{collect, folded, front, lay_out, rhythm, Rhythm, MIN_COUNT};
-use super::tree::Node;
+use super::super::drawing::Ink;
+use super::super::tree::Node;
+use super::{folded, front, labelled, lay_out, rhythm, Rhythm, MIN_COUNT};
 
 /// Rows of a strip: a line shaken by a row stays in it.
 const STRIP: i32 = 3;
@@ -34,13 +34,11 @@ const INKED: std::ops::RangeInclusive<f64> = 0.2..=0.8;
 /// sets drawn at both ends. Returns the rhythm when it re-cut.
 pub fn brackets(root: &mut Node, ink: &Ink) -> Option<Rhythm> {
     let (x0, x1) = front(root, ink)?;
-    let holds = |b: &Node| {
-        let mut v = Vec::new();
-        collect(b, "bracket", &mut v);
-        v.len()
-    };
-    let band_at = root.children.iter().position(|b| holds(b) > 0)?;
-    let sets = holds(&root.children[band_at]);
+    let band_at = root
+        .children
+        .iter()
+        .position(|b| labelled(b, "bracket") > 0)?;
+    let sets = labelled(&root.children[band_at], "bracket");
     let band = &mut root.children[band_at];
     let [bx0, y0, bx1, y1] = band.bbox;
     let (ux0, ux1) = (
@@ -217,9 +215,7 @@ mod tests {
     }
 
     fn sets(root: &Node) -> usize {
-        let mut v = Vec::new();
-        collect(root, "bracket", &mut v);
-        v.len()
+        labelled(root, "bracket")
     }
 
     #[test]
